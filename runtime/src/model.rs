@@ -1,0 +1,188 @@
+//! The traits `#[system]` implements for a model and the integrators are generic over.
+//!
+//! A [`Model`] is first-order, y′ = f(t, y). A model with `#[position]`/`#[velocity]` fields is
+//! also [`SecondOrder`], q̈ = a(t, q, q̇): its state lays out every position, then every velocity,
+//! so the split methods see the two halves of [`State::as_slice`].
+
+use std::convert::Infallible;
+use std::fmt::Debug;
+use std::marker::PhantomData;
+
+use crate::{Method, Simulation};
+
+/// A model's state: a list of `f64` components with names.
+pub trait State: Clone + PartialEq + Debug {
+    /// The components, positions before velocities for second-order models.
+    fn as_slice(&self) -> &[f64];
+    /// The components, mutably, in the order of [`State::as_slice`].
+    fn as_mut_slice(&mut self) -> &mut [f64];
+    /// The name of component `index` as CSV headers and errors show it (`x`, `r[1]`).
+    fn component_name(&self, index: usize) -> String;
+}
+
+/// A system of ordinary differential equations, y′ = f(t, y), with optional energy.
+///
+/// Implemented by `#[system]`; the runtime never asks a user to write it by hand.
+pub trait Model {
+    /// The typed state (`<Model>State`).
+    type State: State;
+    /// This model as a [`SecondOrder`] one: `Self` when it has a position/velocity split,
+    /// [`NotSecondOrder`] otherwise.
+    type SecondOrder: SecondOrder<State = Self::State>;
+    /// The model's type name, for errors.
+    const NAME: &'static str;
+    /// The method named by `#[system(integrator = ...)]`, else [`Method::Rk4`].
+    const DEFAULT_METHOD: Method;
+    /// The step named by `#[system(dt = ...)]`.
+    const DEFAULT_DT: Option<f64>;
+
+    /// The state held in the model's own fields: the usual initial state.
+    fn state(&self) -> Self::State;
+
+    /// Writes f(t, y) into `dydt`.
+    fn derivative(&self, t: f64, y: &Self::State, dydt: &mut Self::State);
+
+    /// The model's energy at `state`, if it defines `fn energy`.
+    fn energy(&self, state: &Self::State) -> Option<f64>;
+
+    /// The model as a [`SecondOrder`] one, if it is.
+    fn as_second_order(&self) -> Option<&Self::SecondOrder>;
+
+    /// Starts configuring a run from the model's own state, method and dt.
+    fn simulate(&self) -> Simulation<'_, Self>
+    where
+        Self: Sized,
+    {
+        Simulation::new(self)
+    }
+}
+
+/// A model with a position/velocity split, q̈ = a(t, q, q̇).
+pub trait SecondOrder: Model {
+    /// Whether `fn acceleration` reads a velocity field (determined by the macro from the body).
+    const READS_VELOCITY: bool;
+
+    /// Writes a(t, q, q̇) into the velocity components of `accel`; its position components are
+    /// left as they were.
+    fn acceleration(&self, t: f64, state: &Self::State, accel: &mut Self::State);
+}
+
+/// The [`Model::SecondOrder`] of a first-order model: a type with no values, so a second-order
+/// method can be named for such a model but never run on it.
+#[derive(Debug)]
+pub enum NotSecondOrder<M> {
+    #[doc(hidden)]
+    Never(Infallible, PhantomData<M>),
+}
+
+impl<M: Model> Model for NotSecondOrder<M> {
+    type State = M::State;
+    type SecondOrder = Self;
+    const NAME: &'static str = M::NAME;
+    const DEFAULT_METHOD: Method = M::DEFAULT_METHOD;
+    const DEFAULT_DT: Option<f64> = M::DEFAULT_DT;
+
+    fn state(&self) -> Self::State {
+        self.never()
+    }
+    fn derivative(&self, _: f64, _: &Self::State, _: &mut Self::State) {
+        self.never()
+    }
+    fn energy(&self, _: &Self::State) -> Option<f64> {
+        self.never()
+    }
+    fn as_second_order(&self) -> Option<&Self> {
+        self.never()
+    }
+}
+
+impl<M: Model> SecondOrder for NotSecondOrder<M> {
+    const READS_VELOCITY: bool = false;
+    fn acceleration(&self, _: f64, _: &Self::State, _: &mut Self::State) {
+        self.never()
+    }
+}
+
+impl<M> NotSecondOrder<M> {
+    fn never(&self) -> ! {
+        match *self {
+            NotSecondOrder::Never(never, _) => match never {},
+        }
+    }
+}
+
+/// Positions and velocities of a second-order state: the two halves of its components.
+#[inline(always)]
+pub(crate) fn split(s: &[f64]) -> (&[f64], &[f64]) {
+    s.split_at(s.len() / 2)
+}
+
+/// Mutable [`split`].
+#[inline(always)]
+pub(crate) fn split_mut(s: &mut [f64]) -> (&mut [f64], &mut [f64]) {
+    let half = s.len() / 2;
+    s.split_at_mut(half)
+}
+
+/// Safe views of fixed-size generated states as `f64` slices and `nalgebra` vectors.
+pub mod flat {
+    use nalgebra::SVector;
+
+    /// A `#[repr(C)]` struct made only of `f64`, `[f64; N]` and `SVector<f64, N>` fields.
+    ///
+    /// # Safety
+    /// The implementor must be `#[repr(C)]`, contain only those field types, and have
+    /// `LEN * size_of::<f64>()` bytes; it is then layout-identical to `[f64; LEN]`. The size is
+    /// checked again at compile time by every function here.
+    pub unsafe trait FlatState: Copy {
+        /// Number of `f64` components.
+        const LEN: usize;
+    }
+
+    const fn check<T: FlatState, const N: usize>() {
+        assert!(size_of::<T>() == N * size_of::<f64>());
+        assert!(align_of::<T>() == align_of::<f64>());
+    }
+
+    /// The components of `state` as a slice.
+    #[inline(always)]
+    pub fn as_slice<T: FlatState>(state: &T) -> &[f64] {
+        const { assert!(size_of::<T>() == T::LEN * size_of::<f64>()) };
+        // SAFETY: `FlatState` guarantees `T` is layout-identical to `[f64; T::LEN]`.
+        unsafe { core::slice::from_raw_parts((state as *const T).cast::<f64>(), T::LEN) }
+    }
+
+    /// The components of `state` as a mutable slice.
+    #[inline(always)]
+    pub fn as_mut_slice<T: FlatState>(state: &mut T) -> &mut [f64] {
+        const { assert!(size_of::<T>() == T::LEN * size_of::<f64>()) };
+        // SAFETY: as in `as_slice`; the borrow is unique.
+        unsafe { core::slice::from_raw_parts_mut((state as *mut T).cast::<f64>(), T::LEN) }
+    }
+
+    /// `state` viewed as an `SVector<f64, N>` without copying; `N` must equal `T::LEN`.
+    #[inline(always)]
+    pub fn as_vector<T: FlatState, const N: usize>(state: &T) -> &SVector<f64, N> {
+        const { check::<T, N>() };
+        // SAFETY: `SVector<f64, N>` is `#[repr(C)]` over a `#[repr(transparent)]` `[[f64; N]; 1]`
+        // and `T` is layout-identical to `[f64; N]` (checked above).
+        unsafe { &*(state as *const T).cast::<SVector<f64, N>>() }
+    }
+
+    /// `state` viewed as a mutable `SVector<f64, N>` without copying.
+    #[inline(always)]
+    pub fn as_vector_mut<T: FlatState, const N: usize>(state: &mut T) -> &mut SVector<f64, N> {
+        const { check::<T, N>() };
+        // SAFETY: as in `as_vector`; the borrow is unique.
+        unsafe { &mut *(state as *mut T).cast::<SVector<f64, N>>() }
+    }
+
+    /// Builds a state from a vector of its components.
+    #[inline(always)]
+    pub fn from_vector<T: FlatState, const N: usize>(vector: &SVector<f64, N>) -> T {
+        const { check::<T, N>() };
+        // SAFETY: every bit pattern of `[f64; N]` is a valid `T` (only `f64` fields), and the
+        // layouts match (checked above).
+        unsafe { core::mem::transmute_copy(vector) }
+    }
+}

@@ -1,0 +1,127 @@
+//! Files: atomic writes and CSV. Nothing here touches the numerics.
+//!
+//! Every file is written to a temporary sibling and renamed into place, so a reader (or a crash)
+//! never sees half a file, and a failed write leaves any older file untouched.
+
+use std::fs;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use crate::{Error, Result, State, Trajectory};
+
+/// Writes `bytes` to `path` atomically, creating missing parent directories.
+pub fn write_atomic(path: impl AsRef<Path>, bytes: &[u8]) -> Result<()> {
+    let path = path.as_ref();
+    with_temporary(path, "", |temp| {
+        let mut file = fs::File::create(temp)?;
+        file.write_all(bytes)?;
+        file.sync_all()
+    })
+}
+
+/// Runs `write` on a fresh temporary path beside `path` (ending in `suffix`, for writers that
+/// choose a format from the extension), then renames the result onto `path`.
+pub(crate) fn with_temporary<E>(
+    path: &Path,
+    suffix: &str,
+    write: impl FnOnce(&Path) -> std::result::Result<(), E>,
+) -> Result<()>
+where
+    E: Into<TempError>,
+{
+    static COUNTER: AtomicU64 = AtomicU64::new(0);
+    let io = |source| Error::Io { path: path.to_path_buf(), source };
+    let name = path.file_name().ok_or_else(|| {
+        Error::invalid("output path", format!("`{}` does not name a file", path.display()))
+    })?;
+    let parent = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    fs::create_dir_all(parent).map_err(io)?;
+    let unique = COUNTER.fetch_add(1, Ordering::Relaxed);
+    let mut temp_name = std::ffi::OsString::from(".");
+    temp_name.push(name);
+    temp_name.push(format!(".{}.{unique}.tmp{suffix}", std::process::id()));
+    let temp: PathBuf = parent.join(temp_name);
+    let result = match write(&temp).map_err(Into::into) {
+        Ok(()) => fs::rename(&temp, path).map_err(io),
+        Err(TempError::Io(source)) => Err(io(source)),
+        Err(TempError::Other(error)) => Err(error),
+    };
+    if result.is_err() {
+        let _ = fs::remove_file(&temp);
+    }
+    result
+}
+
+/// The error of a temporary-file writer: plain I/O, or an odyn error already carrying its path.
+#[doc(hidden)]
+pub enum TempError {
+    Io(std::io::Error),
+    Other(Error),
+}
+
+impl From<std::io::Error> for TempError {
+    fn from(e: std::io::Error) -> Self {
+        TempError::Io(e)
+    }
+}
+
+impl From<Error> for TempError {
+    fn from(e: Error) -> Self {
+        TempError::Other(e)
+    }
+}
+
+/// Writes trajectories as one CSV table, atomically: `method,step,t,<components>[,energy]`,
+/// one row per recorded sample, trajectories one after another.
+///
+/// The energy column is present when the first trajectory's model defines an energy. All
+/// trajectories share the state type, so the component columns agree.
+pub fn write_csv<S: State>(path: impl AsRef<Path>, runs: &[&Trajectory<S>]) -> Result<()> {
+    let path = path.as_ref();
+    let first = runs
+        .first()
+        .ok_or_else(|| Error::invalid("trajectories", "nothing to write: the list is empty"))?;
+    let sample = first.first();
+    let has_energy = sample.energy.is_some();
+    let mut header = vec!["method".to_owned(), "step".to_owned(), "t".to_owned()];
+    header.extend((0..sample.state.as_slice().len()).map(|i| sample.state.component_name(i)));
+    if has_energy {
+        header.push("energy".to_owned());
+    }
+    let mut rows = Vec::new();
+    for run in runs {
+        for s in &run.samples {
+            let mut row = vec![run.method.name().to_owned(), s.step.to_string(), number(s.t)];
+            row.extend(s.state.as_slice().iter().copied().map(number));
+            if has_energy {
+                row.push(s.energy.map_or_else(String::new, number));
+            }
+            rows.push(row);
+        }
+    }
+    write_table(path, &header, &rows)
+}
+
+/// Writes a CSV table with a header row, atomically.
+pub fn write_table<H: AsRef<str>, C: AsRef<str>>(
+    path: impl AsRef<Path>,
+    header: &[H],
+    rows: &[Vec<C>],
+) -> Result<()> {
+    let path = path.as_ref();
+    let csv_error = |source| Error::Csv { path: path.to_path_buf(), source };
+    let mut writer = csv::Writer::from_writer(Vec::new());
+    writer.write_record(header.iter().map(AsRef::as_ref)).map_err(csv_error)?;
+    for row in rows {
+        writer.write_record(row.iter().map(AsRef::as_ref)).map_err(csv_error)?;
+    }
+    let bytes = writer.into_inner().map_err(|e| csv_error(e.into_error().into()))?;
+    write_atomic(path, &bytes)
+}
+
+/// `x` as CSV shows it: the shortest text that reads back to the same `f64`, in exponent form
+/// when very large or small (`1e300`, not three hundred digits).
+pub fn number(x: f64) -> String {
+    format!("{x:?}")
+}
