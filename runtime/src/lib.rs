@@ -10,6 +10,7 @@ mod error;
 pub mod integrators;
 mod method;
 mod model;
+pub mod reference;
 pub mod output;
 #[cfg(feature = "plot")]
 pub mod plot;
@@ -22,6 +23,7 @@ pub use error::{Error, Result};
 pub use integrators::Integrator;
 pub use method::Method;
 pub use model::{Model, NotSecondOrder, SecondOrder, State};
+pub use nalgebra;
 pub use simulation::{Length, RunOptions, Simulation};
 pub use stepper::Stepper;
 pub use trajectory::{Sample, Trajectory};
@@ -32,4 +34,6 @@ pub mod __private {
     pub use crate::model::flat;
     pub use crate::model::flat::FlatState;
     pub use nalgebra;
+
+    pub use crate::__flat_state as flat_state;
 }

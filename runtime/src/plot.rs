@@ -153,7 +153,8 @@ impl Chart<'_> {
         Y: Ranged<ValueType = f64>,
     {
         for (i, s) in self.series.iter().enumerate() {
-            let color = Palette99::pick(i).to_rgba();
+            let (r, g, b) = PALETTE[i % PALETTE.len()];
+            let color = RGBColor(r, g, b).to_rgba();
             let style = ShapeStyle::from(color).stroke_width(2);
             let points = s.points.iter().copied().filter(|(x, y)| x.is_finite() && y.is_finite());
             chart
@@ -170,6 +171,20 @@ impl Chart<'_> {
             .draw()
     }
 }
+
+/// Matplotlib's `tab10`: distinct on white, and legible to most colour-blind readers.
+const PALETTE: [(u8, u8, u8); 10] = [
+    (31, 119, 180),
+    (255, 127, 14),
+    (44, 160, 44),
+    (214, 39, 40),
+    (148, 103, 189),
+    (140, 86, 75),
+    (227, 119, 194),
+    (127, 127, 127),
+    (188, 189, 34),
+    (23, 190, 207),
+];
 
 fn bounds(points: impl Iterator<Item = (f64, f64)>) -> Option<((f64, f64), (f64, f64))> {
     let mut b: Option<((f64, f64), (f64, f64))> = None;

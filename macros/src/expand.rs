@@ -1,0 +1,160 @@
+//! Wires the stages together for the two places `#[system]` goes.
+//!
+//! On the struct, the expansion generates the typed state and defines a `macro_rules!` carrying
+//! the struct's tokens. On the impl block, the expansion calls that macro, which hands struct and
+//! impl together to [`system_impl`]: the one place that sees both the fields and the function
+//! bodies. So the struct must come before its impl block, in the same module.
+
+use proc_macro2::TokenStream;
+use quote::{ToTokens, quote};
+use syn::parse::{Parse, ParseStream};
+use syn::{Item, ItemImpl, ItemStruct, Type};
+
+use crate::errors::Errors;
+use crate::model::Order;
+use crate::{args, functions, generate, model};
+
+/// `#[system(...)]` on an item.
+pub(crate) fn system(args: TokenStream, item: TokenStream) -> TokenStream {
+    match syn::parse2::<Item>(item.clone()) {
+        Ok(Item::Struct(s)) => expand_struct(args, &s),
+        Ok(Item::Impl(i)) => forward_impl(args, &i),
+        Ok(other) => with_error(
+            other,
+            syn::Error::new_spanned(
+                item_keyword(&item),
+                "`#[system]` goes on a model struct and on that struct's `impl` block",
+            ),
+        ),
+        Err(error) => with_error(item, error),
+    }
+}
+
+/// The struct half: the stripped struct, its state type, and the forwarding macro.
+fn expand_struct(args_tokens: TokenStream, item: &ItemStruct) -> TokenStream {
+    let mut errors = Errors::default();
+    let args = args::parse(args_tokens.clone(), &mut errors);
+    let model = model::parse(item, &mut errors);
+    if let (Some(model), Some((ident, info))) = (&model, &args.integrator)
+        && info.needs_second_order
+        && model.order == Order::First
+    {
+        errors.at(
+            ident,
+            format_args!(
+                "`{ident}` needs a second-order model (`#[position]`/`#[velocity]` fields), but \
+                 `{}` is first-order (`#[state]` fields); use `ExplicitEuler` or `Rk4`",
+                item.ident
+            ),
+        );
+    }
+    let stripped = model::strip_roles(item);
+    match (errors.finish(), model) {
+        (Ok(()), Some(model)) => {
+            let state = generate::state(&model);
+            let forwarder = generate::forwarder(item, &args_tokens, true);
+            quote!(#stripped #state #forwarder)
+        }
+        (result, _) => {
+            let error = result.err().map(|e| e.to_compile_error());
+            let forwarder = generate::forwarder(item, &args_tokens, false);
+            quote!(#stripped #error #forwarder)
+        }
+    }
+}
+
+/// The impl half: hand the impl block to the macro the struct's expansion defined.
+fn forward_impl(args: TokenStream, item: &ItemImpl) -> TokenStream {
+    let mut errors = Errors::default();
+    if !args.is_empty() {
+        errors.at(
+            &args,
+            "`#[system]` on an impl block takes no arguments; put `integrator` and `dt` on the struct",
+        );
+    }
+    if let Some((_, path, _)) = &item.trait_ {
+        errors.at(path, "`#[system]` goes on the model's own `impl` block, not on a trait impl");
+    }
+    if !item.generics.params.is_empty() {
+        errors.at(&item.generics, "generic models are not supported");
+    }
+    let model = match &*item.self_ty {
+        Type::Path(p) if p.qself.is_none() && p.path.segments.len() == 1 => {
+            let segment = &p.path.segments[0];
+            segment.arguments.is_none().then_some(&segment.ident)
+        }
+        _ => None,
+    };
+    if model.is_none() {
+        errors.at(&item.self_ty, "expected the model struct's name, such as `impl Spring`");
+    }
+    match (errors.finish(), model) {
+        (Ok(()), Some(model)) => {
+            let forwarder = generate::forwarder_name(model);
+            quote!(#forwarder! { #item })
+        }
+        (result, _) => with_error(item, result.err().expect("an error was recorded")),
+    }
+}
+
+/// The input of `__system_impl!`: `[args] struct … impl …`.
+struct Forwarded {
+    args: TokenStream,
+    item: ItemStruct,
+    imp: ItemImpl,
+}
+
+impl Parse for Forwarded {
+    fn parse(input: ParseStream<'_>) -> syn::Result<Self> {
+        let content;
+        syn::bracketed!(content in input);
+        Ok(Forwarded { args: content.parse()?, item: input.parse()?, imp: input.parse()? })
+    }
+}
+
+/// Struct and impl together: the runtime trait impls.
+pub(crate) fn system_impl(input: TokenStream) -> TokenStream {
+    let Forwarded { args, item, imp } = match syn::parse2(input) {
+        Ok(forwarded) => forwarded,
+        Err(error) => return error.to_compile_error(),
+    };
+    let mut errors = Errors::default();
+    let args = args::parse(args, &mut errors);
+    let Some(model) = model::parse(&item, &mut errors) else {
+        return with_error(imp, errors.finish().err().expect("a rejected model has errors"));
+    };
+    let functions = functions::parse(&imp, &model, &mut errors);
+    if let (Some((ident, info)), Some(force)) = (&args.integrator, &functions.force)
+        && info.needs_velocity_free_forces
+    {
+        let reads = functions::velocity_reads(force, &model);
+        if let Some((field, span)) = reads.first() {
+            errors.at(
+                ident,
+                format_args!(
+                    "`{ident}` needs forces that do not read velocities, but `acceleration` reads \
+                     `self.{field}`; use `VelocityVerlet` or `Leapfrog`"
+                ),
+            );
+            errors.at_span(*span, format_args!("`self.{field}` is read here"));
+        }
+    }
+    match errors.finish() {
+        Ok(()) => {
+            let generated = generate::model_impls(&model, &args, &functions, &imp);
+            quote!(#imp #generated)
+        }
+        Err(error) => with_error(imp, error),
+    }
+}
+
+/// The user's item unchanged plus the error, so the rest of their crate still compiles.
+fn with_error(item: impl ToTokens, error: syn::Error) -> TokenStream {
+    let error = error.to_compile_error();
+    quote!(#item #error)
+}
+
+/// The first token of an item, for errors about the item as a whole.
+fn item_keyword(item: &TokenStream) -> TokenStream {
+    item.clone().into_iter().take(1).collect()
+}

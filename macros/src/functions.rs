@@ -1,0 +1,243 @@
+//! Stage 3: the impl block — the force (or derivative) and energy functions, with every read of
+//! a state field made explicit so the runtime can evaluate them at any state.
+//!
+//! `self.x` for a state field `x` becomes a hygienic local bound to the state being evaluated;
+//! parameter reads (`self.k`) stay as they are. Any other use of `self` (a method call, passing
+//! `self`, `self` inside a macro) is an error: it would read the struct's own, stale state.
+
+use std::collections::BTreeMap;
+
+use proc_macro2::{Span, TokenStream, TokenTree};
+use quote::format_ident;
+use syn::visit_mut::{self, VisitMut};
+use syn::{Block, Expr, FnArg, Ident, ImplItem, ImplItemFn, ItemImpl, Member, ReturnType, Type};
+
+use crate::errors::Errors;
+use crate::model::{Model, Order, Role};
+
+/// The functions the macro reads; everything else in the impl block passes through untouched.
+pub(crate) struct Functions {
+    /// `fn acceleration` (second-order) or `fn derivative` (first-order).
+    pub(crate) force: Option<Function>,
+    /// `fn energy`, when defined.
+    pub(crate) energy: Option<Function>,
+}
+
+/// One user function, ready to be re-emitted with the state as arguments.
+pub(crate) struct Function {
+    /// The user's `self` token, reused so the rewritten body resolves `self` to the same binding.
+    pub(crate) receiver: syn::Receiver,
+    /// The user's time argument (`t: f64`), if declared.
+    pub(crate) time: Option<syn::PatType>,
+    pub(crate) output: Type,
+    /// The body with state reads replaced by [`state_local`]s.
+    pub(crate) body: Block,
+    /// State fields the body reads, with the span of the first read.
+    pub(crate) reads: BTreeMap<String, Span>,
+}
+
+/// The local a state field `x` is bound to inside a rewritten body.
+pub(crate) fn state_local(field: &Ident) -> Ident {
+    format_ident!("__odyn_{}", field, span = Span::mixed_site())
+}
+
+/// The name of the force function a model of `order` must define.
+pub(crate) fn force_name(order: Order) -> &'static str {
+    match order {
+        Order::First => "derivative",
+        Order::Second => "acceleration",
+    }
+}
+
+/// Reads the force and energy functions of `item` for `model`.
+pub(crate) fn parse(item: &ItemImpl, model: &Model<'_>, errors: &mut Errors) -> Functions {
+    let force_name = force_name(model.order);
+    let mut functions = Functions { force: None, energy: None };
+    for member in &item.items {
+        let ImplItem::Fn(f) = member else { continue };
+        if f.sig.ident == force_name {
+            functions.force = read(f, model, true, errors);
+        } else if f.sig.ident == "energy" {
+            functions.energy = read(f, model, false, errors);
+        } else if f.sig.ident == force_name_of_other(model.order) {
+            errors.at(
+                &f.sig.ident,
+                format_args!(
+                    "`{}` is for {} models, but `{}` is {}; write `fn {force_name}`",
+                    f.sig.ident,
+                    if model.order == Order::First { "second-order" } else { "first-order" },
+                    model.ident(),
+                    describe(model.order),
+                ),
+            );
+        }
+    }
+    if functions.force.is_none() && errors.is_empty() {
+        let signature = match model.order {
+            Order::Second => "fn acceleration(&self) -> f64".to_owned(),
+            Order::First => format!("fn derivative(&self) -> {}", model.state_ident()),
+        };
+        errors.at(
+            &item.self_ty,
+            format_args!(
+                "missing `{signature}` in `impl {}`: {} models define it (an optional second \
+                 argument `t: f64` receives the time)",
+                model.ident(),
+                describe(model.order)
+            ),
+        );
+    }
+    functions
+}
+
+fn force_name_of_other(order: Order) -> &'static str {
+    match order {
+        Order::First => force_name(Order::Second),
+        Order::Second => force_name(Order::First),
+    }
+}
+
+fn describe(order: Order) -> &'static str {
+    match order {
+        Order::First => "first-order (`#[state]` fields)",
+        Order::Second => "second-order (`#[position]`/`#[velocity]` fields)",
+    }
+}
+
+/// Checks a function's signature and rewrites its body.
+fn read(f: &ImplItemFn, model: &Model<'_>, is_force: bool, errors: &mut Errors) -> Option<Function> {
+    let sig = &f.sig;
+    let name = &sig.ident;
+    let before = errors.len();
+    if !sig.generics.params.is_empty() || sig.generics.where_clause.is_some() {
+        errors.at(&sig.generics, format_args!("`{name}` cannot be generic"));
+    }
+    if let Some(token) = sig.asyncness.as_ref().map(|a| a.span).or(sig.constness.map(|c| c.span)) {
+        errors.at_span(token, format_args!("`{name}` must be a plain `fn`"));
+    }
+    let mut inputs = sig.inputs.iter();
+    let receiver = match inputs.next() {
+        Some(FnArg::Receiver(r)) if r.reference.is_some() && r.mutability.is_none() => Some(r.clone()),
+        Some(other) => {
+            errors.at(other, format_args!("`{name}` must take `&self`"));
+            None
+        }
+        None => {
+            errors.at(name, format_args!("`{name}` must take `&self`"));
+            None
+        }
+    };
+    let time = match inputs.next() {
+        None => None,
+        Some(FnArg::Typed(t)) if is_f64(&t.ty) && is_force => Some(t.clone()),
+        Some(other) => {
+            let allowed = if is_force { "only `&self` and an optional `t: f64`" } else { "only `&self`" };
+            errors.at(other, format_args!("`{name}` takes {allowed}"));
+            None
+        }
+    };
+    if let Some(extra) = inputs.next() {
+        errors.at(extra, format_args!("`{name}` takes at most `&self` and `t: f64`"));
+    }
+    let output = match &sig.output {
+        ReturnType::Type(_, ty) => Some((**ty).clone()),
+        ReturnType::Default => {
+            errors.at(name, format_args!("`{name}` must return a value"));
+            None
+        }
+    };
+    let mut rewriter = Rewriter { model, function: name, reads: BTreeMap::new(), errors };
+    let mut body = f.block.clone();
+    rewriter.visit_block_mut(&mut body);
+    let reads = rewriter.reads;
+    if errors.len() > before {
+        return None;
+    }
+    Some(Function { receiver: receiver?, time, output: output?, body, reads })
+}
+
+fn is_f64(ty: &Type) -> bool {
+    matches!(ty, Type::Path(p) if p.qself.is_none() && p.path.is_ident("f64"))
+}
+
+/// Replaces `self.<state field>` with the field's local and rejects every other use of `self`.
+struct Rewriter<'m, 'e> {
+    model: &'m Model<'m>,
+    function: &'m Ident,
+    reads: BTreeMap<String, Span>,
+    errors: &'e mut Errors,
+}
+
+impl Rewriter<'_, '_> {
+    fn reject_self(&mut self, span: Span, what: &str) {
+        self.errors.at_span(
+            span,
+            format_args!(
+                "{what} is not supported in `{}`: odyn evaluates it at states other than the \
+                 struct's own, so `self` may only be read through its fields (`self.k`, `self.x`)",
+                self.function
+            ),
+        );
+    }
+}
+
+impl VisitMut for Rewriter<'_, '_> {
+    fn visit_expr_mut(&mut self, expr: &mut Expr) {
+        if let Expr::Field(field) = expr
+            && is_self(&field.base)
+        {
+            if let Member::Named(name) = &field.member
+                && let Some(state) = self.model.field(name)
+            {
+                self.reads.entry(name.to_string()).or_insert(name.span());
+                let local = state_local(state.ident);
+                *expr = syn::parse_quote_spanned!(name.span() => #local);
+            }
+            return;
+        }
+        if let Expr::MethodCall(call) = expr
+            && is_self(&call.receiver)
+        {
+            self.reject_self(call.method.span(), &format!("calling `self.{}()`", call.method));
+            return;
+        }
+        if is_self(expr) {
+            self.reject_self(span_of(expr), "using `self` other than to read a field");
+            return;
+        }
+        visit_mut::visit_expr_mut(self, expr);
+    }
+
+    fn visit_macro_mut(&mut self, mac: &mut syn::Macro) {
+        if let Some(span) = find_self(mac.tokens.clone()) {
+            let name = mac.path.segments.last().map(|s| s.ident.to_string()).unwrap_or_default();
+            self.reject_self(span, &format!("`self` inside `{name}!`"));
+        }
+    }
+}
+
+fn is_self(expr: &Expr) -> bool {
+    matches!(expr, Expr::Path(p) if p.qself.is_none() && p.path.is_ident("self"))
+}
+
+fn span_of(expr: &Expr) -> Span {
+    syn::spanned::Spanned::span(expr)
+}
+
+fn find_self(tokens: TokenStream) -> Option<Span> {
+    tokens.into_iter().find_map(|tree| match tree {
+        TokenTree::Ident(i) if i == "self" => Some(i.span()),
+        TokenTree::Group(g) => find_self(g.stream()),
+        _ => None,
+    })
+}
+
+/// The velocity fields `force` reads, with the span of the first read of each.
+pub(crate) fn velocity_reads<'f>(force: &'f Function, model: &Model<'_>) -> Vec<(&'f str, Span)> {
+    force
+        .reads
+        .iter()
+        .filter(|(name, _)| model.with_role(Role::Velocity).any(|v| v.ident == name.as_str()))
+        .map(|(name, span)| (name.as_str(), *span))
+        .collect()
+}
