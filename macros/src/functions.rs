@@ -25,6 +25,8 @@ pub(crate) struct Functions {
 
 /// One user function, ready to be re-emitted with the state as arguments.
 pub(crate) struct Function {
+    /// The user's function name (`acceleration`), which stays callable as written.
+    pub(crate) name: Ident,
     /// The user's `self` token, reused so the rewritten body resolves `self` to the same binding.
     pub(crate) receiver: syn::Receiver,
     /// The user's time argument (`t: f64`), if declared.
@@ -153,7 +155,7 @@ fn read(f: &ImplItemFn, model: &Model<'_>, is_force: bool, errors: &mut Errors) 
     if errors.len() > before {
         return None;
     }
-    Some(Function { receiver: receiver?, time, output: output?, body, reads })
+    Some(Function { name: name.clone(), receiver: receiver?, time, output: output?, body, reads })
 }
 
 fn is_f64(ty: &Type) -> bool {

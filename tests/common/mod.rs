@@ -1,0 +1,126 @@
+//! Models shared by the integration tests.
+#![allow(dead_code, reason = "each test crate uses a different subset of these models")]
+
+use odyn::prelude::*;
+
+/// Damped spring, m·ẍ = −k·x − b·ẋ (the tutorial's model).
+#[system(integrator = SymplecticEuler, dt = 0.016)]
+#[derive(Clone, Copy, Debug)]
+pub struct Spring {
+    #[position]
+    pub x: f64,
+    #[velocity]
+    pub v: f64,
+    pub k: f64,
+    pub b: f64,
+    pub m: f64,
+}
+
+#[system]
+impl Spring {
+    fn acceleration(&self) -> f64 {
+        (-self.k * self.x - self.b * self.v) / self.m
+    }
+
+    fn energy(&self) -> f64 {
+        0.5 * self.m * self.v * self.v + 0.5 * self.k * self.x * self.x
+    }
+}
+
+/// Undamped oscillator ẍ = −ω²x: its force never reads the velocity, so position Verlet takes it.
+#[system(integrator = PositionVerlet)]
+#[derive(Clone, Copy, Debug)]
+pub struct Oscillator {
+    #[position]
+    pub x: f64,
+    #[velocity]
+    pub v: f64,
+    pub omega: f64,
+}
+
+#[system]
+impl Oscillator {
+    fn acceleration(&self) -> f64 {
+        -self.omega * self.omega * self.x
+    }
+
+    /// Energy per unit mass.
+    fn energy(&self) -> f64 {
+        0.5 * self.v * self.v + 0.5 * self.omega * self.omega * self.x * self.x
+    }
+}
+
+/// The Lorenz system (first-order).
+#[system(integrator = Rk4, dt = 0.01)]
+pub struct Lorenz {
+    #[state]
+    pub x: f64,
+    #[state]
+    pub y: f64,
+    #[state]
+    pub z: f64,
+    pub sigma: f64,
+    pub rho: f64,
+    pub beta: f64,
+}
+
+#[system]
+impl Lorenz {
+    fn derivative(&self) -> LorenzState {
+        LorenzState {
+            x: self.sigma * (self.y - self.x),
+            y: self.x * (self.rho - self.z) - self.y,
+            z: self.x * self.y - self.beta * self.z,
+        }
+    }
+}
+
+impl Lorenz {
+    pub fn classic() -> Self {
+        Lorenz { x: 1.0, y: 1.0, z: 1.0, sigma: 10.0, rho: 28.0, beta: 8.0 / 3.0 }
+    }
+}
+
+/// Kepler problem in the plane, r̈ = −GM·r/|r|³, with vector state.
+#[system(integrator = Leapfrog, dt = 0.01)]
+pub struct Kepler {
+    #[position]
+    pub r: Vector2<f64>,
+    #[velocity]
+    pub v: Vector2<f64>,
+    pub gm: f64,
+}
+
+#[system]
+impl Kepler {
+    fn acceleration(&self) -> Vector2<f64> {
+        let r = self.r;
+        -self.gm * r / r.norm().powi(3)
+    }
+
+    fn energy(&self) -> f64 {
+        0.5 * self.v.norm_squared() - self.gm / self.r.norm()
+    }
+}
+
+/// Two uncoupled oscillators as two position/velocity pairs, one driven by cos(t):
+/// exercises tuple accelerations, array fields and the time argument.
+#[system]
+pub struct Pair {
+    #[position]
+    pub a: f64,
+    #[position]
+    pub b: [f64; 2],
+    #[velocity]
+    pub va: f64,
+    #[velocity]
+    pub vb: [f64; 2],
+    pub drive: f64,
+}
+
+#[system]
+impl Pair {
+    fn acceleration(&self, t: f64) -> (f64, [f64; 2]) {
+        (-self.a + self.drive * t.cos(), [-self.b[0], -4.0 * self.b[1]])
+    }
+}
