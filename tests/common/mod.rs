@@ -18,11 +18,11 @@ pub struct Spring {
 
 #[system]
 impl Spring {
-    fn acceleration(&self) -> f64 {
+    pub fn acceleration(&self) -> f64 {
         (-self.k * self.x - self.b * self.v) / self.m
     }
 
-    fn energy(&self) -> f64 {
+    pub fn energy(&self) -> f64 {
         0.5 * self.m * self.v * self.v + 0.5 * self.k * self.x * self.x
     }
 }
