@@ -19,13 +19,17 @@ pub(crate) fn system(args: TokenStream, item: TokenStream) -> TokenStream {
     match syn::parse2::<Item>(item.clone()) {
         Ok(Item::Struct(s)) => expand_struct(args, &s),
         Ok(Item::Impl(i)) => forward_impl(args, &i),
-        Ok(other) => with_error(
-            other,
-            syn::Error::new_spanned(
-                item_keyword(&item),
-                "`#[system]` goes on a model struct and on that struct's `impl` block",
-            ),
-        ),
+        Ok(other) => {
+            let message = "`#[system]` goes on a model struct and on that struct's `impl` block";
+            let error = match &other {
+                Item::Enum(e) => syn::Error::new_spanned(&e.ident, message),
+                Item::Fn(f) => syn::Error::new_spanned(&f.sig.ident, message),
+                Item::Union(u) => syn::Error::new_spanned(&u.ident, message),
+                Item::Trait(t) => syn::Error::new_spanned(&t.ident, message),
+                _ => syn::Error::new_spanned(&other, message),
+            };
+            with_error(other, error)
+        }
         Err(error) => with_error(item, error),
     }
 }
@@ -128,7 +132,7 @@ pub(crate) fn system_impl(input: TokenStream) -> TokenStream {
         && info.needs_velocity_free_forces
     {
         let reads = functions::velocity_reads(force, &model);
-        if let Some((field, span)) = reads.first() {
+        if let Some((field, tokens)) = reads.first() {
             errors.at(
                 ident,
                 format_args!(
@@ -136,7 +140,7 @@ pub(crate) fn system_impl(input: TokenStream) -> TokenStream {
                      `self.{field}`; use `VelocityVerlet` or `Leapfrog`"
                 ),
             );
-            errors.at_span(*span, format_args!("`self.{field}` is read here"));
+            errors.at(tokens, format_args!("`self.{field}` is read here"));
         }
     }
     match errors.finish() {
@@ -152,9 +156,4 @@ pub(crate) fn system_impl(input: TokenStream) -> TokenStream {
 fn with_error(item: impl ToTokens, error: syn::Error) -> TokenStream {
     let error = error.to_compile_error();
     quote!(#item #error)
-}
-
-/// The first token of an item, for errors about the item as a whole.
-fn item_keyword(item: &TokenStream) -> TokenStream {
-    item.clone().into_iter().take(1).collect()
 }

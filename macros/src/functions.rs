@@ -8,7 +8,7 @@
 use std::collections::BTreeMap;
 
 use proc_macro2::{Span, TokenStream, TokenTree};
-use quote::format_ident;
+use quote::{ToTokens, format_ident};
 use syn::visit_mut::{self, VisitMut};
 use syn::{Block, Expr, FnArg, Ident, ImplItem, ImplItemFn, ItemImpl, Member, ReturnType, Type};
 
@@ -34,8 +34,8 @@ pub(crate) struct Function {
     pub(crate) output: Type,
     /// The body with state reads replaced by [`state_local`]s.
     pub(crate) body: Block,
-    /// State fields the body reads, with the span of the first read.
-    pub(crate) reads: BTreeMap<String, Span>,
+    /// State fields the body reads, with the tokens of the first read (`self.x`).
+    pub(crate) reads: BTreeMap<String, TokenStream>,
 }
 
 /// The local a state field `x` is bound to inside a rewritten body.
@@ -76,14 +76,20 @@ pub(crate) fn parse(item: &ItemImpl, model: &Model<'_>, errors: &mut Errors) -> 
     }
     if functions.force.is_none() && errors.is_empty() {
         let signature = match model.order {
-            Order::Second => "fn acceleration(&self) -> f64".to_owned(),
+            Order::Second => {
+                let types: Vec<_> = model.with_role(Role::Velocity).map(|v| v.shape.describe()).collect();
+                match types.as_slice() {
+                    [one] => format!("fn acceleration(&self) -> {one}"),
+                    many => format!("fn acceleration(&self) -> ({})", many.join(", ")),
+                }
+            }
             Order::First => format!("fn derivative(&self) -> {}", model.state_ident()),
         };
         errors.at(
             &item.self_ty,
             format_args!(
-                "missing `{signature}` in `impl {}`: {} models define it (an optional second \
-                 argument `t: f64` receives the time)",
+                "missing `{signature}` in `impl {}`, which is {}; an optional second argument \
+                 `t: f64` receives the time",
                 model.ident(),
                 describe(model.order)
             ),
@@ -166,7 +172,7 @@ fn is_f64(ty: &Type) -> bool {
 struct Rewriter<'m, 'e> {
     model: &'m Model<'m>,
     function: &'m Ident,
-    reads: BTreeMap<String, Span>,
+    reads: BTreeMap<String, TokenStream>,
     errors: &'e mut Errors,
 }
 
@@ -191,7 +197,7 @@ impl VisitMut for Rewriter<'_, '_> {
             if let Member::Named(name) = &field.member
                 && let Some(state) = self.model.field(name)
             {
-                self.reads.entry(name.to_string()).or_insert(name.span());
+                self.reads.entry(name.to_string()).or_insert_with(|| field.to_token_stream());
                 let local = state_local(state.ident);
                 *expr = syn::parse_quote_spanned!(name.span() => #local);
             }
@@ -234,12 +240,12 @@ fn find_self(tokens: TokenStream) -> Option<Span> {
     })
 }
 
-/// The velocity fields `force` reads, with the span of the first read of each.
-pub(crate) fn velocity_reads<'f>(force: &'f Function, model: &Model<'_>) -> Vec<(&'f str, Span)> {
+/// The velocity fields `force` reads, with the tokens of the first read of each.
+pub(crate) fn velocity_reads<'f>(force: &'f Function, model: &Model<'_>) -> Vec<(&'f str, &'f TokenStream)> {
     force
         .reads
         .iter()
         .filter(|(name, _)| model.with_role(Role::Velocity).any(|v| v.ident == name.as_str()))
-        .map(|(name, span)| (name.as_str(), *span))
+        .map(|(name, tokens)| (name.as_str(), tokens))
         .collect()
 }

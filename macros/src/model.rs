@@ -53,7 +53,7 @@ impl Shape {
         }
     }
 
-    fn describe(self) -> String {
+    pub(crate) fn describe(self) -> String {
         match self {
             Shape::Scalar => "f64".to_owned(),
             Shape::Array(n) => format!("[f64; {n}]"),

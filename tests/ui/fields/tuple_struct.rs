@@ -1,0 +1,6 @@
+use odyn::prelude::*;
+
+#[system]
+pub struct Spring(f64, f64);
+
+fn main() {}

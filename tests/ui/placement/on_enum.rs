@@ -1,0 +1,9 @@
+use odyn::prelude::*;
+
+#[system]
+pub enum Phase {
+    Solid,
+    Liquid,
+}
+
+fn main() {}
