@@ -1,1 +1,301 @@
-fn main(){}
+//! 10⁶ steps of generated models against the same arithmetic written by hand, per integrator.
+//!
+//! `cargo bench --bench generated_vs_hand`. Each pair runs side by side in one process; compare
+//! medians within a pair (the machine is shared, so absolute times drift between runs).
+//! `generated` drives the integrator directly; `runner` is the full `Simulation::run` with its
+//! per-step divergence check and no recording.
+
+use std::hint::black_box;
+
+use odyn::integrators::{
+    ExplicitEuler, Integrator, Leapfrog, PositionVerlet, Rk4, SymplecticEuler, VelocityVerlet,
+};
+use odyn::prelude::*;
+
+const STEPS: u64 = 1_000_000;
+const DT: f64 = 1e-3;
+
+fn main() {
+    divan::main();
+}
+
+/// The tutorial's damped spring.
+#[system(dt = 0.001)]
+#[derive(Clone, Copy)]
+pub struct Spring {
+    #[position]
+    x: f64,
+    #[velocity]
+    v: f64,
+    k: f64,
+    b: f64,
+    m: f64,
+}
+
+#[system]
+impl Spring {
+    fn acceleration(&self) -> f64 {
+        (-self.k * self.x - self.b * self.v) / self.m
+    }
+}
+
+/// Undamped spring, for position Verlet (its force must not read v).
+#[system(dt = 0.001)]
+#[derive(Clone, Copy)]
+pub struct Undamped {
+    #[position]
+    x: f64,
+    #[velocity]
+    v: f64,
+    k: f64,
+    m: f64,
+}
+
+#[system]
+impl Undamped {
+    fn acceleration(&self) -> f64 {
+        -self.k * self.x / self.m
+    }
+}
+
+/// The Lorenz system.
+#[system(dt = 0.001)]
+#[derive(Clone, Copy)]
+pub struct Lorenz {
+    #[state]
+    x: f64,
+    #[state]
+    y: f64,
+    #[state]
+    z: f64,
+    sigma: f64,
+    rho: f64,
+    beta: f64,
+}
+
+#[system]
+impl Lorenz {
+    fn derivative(&self) -> LorenzState {
+        LorenzState {
+            x: self.sigma * (self.y - self.x),
+            y: self.x * (self.rho - self.z) - self.y,
+            z: self.x * self.y - self.beta * self.z,
+        }
+    }
+}
+
+fn spring() -> Spring {
+    black_box(Spring { x: 1.0, v: 0.0, k: 50.0, b: 0.5, m: 1.0 })
+}
+
+fn lorenz() -> Lorenz {
+    black_box(Lorenz { x: 1.0, y: 1.0, z: 1.0, sigma: 10.0, rho: 28.0, beta: 8.0 / 3.0 })
+}
+
+/// Steps a model with integrator `I` through the `Integrator` trait.
+fn generated<M: Model, I: Integrator<M>>(model: &M) -> M::State {
+    let mut state = model.state();
+    let mut integrator = I::start(model, 0.0, DT, &state);
+    for n in 0..STEPS {
+        integrator.step(model, n as f64 * DT, &mut state);
+    }
+    state
+}
+
+/// The full runner: validation, per-step divergence check, first and last samples recorded.
+fn runner<M: Model>(model: &M, method: Method) -> M::State {
+    let run = model.simulate().integrator(method).steps(STEPS).record_every(u64::MAX).run().unwrap();
+    run.last().state.clone()
+}
+
+mod spring {
+    use super::*;
+
+    fn accel(s: &Spring, x: f64, v: f64) -> f64 {
+        (-s.k * x - s.b * v) / s.m
+    }
+
+    #[divan::bench]
+    fn explicit_euler_generated() -> SpringState {
+        generated::<_, ExplicitEuler<_>>(&spring())
+    }
+    #[divan::bench]
+    fn explicit_euler_runner() -> SpringState {
+        runner(&spring(), Method::ExplicitEuler)
+    }
+    #[divan::bench]
+    fn explicit_euler_hand() -> (f64, f64) {
+        let s = spring();
+        let (mut x, mut v) = (s.x, s.v);
+        for _ in 0..STEPS {
+            let a = accel(&s, x, v);
+            x += DT * v;
+            v += DT * a;
+        }
+        (x, v)
+    }
+
+    #[divan::bench]
+    fn symplectic_euler_generated() -> SpringState {
+        generated::<_, SymplecticEuler<_>>(&spring())
+    }
+    #[divan::bench]
+    fn symplectic_euler_runner() -> SpringState {
+        runner(&spring(), Method::SymplecticEuler)
+    }
+    #[divan::bench]
+    fn symplectic_euler_hand() -> (f64, f64) {
+        let s = spring();
+        let (mut x, mut v) = (s.x, s.v);
+        for _ in 0..STEPS {
+            v += DT * accel(&s, x, v);
+            x += DT * v;
+        }
+        (x, v)
+    }
+
+    #[divan::bench]
+    fn position_verlet_generated() -> UndampedState {
+        let u = black_box(Undamped { x: 1.0, v: 0.0, k: 50.0, m: 1.0 });
+        generated::<_, PositionVerlet<_>>(&u)
+    }
+    #[divan::bench]
+    fn position_verlet_hand() -> (f64, f64) {
+        let u = black_box(Undamped { x: 1.0, v: 0.0, k: 50.0, m: 1.0 });
+        let acc = |x: f64| -u.k * x / u.m;
+        let mut a = acc(u.x);
+        let (mut prev, mut x, mut v) = (u.x, u.x + DT * u.v + 0.5 * DT * DT * a, 0.0);
+        a = acc(x);
+        for _ in 1..STEPS {
+            let next = 2.0 * x - prev + DT * DT * a;
+            a = acc(next);
+            v = (next - x) / DT + 0.5 * DT * a;
+            prev = x;
+            x = next;
+        }
+        (x, v)
+    }
+
+    #[divan::bench]
+    fn velocity_verlet_generated() -> SpringState {
+        generated::<_, VelocityVerlet<_>>(&spring())
+    }
+    #[divan::bench]
+    fn velocity_verlet_runner() -> SpringState {
+        runner(&spring(), Method::VelocityVerlet)
+    }
+    #[divan::bench]
+    fn velocity_verlet_hand() -> (f64, f64) {
+        let s = spring();
+        let (mut x, mut v) = (s.x, s.v);
+        let mut a = accel(&s, x, v);
+        for _ in 0..STEPS {
+            x += DT * v + 0.5 * DT * DT * a;
+            let next = accel(&s, x, v + DT * a);
+            v += 0.5 * DT * (a + next);
+            a = next;
+        }
+        (x, v)
+    }
+
+    #[divan::bench]
+    fn leapfrog_generated() -> SpringState {
+        generated::<_, Leapfrog<_>>(&spring())
+    }
+    #[divan::bench]
+    fn leapfrog_runner() -> SpringState {
+        runner(&spring(), Method::Leapfrog)
+    }
+    #[divan::bench]
+    fn leapfrog_hand() -> (f64, f64) {
+        let s = spring();
+        let (mut x, mut v) = (s.x, s.v);
+        let mut a = accel(&s, x, v);
+        for _ in 0..STEPS {
+            v += 0.5 * DT * a;
+            x += DT * v;
+            let next = accel(&s, x, v + 0.5 * DT * a);
+            v += 0.5 * DT * next;
+            a = next;
+        }
+        (x, v)
+    }
+
+    #[divan::bench]
+    fn rk4_generated() -> SpringState {
+        generated::<_, Rk4<_>>(&spring())
+    }
+    #[divan::bench]
+    fn rk4_runner() -> SpringState {
+        runner(&spring(), Method::Rk4)
+    }
+    #[divan::bench]
+    fn rk4_hand() -> (f64, f64) {
+        let s = spring();
+        let (mut x, mut v) = (s.x, s.v);
+        let f = |x: f64, v: f64| (v, accel(&s, x, v));
+        for _ in 0..STEPS {
+            let k1 = f(x, v);
+            let k2 = f(x + 0.5 * DT * k1.0, v + 0.5 * DT * k1.1);
+            let k3 = f(x + 0.5 * DT * k2.0, v + 0.5 * DT * k2.1);
+            let k4 = f(x + DT * k3.0, v + DT * k3.1);
+            x += DT / 6.0 * (k1.0 + 2.0 * k2.0 + 2.0 * k3.0 + k4.0);
+            v += DT / 6.0 * (k1.1 + 2.0 * k2.1 + 2.0 * k3.1 + k4.1);
+        }
+        (x, v)
+    }
+}
+
+mod lorenz {
+    use super::*;
+
+    fn f(l: &Lorenz, [x, y, z]: [f64; 3]) -> [f64; 3] {
+        [l.sigma * (y - x), x * (l.rho - z) - y, x * y - l.beta * z]
+    }
+
+    fn axpy(y: [f64; 3], a: f64, k: [f64; 3]) -> [f64; 3] {
+        [y[0] + a * k[0], y[1] + a * k[1], y[2] + a * k[2]]
+    }
+
+    #[divan::bench]
+    fn explicit_euler_generated() -> LorenzState {
+        generated::<_, ExplicitEuler<_>>(&lorenz())
+    }
+    #[divan::bench]
+    fn explicit_euler_runner() -> LorenzState {
+        runner(&lorenz(), Method::ExplicitEuler)
+    }
+    #[divan::bench]
+    fn explicit_euler_hand() -> [f64; 3] {
+        let l = lorenz();
+        let mut y = [l.x, l.y, l.z];
+        for _ in 0..STEPS {
+            y = axpy(y, DT, f(&l, y));
+        }
+        y
+    }
+
+    #[divan::bench]
+    fn rk4_generated() -> LorenzState {
+        generated::<_, Rk4<_>>(&lorenz())
+    }
+    #[divan::bench]
+    fn rk4_runner() -> LorenzState {
+        runner(&lorenz(), Method::Rk4)
+    }
+    #[divan::bench]
+    fn rk4_hand() -> [f64; 3] {
+        let l = lorenz();
+        let mut y = [l.x, l.y, l.z];
+        for _ in 0..STEPS {
+            let k1 = f(&l, y);
+            let k2 = f(&l, axpy(y, 0.5 * DT, k1));
+            let k3 = f(&l, axpy(y, 0.5 * DT, k2));
+            let k4 = f(&l, axpy(y, DT, k3));
+            for i in 0..3 {
+                y[i] += DT / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+            }
+        }
+        y
+    }
+}
