@@ -85,11 +85,24 @@ impl Lorenz {
 }
 
 fn spring() -> Spring {
-    black_box(Spring { x: 1.0, v: 0.0, k: 50.0, b: 0.5, m: 1.0 })
+    black_box(Spring {
+        x: 1.0,
+        v: 0.0,
+        k: 50.0,
+        b: 0.5,
+        m: 1.0,
+    })
 }
 
 fn lorenz() -> Lorenz {
-    black_box(Lorenz { x: 1.0, y: 1.0, z: 1.0, sigma: 10.0, rho: 28.0, beta: 8.0 / 3.0 })
+    black_box(Lorenz {
+        x: 1.0,
+        y: 1.0,
+        z: 1.0,
+        sigma: 10.0,
+        rho: 28.0,
+        beta: 8.0 / 3.0,
+    })
 }
 
 /// Steps a model with integrator `I` through the `Integrator` trait.
@@ -104,7 +117,13 @@ fn generated<M: Model, I: Integrator<M>>(model: &M) -> M::State {
 
 /// The full runner: validation, per-step divergence check, first and last samples recorded.
 fn runner<M: Model>(model: &M, method: Method) -> M::State {
-    let run = model.simulate().integrator(method).steps(STEPS).record_every(u64::MAX).run().unwrap();
+    let run = model
+        .simulate()
+        .integrator(method)
+        .steps(STEPS)
+        .record_every(u64::MAX)
+        .run()
+        .unwrap();
     run.last().state.clone()
 }
 
@@ -156,12 +175,22 @@ mod spring {
 
     #[divan::bench]
     fn position_verlet_generated() -> UndampedState {
-        let u = black_box(Undamped { x: 1.0, v: 0.0, k: 50.0, m: 1.0 });
+        let u = black_box(Undamped {
+            x: 1.0,
+            v: 0.0,
+            k: 50.0,
+            m: 1.0,
+        });
         generated::<_, PositionVerlet<_>>(&u)
     }
     #[divan::bench]
     fn position_verlet_hand() -> (f64, f64) {
-        let u = black_box(Undamped { x: 1.0, v: 0.0, k: 50.0, m: 1.0 });
+        let u = black_box(Undamped {
+            x: 1.0,
+            v: 0.0,
+            k: 50.0,
+            m: 1.0,
+        });
         let acc = |x: f64| -u.k * x / u.m;
         let mut a = acc(u.x);
         let (mut prev, mut x, mut v) = (u.x, u.x + DT * u.v + 0.5 * DT * DT * a, 0.0);

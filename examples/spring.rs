@@ -62,8 +62,12 @@ struct Cli {
     out: PathBuf,
 }
 
-const LAB_METHODS: [Method; 4] =
-    [Method::ExplicitEuler, Method::SymplecticEuler, Method::VelocityVerlet, Method::Rk4];
+const LAB_METHODS: [Method; 4] = [
+    Method::ExplicitEuler,
+    Method::SymplecticEuler,
+    Method::VelocityVerlet,
+    Method::Rk4,
+];
 const DAMPED_METHODS: [Method; 5] = [
     Method::ExplicitEuler,
     Method::SymplecticEuler,
@@ -78,7 +82,9 @@ fn main() -> ExitCode {
     let result = if cli.integrator.is_some() || cli.dt.is_some() || cli.steps.is_some() {
         single(&cli, &dir)
     } else {
-        lab(&dir).and_then(|()| damped(&dir)).and_then(|()| growth(&dir))
+        lab(&dir)
+            .and_then(|()| damped(&dir))
+            .and_then(|()| growth(&dir))
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -91,13 +97,24 @@ fn main() -> ExitCode {
 
 /// a = −x, dt = 0.05, 400 steps: the published numbers.
 fn lab(dir: &std::path::Path) -> odyn::Result<()> {
-    let spring = Spring { x: 1.0, v: 0.0, k: 1.0, b: 0.0, m: 1.0 };
+    let spring = Spring {
+        x: 1.0,
+        v: 0.0,
+        k: 1.0,
+        b: 0.0,
+        m: 1.0,
+    };
     let runs = LAB_METHODS
         .iter()
         .map(|&m| spring.simulate().integrator(m).dt(0.05).steps(400).run())
         .collect::<odyn::Result<Vec<_>>>()?;
     write_csv(dir.join("lab.csv"), &runs.iter().collect::<Vec<_>>())?;
-    plot(dir.join("lab.png"), "Spring a = −x, dt = 0.05: energy E(t)/E(0)", &runs, false)?;
+    plot(
+        dir.join("lab.png"),
+        "Spring a = −x, dt = 0.05: energy E(t)/E(0)",
+        &runs,
+        false,
+    )?;
     println!("spring lab: a = -x, x0 = 1, v0 = 0, dt = 0.05, 400 steps (t = 20)");
     println!("  {:<18} {:>12} {:>14}", "method", "E(20)/E(0)", "expected");
     for run in &runs {
@@ -108,54 +125,121 @@ fn lab(dir: &std::path::Path) -> odyn::Result<()> {
             Method::VelocityVerlet => format!("[{:.6}, 1]", 1.0 - 0.05f64.powi(2) / 4.0),
             _ => "≈ 1".to_owned(),
         };
-        println!("  {:<18} {:>12.6} {:>14}", run.method.name(), ratio(run), expected);
+        println!(
+            "  {:<18} {:>12.6} {:>14}",
+            run.method.name(),
+            ratio(run),
+            expected
+        );
     }
     Ok(())
 }
 
 /// k = 50, b = 0.5, m = 1, dt = 0.016, 625 steps (t = 10): the tutorial's numbers.
 fn damped(dir: &std::path::Path) -> odyn::Result<()> {
-    let spring = Spring { x: 1.0, v: 0.0, k: 50.0, b: 0.5, m: 1.0 };
+    let spring = Spring {
+        x: 1.0,
+        v: 0.0,
+        k: 50.0,
+        b: 0.5,
+        m: 1.0,
+    };
     let runs = DAMPED_METHODS
         .iter()
         .map(|&m| spring.simulate().integrator(m).steps(625).run())
         .collect::<odyn::Result<Vec<_>>>()?;
     write_csv(dir.join("damped.csv"), &runs.iter().collect::<Vec<_>>())?;
-    plot(dir.join("damped.png"), "Damped spring k = 50, b = 0.5, dt = 0.016: E(t)/E(0)", &runs, true)?;
-    let exact = DampedOscillator { k: 50.0, b: 0.5, m: 1.0 };
+    plot(
+        dir.join("damped.png"),
+        "Damped spring k = 50, b = 0.5, dt = 0.016: E(t)/E(0)",
+        &runs,
+        true,
+    )?;
+    let exact = DampedOscillator {
+        k: 50.0,
+        b: 0.5,
+        m: 1.0,
+    };
     let t = runs[0].last().t;
     let (x, v) = exact.state_at(1.0, 0.0, t);
     println!("\ndamped spring: k = 50, b = 0.5, m = 1, dt = 0.016, 625 steps (t = {t})");
-    println!("  exact: x = {x:.6}, E/E0 = {:.6}", exact.energy(x, v) / exact.energy(1.0, 0.0));
-    println!("  {:<18} {:>12} {:>12} {:>12}", "method", "x(10)", "|x - exact|", "E(10)/E(0)");
+    println!(
+        "  exact: x = {x:.6}, E/E0 = {:.6}",
+        exact.energy(x, v) / exact.energy(1.0, 0.0)
+    );
+    println!(
+        "  {:<18} {:>12} {:>12} {:>12}",
+        "method", "x(10)", "|x - exact|", "E(10)/E(0)"
+    );
     for run in &runs {
         let s = run.last().state;
-        println!("  {:<18} {:>12.6} {:>12.2e} {:>12.6}", run.method.name(), s.x, (s.x - x).abs(), ratio(run));
+        println!(
+            "  {:<18} {:>12.6} {:>12.2e} {:>12.6}",
+            run.method.name(),
+            s.x,
+            (s.x - x).abs(),
+            ratio(run)
+        );
     }
     Ok(())
 }
 
 /// Explicit Euler's energy growth against (1 + dt²)ⁿ over t = 20.
 fn growth(dir: &std::path::Path) -> odyn::Result<()> {
-    let spring = Spring { x: 1.0, v: 0.0, k: 1.0, b: 0.0, m: 1.0 };
+    let spring = Spring {
+        x: 1.0,
+        v: 0.0,
+        k: 1.0,
+        b: 0.0,
+        m: 1.0,
+    };
     let mut rows = Vec::new();
     println!("\nexplicit Euler energy growth over t = 20 (a = -x)");
-    println!("  {:>6} {:>6} {:>16} {:>16}", "dt", "steps", "measured", "(1 + dt²)ⁿ");
-    for dt in [0.01, 0.02, 0.05, 0.1, 0.2] {
-        let steps = (20.0 / dt as f64).round() as u64;
-        let run = spring.simulate().integrator(Method::ExplicitEuler).dt(dt).steps(steps).run()?;
+    println!(
+        "  {:>6} {:>6} {:>16} {:>16}",
+        "dt", "steps", "measured", "(1 + dt²)ⁿ"
+    );
+    for dt in [0.01f64, 0.02, 0.05, 0.1, 0.2] {
+        let steps = (20.0 / dt).round() as u64;
+        let run = spring
+            .simulate()
+            .integrator(Method::ExplicitEuler)
+            .dt(dt)
+            .steps(steps)
+            .run()?;
         let closed = (1.0 + dt * dt).powi(steps as i32);
-        println!("  {dt:>6} {steps:>6} {:>16.10} {closed:>16.10}", ratio(&run));
-        rows.push(vec![number(dt), steps.to_string(), number(ratio(&run)), number(closed)]);
+        println!(
+            "  {dt:>6} {steps:>6} {:>16.10} {closed:>16.10}",
+            ratio(&run)
+        );
+        rows.push(vec![
+            number(dt),
+            steps.to_string(),
+            number(ratio(&run)),
+            number(closed),
+        ]);
     }
-    write_table(dir.join("growth.csv"), &["dt", "steps", "measured_ratio", "closed_form_ratio"], &rows)?;
-    println!("\nwrote {}/{{lab,damped}}.{{csv,png}} and growth.csv", dir.display());
+    write_table(
+        dir.join("growth.csv"),
+        &["dt", "steps", "measured_ratio", "closed_form_ratio"],
+        &rows,
+    )?;
+    println!(
+        "\nwrote {}/{{lab,damped}}.{{csv,png}} and growth.csv",
+        dir.display()
+    );
     Ok(())
 }
 
 /// One configuration of the damped spring, from the command line.
 fn single(cli: &Cli, dir: &std::path::Path) -> odyn::Result<()> {
-    let spring = Spring { x: 1.0, v: 0.0, k: 50.0, b: 0.5, m: 1.0 };
+    let spring = Spring {
+        x: 1.0,
+        v: 0.0,
+        k: 50.0,
+        b: 0.5,
+        m: 1.0,
+    };
     let mut sim = spring.simulate().steps(cli.steps.unwrap_or(625));
     if let Some(method) = cli.integrator {
         sim = sim.integrator(method);
@@ -166,11 +250,22 @@ fn single(cli: &Cli, dir: &std::path::Path) -> odyn::Result<()> {
     let run = sim.run()?;
     let name = format!("{}_dt{}", run.method.name(), run.dt);
     run.write_csv(dir.join(format!("{name}.csv")))?;
-    plot(dir.join(format!("{name}.png")), &format!("Damped spring, {}, dt = {}", run.method.label(), run.dt), &[run.clone()], false)?;
+    plot(
+        dir.join(format!("{name}.png")),
+        &format!("Damped spring, {}, dt = {}", run.method.label(), run.dt),
+        std::slice::from_ref(&run),
+        false,
+    )?;
     let last = run.last();
     println!(
         "{}: {} steps, t = {}, x = {:.6}, v = {:.6}, E/E0 = {:.6}; wrote {}/{name}.{{csv,png}}",
-        run.method.name(), run.steps, last.t, last.state.x, last.state.v, ratio(&run), dir.display()
+        run.method.name(),
+        run.steps,
+        last.t,
+        last.state.x,
+        last.state.v,
+        ratio(&run),
+        dir.display()
     );
     Ok(())
 }
@@ -179,8 +274,18 @@ fn ratio(run: &Trajectory<SpringState>) -> f64 {
     run.energy_ratio().expect("Spring defines an energy")
 }
 
-fn plot(path: PathBuf, title: &str, runs: &[Trajectory<SpringState>], log_y: bool) -> odyn::Result<()> {
+fn plot(
+    path: PathBuf,
+    title: &str,
+    runs: &[Trajectory<SpringState>],
+    log_y: bool,
+) -> odyn::Result<()> {
     let labelled: Vec<_> = runs.iter().map(|r| (r.method.label(), r)).collect();
-    let look = EnergyPlot { title: title.to_owned(), relative: true, log_y, ..EnergyPlot::default() };
+    let look = EnergyPlot {
+        title: title.to_owned(),
+        relative: true,
+        log_y,
+        ..EnergyPlot::default()
+    };
     energy_with(path, &labelled, &look)
 }

@@ -63,5 +63,12 @@ pub mod __private {
 /// The names a model file needs: `use odyn::prelude::*;`.
 pub mod prelude {
     pub use crate::nalgebra::{SVector, Vector2, Vector3};
-    pub use crate::{Error, Method, Model, Result, SecondOrder, Simulation, State, Trajectory, system};
+    pub use crate::{
+        Error, Method, Model, Result, SecondOrder, Simulation, State, Trajectory, system,
+    };
 }
+
+/// The README's examples, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

@@ -7,10 +7,24 @@ use odyn::prelude::*;
 use odyn::{Error, output, plot};
 
 fn runs() -> Vec<Trajectory<common::SpringState>> {
-    let spring = Spring { x: 1.0, v: 0.0, k: 1.0, b: 0.0, m: 1.0 };
+    let spring = Spring {
+        x: 1.0,
+        v: 0.0,
+        k: 1.0,
+        b: 0.0,
+        m: 1.0,
+    };
     [Method::ExplicitEuler, Method::Rk4]
         .iter()
-        .map(|&m| spring.simulate().integrator(m).dt(0.05).steps(400).run().unwrap())
+        .map(|&m| {
+            spring
+                .simulate()
+                .integrator(m)
+                .dt(0.05)
+                .steps(400)
+                .run()
+                .unwrap()
+        })
         .collect()
 }
 
@@ -42,11 +56,18 @@ fn vector_and_energy_free_models_get_their_own_columns() {
     run.write_csv(dir.path().join("lorenz.csv")).unwrap();
     let text = std::fs::read_to_string(dir.path().join("lorenz.csv")).unwrap();
     assert_eq!(text.lines().next(), Some("method,step,t,x,y,z"));
-    let kepler = common::Kepler { r: Vector2::new(1.0, 0.0), v: Vector2::new(0.0, 1.0), gm: 1.0 };
+    let kepler = common::Kepler {
+        r: Vector2::new(1.0, 0.0),
+        v: Vector2::new(0.0, 1.0),
+        gm: 1.0,
+    };
     let run = kepler.simulate().steps(1).run().unwrap();
     run.write_csv(dir.path().join("kepler.csv")).unwrap();
     let text = std::fs::read_to_string(dir.path().join("kepler.csv")).unwrap();
-    assert_eq!(text.lines().next(), Some("method,step,t,r[0],r[1],v[0],v[1],energy"));
+    assert_eq!(
+        text.lines().next(),
+        Some("method,step,t,r[0],r[1],v[0],v[1],energy")
+    );
 }
 
 #[test]
@@ -62,7 +83,10 @@ fn an_unwritable_path_is_a_typed_error_and_leaves_nothing_behind() {
     std::fs::create_dir(&target).unwrap();
     std::fs::write(target.join("keep"), "x").unwrap();
     assert!(matches!(runs[0].write_csv(&target), Err(Error::Io { .. })));
-    let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name()).collect();
+    let left: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
     assert_eq!(left.len(), 2, "{left:?}");
 }
 
@@ -74,7 +98,12 @@ fn plots_are_written_as_png_and_svg() {
     plot::energy(dir.path().join("e.png"), &labelled).unwrap();
     let png = std::fs::read(dir.path().join("e.png")).unwrap();
     assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
-    let look = plot::EnergyPlot { log_y: true, relative: true, title: "log".into(), ..Default::default() };
+    let look = plot::EnergyPlot {
+        log_y: true,
+        relative: true,
+        title: "log".into(),
+        ..Default::default()
+    };
     plot::energy_with(dir.path().join("e.svg"), &labelled, &look).unwrap();
     let svg = std::fs::read_to_string(dir.path().join("e.svg")).unwrap();
     assert!(svg.contains("<svg") && svg.contains("Explicit Euler"));
@@ -87,9 +116,15 @@ fn plot_errors_are_typed() {
     let runs = runs();
     let labelled: Vec<_> = runs.iter().map(|r| (r.method.label(), r)).collect();
     let error = plot::energy(dir.path().join("e.jpg"), &labelled).unwrap_err();
-    assert!(matches!(error, Error::InvalidInput { ref field, .. } if field == "plot path"), "{error:?}");
+    assert!(
+        matches!(error, Error::InvalidInput { ref field, .. } if field == "plot path"),
+        "{error:?}"
+    );
     let lorenz = Lorenz::classic().simulate().steps(2).run().unwrap();
     let error = plot::energy(dir.path().join("l.png"), &[("lorenz", &lorenz)]).unwrap_err();
-    assert!(error.to_string().contains("defines no `fn energy`"), "{error}");
+    assert!(
+        error.to_string().contains("defines no `fn energy`"),
+        "{error}"
+    );
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
 }

@@ -7,7 +7,13 @@ use odyn::prelude::*;
 use odyn::{Error, FixedTimestep, Stepper, integrators};
 
 fn spring() -> Spring {
-    Spring { x: 1.0, v: 0.0, k: 50.0, b: 0.5, m: 1.0 }
+    Spring {
+        x: 1.0,
+        v: 0.0,
+        k: 50.0,
+        b: 0.5,
+        m: 1.0,
+    }
 }
 
 fn invalid_field(result: Result<impl std::fmt::Debug>) -> String {
@@ -20,60 +26,153 @@ fn invalid_field(result: Result<impl std::fmt::Debug>) -> String {
 #[test]
 fn attribute_sets_the_defaults_and_the_runtime_overrides_them() {
     let run = spring().simulate().duration(10.0).run().unwrap();
-    assert_eq!((run.method, run.dt, run.steps), (Method::SymplecticEuler, 0.016, 625));
+    assert_eq!(
+        (run.method, run.dt, run.steps),
+        (Method::SymplecticEuler, 0.016, 625)
+    );
     assert_eq!(run.samples.len(), 626);
-    let rk4 = spring().simulate().integrator(Method::Rk4).dt(0.05).steps(400).run().unwrap();
-    assert_eq!((rk4.method, rk4.dt, rk4.steps, rk4.evaluations), (Method::Rk4, 0.05, 400, 1600));
+    let rk4 = spring()
+        .simulate()
+        .integrator(Method::Rk4)
+        .dt(0.05)
+        .steps(400)
+        .run()
+        .unwrap();
+    assert_eq!(
+        (rk4.method, rk4.dt, rk4.steps, rk4.evaluations),
+        (Method::Rk4, 0.05, 400, 1600)
+    );
     assert!((rk4.last().t - 20.0).abs() < 1e-12);
 }
 
 #[test]
 fn bad_inputs_are_typed_errors() {
-    assert_eq!(invalid_field(spring().simulate().dt(0.0).steps(1).run()), "dt");
-    assert_eq!(invalid_field(spring().simulate().dt(-0.1).steps(1).run()), "dt");
-    assert_eq!(invalid_field(spring().simulate().dt(f64::NAN).steps(1).run()), "dt");
-    assert_eq!(invalid_field(spring().simulate().dt(f64::INFINITY).steps(1).run()), "dt");
+    assert_eq!(
+        invalid_field(spring().simulate().dt(0.0).steps(1).run()),
+        "dt"
+    );
+    assert_eq!(
+        invalid_field(spring().simulate().dt(-0.1).steps(1).run()),
+        "dt"
+    );
+    assert_eq!(
+        invalid_field(spring().simulate().dt(f64::NAN).steps(1).run()),
+        "dt"
+    );
+    assert_eq!(
+        invalid_field(spring().simulate().dt(f64::INFINITY).steps(1).run()),
+        "dt"
+    );
     assert_eq!(invalid_field(spring().simulate().run()), "length");
-    assert_eq!(invalid_field(spring().simulate().duration(-1.0).run()), "duration");
-    assert_eq!(invalid_field(spring().simulate().duration(f64::NAN).run()), "duration");
-    assert_eq!(invalid_field(spring().simulate().steps(3).record_every(0).run()), "record_every");
-    assert_eq!(invalid_field(spring().simulate().steps(3).start_time(f64::NAN).run()), "t0");
+    assert_eq!(
+        invalid_field(spring().simulate().duration(-1.0).run()),
+        "duration"
+    );
+    assert_eq!(
+        invalid_field(spring().simulate().duration(f64::NAN).run()),
+        "duration"
+    );
+    assert_eq!(
+        invalid_field(spring().simulate().steps(3).record_every(0).run()),
+        "record_every"
+    );
+    assert_eq!(
+        invalid_field(spring().simulate().steps(3).start_time(f64::NAN).run()),
+        "t0"
+    );
     // Lorenz's attribute names no dt.
-    assert_eq!(invalid_field(Oscillator { x: 1.0, v: 0.0, omega: 1.0 }.simulate().steps(3).run()), "dt");
-    let nan = Spring { v: f64::NAN, ..spring() };
-    assert_eq!(invalid_field(nan.simulate().steps(3).run()), "initial state `v`");
+    assert_eq!(
+        invalid_field(
+            Oscillator {
+                x: 1.0,
+                v: 0.0,
+                omega: 1.0
+            }
+            .simulate()
+            .steps(3)
+            .run()
+        ),
+        "dt"
+    );
+    let nan = Spring {
+        v: f64::NAN,
+        ..spring()
+    };
+    assert_eq!(
+        invalid_field(nan.simulate().steps(3).run()),
+        "initial state `v`"
+    );
     let error = nan.simulate().steps(3).run().unwrap_err().to_string();
     assert_eq!(error, "invalid initial state `v`: must be finite, got NaN");
 }
 
 #[test]
 fn a_method_the_model_cannot_take_is_a_typed_error() {
-    match Lorenz::classic().simulate().integrator(Method::SymplecticEuler).steps(10).run() {
-        Err(Error::Unsupported { method: Method::SymplecticEuler, model: "Lorenz", .. }) => {}
+    match Lorenz::classic()
+        .simulate()
+        .integrator(Method::SymplecticEuler)
+        .steps(10)
+        .run()
+    {
+        Err(Error::Unsupported {
+            method: Method::SymplecticEuler,
+            model: "Lorenz",
+            ..
+        }) => {}
         other => panic!("{other:?}"),
     }
     // The damped spring's force reads the velocity: position Verlet would silently ignore it.
-    let error = spring().simulate().integrator(Method::PositionVerlet).steps(10).run().unwrap_err();
-    assert!(matches!(error, Error::Unsupported { method: Method::PositionVerlet, model: "Spring", .. }));
+    let error = spring()
+        .simulate()
+        .integrator(Method::PositionVerlet)
+        .steps(10)
+        .run()
+        .unwrap_err();
+    assert!(matches!(
+        error,
+        Error::Unsupported {
+            method: Method::PositionVerlet,
+            model: "Spring",
+            ..
+        }
+    ));
     assert!(error.to_string().contains("reads a velocity"), "{error}");
 }
 
 #[test]
 fn divergence_stops_the_run_naming_step_and_time() {
     // ω = 10, dt = 0.25: ωdt = 2.5 > 2, symplectic Euler grows |λ| ≈ 3.2 per step.
-    let osc = Oscillator { x: 1.0, v: 0.0, omega: 10.0 };
-    let sim = osc.simulate().integrator(Method::SymplecticEuler).dt(0.25).steps(10_000);
-    let Err(Error::Diverged { step, t, value, .. }) = sim.run() else { panic!("expected divergence") };
-    assert!(!(value.abs() <= 1e100));
+    let osc = Oscillator {
+        x: 1.0,
+        v: 0.0,
+        omega: 10.0,
+    };
+    let sim = osc
+        .simulate()
+        .integrator(Method::SymplecticEuler)
+        .dt(0.25)
+        .steps(10_000);
+    let Err(Error::Diverged { step, t, value, .. }) = sim.run() else {
+        panic!("expected divergence")
+    };
+    assert!(value.is_nan() || value.abs() > 1e100);
     assert_eq!(t, step as f64 * 0.25);
     // The partial run keeps every good step and says why it stopped; nothing non-finite inside.
     let (partial, failure) = sim.run_partial().unwrap();
     assert!(matches!(failure, Some(Error::Diverged { step: s, .. }) if s == step));
     assert_eq!(partial.steps, step - 1);
     assert_eq!(partial.last().step, step - 1);
-    assert!(partial.samples.iter().all(|s| s.state.x.is_finite() && s.state.v.is_finite()));
+    assert!(
+        partial
+            .samples
+            .iter()
+            .all(|s| s.state.x.is_finite() && s.state.v.is_finite())
+    );
     // With an infinite limit, only non-finite values count: it runs longer.
-    let Err(Error::Diverged { step: late, value, .. }) = sim.clone().divergence_limit(f64::INFINITY).run() else {
+    let Err(Error::Diverged {
+        step: late, value, ..
+    }) = sim.clone().divergence_limit(f64::INFINITY).run()
+    else {
         panic!("expected divergence")
     };
     assert!(late > step && !value.is_finite());
@@ -82,11 +181,31 @@ fn divergence_stops_the_run_naming_step_and_time() {
 #[test]
 fn identical_runs_are_bit_for_bit_identical() {
     for method in Method::ALL {
-        let osc = Oscillator { x: 0.3, v: -1.7, omega: 3.0 };
-        let a = osc.simulate().integrator(method).dt(0.01).steps(5000).run().unwrap();
-        let b = osc.simulate().integrator(method).dt(0.01).steps(5000).run().unwrap();
+        let osc = Oscillator {
+            x: 0.3,
+            v: -1.7,
+            omega: 3.0,
+        };
+        let a = osc
+            .simulate()
+            .integrator(method)
+            .dt(0.01)
+            .steps(5000)
+            .run()
+            .unwrap();
+        let b = osc
+            .simulate()
+            .integrator(method)
+            .dt(0.01)
+            .steps(5000)
+            .run()
+            .unwrap();
         let bits = |r: &Trajectory<common::OscillatorState>| -> Vec<u64> {
-            r.samples.iter().flat_map(|s| [s.t, s.state.x, s.state.v, s.energy.unwrap()]).map(f64::to_bits).collect()
+            r.samples
+                .iter()
+                .flat_map(|s| [s.t, s.state.x, s.state.v, s.energy.unwrap()])
+                .map(f64::to_bits)
+                .collect()
         };
         assert_eq!(bits(&a), bits(&b), "{method}");
     }
@@ -98,8 +217,13 @@ fn identical_runs_are_bit_for_bit_identical() {
 fn frame_rate_does_not_change_the_physics() {
     fn history(fps: f64, seconds: f64) -> Vec<[u64; 3]> {
         let model = spring();
-        let mut stepper =
-            Stepper::<_, integrators::VelocityVerlet<_>>::new(&model, model.state(), 0.0, 1.0 / 120.0).unwrap();
+        let mut stepper = Stepper::<_, integrators::VelocityVerlet<_>>::new(
+            &model,
+            model.state(),
+            0.0,
+            1.0 / 120.0,
+        )
+        .unwrap();
         let mut clock = FixedTimestep::new();
         let mut states = vec![];
         for _ in 0..(fps * seconds) as usize {
@@ -108,7 +232,10 @@ fn frame_rate_does_not_change_the_physics() {
             assert_eq!(tick.steps, stepper.steps() - before);
             assert!((0.0..1.0).contains(&tick.alpha), "alpha {}", tick.alpha);
             let s = stepper.state();
-            states.push((stepper.steps(), [stepper.t().to_bits(), s.x.to_bits(), s.v.to_bits()]));
+            states.push((
+                stepper.steps(),
+                [stepper.t().to_bits(), s.x.to_bits(), s.v.to_bits()],
+            ));
         }
         // Keep one entry per step count reached at a frame boundary.
         states.dedup_by_key(|(n, _)| *n);
@@ -120,7 +247,12 @@ fn frame_rate_does_not_change_the_physics() {
     }
     let slow = history(30.0, 3.0);
     let fast = history(144.0, 3.0);
-    assert!(slow.len() >= 350 && fast.len() >= 350, "{} {}", slow.len(), fast.len());
+    assert!(
+        slow.len() >= 350 && fast.len() >= 350,
+        "{} {}",
+        slow.len(),
+        fast.len()
+    );
     // 30 fps lands on every 4th step; compare those, where both loops have a state.
     let mut compared = 0;
     for n in (4..slow.len().min(fast.len())).step_by(4) {
@@ -135,13 +267,21 @@ fn frame_rate_does_not_change_the_physics() {
 #[test]
 fn a_long_frame_is_capped() {
     let model = spring();
-    let mut stepper = Stepper::<_, integrators::SymplecticEuler<_>>::new(&model, model.state(), 0.0, 0.01).unwrap();
+    let mut stepper =
+        Stepper::<_, integrators::SymplecticEuler<_>>::new(&model, model.state(), 0.0, 0.01)
+            .unwrap();
     let mut clock = FixedTimestep::new();
     // A 5 s stall counts as the 0.1 s cap: 10 steps, not 500.
     let tick = clock.advance(5.0, &mut stepper).unwrap();
     assert_eq!(tick.steps, 10);
-    assert!(matches!(clock.advance(-1.0, &mut stepper), Err(Error::InvalidInput { .. })));
-    assert!(matches!(clock.advance(f64::NAN, &mut stepper), Err(Error::InvalidInput { .. })));
+    assert!(matches!(
+        clock.advance(-1.0, &mut stepper),
+        Err(Error::InvalidInput { .. })
+    ));
+    assert!(matches!(
+        clock.advance(f64::NAN, &mut stepper),
+        Err(Error::InvalidInput { .. })
+    ));
 }
 
 #[test]
@@ -151,7 +291,12 @@ fn first_order_models_run_with_the_general_methods() {
     assert_eq!(run.method, Method::Rk4);
     assert_eq!(run.first().energy, None);
     // One explicit Euler step is y + h·f(y): from (1, 1, 1), f = (0, 26, −5/3).
-    let one = lorenz.simulate().integrator(Method::ExplicitEuler).steps(1).run().unwrap();
+    let one = lorenz
+        .simulate()
+        .integrator(Method::ExplicitEuler)
+        .steps(1)
+        .run()
+        .unwrap();
     let s = one.last().state;
     assert_eq!((s.x, s.y), (1.0, 1.0 + 0.01 * 26.0));
     assert!((s.z - (1.0 - 0.01 * 5.0 / 3.0)).abs() < 1e-15);
@@ -159,18 +304,39 @@ fn first_order_models_run_with_the_general_methods() {
 
 #[test]
 fn time_argument_and_tuple_accelerations_reach_the_right_fields() {
-    let pair = Pair { a: 0.0, b: [1.0, 1.0], va: 0.0, vb: [0.0, 0.0], drive: 2.0 };
+    let pair = Pair {
+        a: 0.0,
+        b: [1.0, 1.0],
+        va: 0.0,
+        vb: [0.0, 0.0],
+        drive: 2.0,
+    };
     // Symplectic Euler's first step from rest: v = h·a(0), x = h·v.
     let h = 0.1;
-    let run = pair.simulate().integrator(Method::SymplecticEuler).dt(h).steps(1).run().unwrap();
+    let run = pair
+        .simulate()
+        .integrator(Method::SymplecticEuler)
+        .dt(h)
+        .steps(1)
+        .run()
+        .unwrap();
     let s = run.last().state;
     assert_eq!(s.va, h * 2.0); // −a + drive·cos(0)
     assert_eq!(s.vb, [-h, -4.0 * h]);
     assert_eq!(s.b, [1.0 - h * h, 1.0 - 4.0 * h * h]);
     // The drive sees t: RK4 over a quarter period of cos differs from the undriven run.
     let driven = pair.simulate().dt(0.01).duration(1.0).run().unwrap();
-    let still = Pair { drive: 0.0, ..pair }.simulate().dt(0.01).duration(1.0).run().unwrap();
+    let still = Pair { drive: 0.0, ..pair }
+        .simulate()
+        .dt(0.01)
+        .duration(1.0)
+        .run()
+        .unwrap();
     // Undriven, a stays 0; driven, ä = −a + 2cos t gives a(1) = t·sin t = sin 1 (resonance).
     assert_eq!(still.last().state.a, 0.0);
-    assert!((driven.last().state.a - 1f64.sin()).abs() < 1e-9, "{}", driven.last().state.a);
+    assert!(
+        (driven.last().state.a - 1f64.sin()).abs() < 1e-9,
+        "{}",
+        driven.last().state.a
+    );
 }

@@ -14,21 +14,44 @@ use odyn::prelude::*;
 
 const STEPS: u64 = 100_000;
 
-fn run(method: Method, omega: f64, omega_dt: f64) -> odyn::Result<Trajectory<common::OscillatorState>> {
-    let osc = Oscillator { x: 1.0, v: 0.0, omega };
-    osc.simulate().integrator(method).dt(omega_dt / omega).steps(STEPS).record_every(100).run()
+fn run(
+    method: Method,
+    omega: f64,
+    omega_dt: f64,
+) -> odyn::Result<Trajectory<common::OscillatorState>> {
+    let osc = Oscillator {
+        x: 1.0,
+        v: 0.0,
+        omega,
+    };
+    osc.simulate()
+        .integrator(method)
+        .dt(omega_dt / omega)
+        .steps(STEPS)
+        .record_every(100)
+        .run()
 }
 
 fn assert_bounded(method: Method, omega: f64, omega_dt: f64, max_ratio: f64) {
-    let run = run(method, omega, omega_dt).unwrap_or_else(|e| panic!("{method} at ωdt = {omega_dt}: {e}"));
+    let run = run(method, omega, omega_dt)
+        .unwrap_or_else(|e| panic!("{method} at ωdt = {omega_dt}: {e}"));
     let e0 = run.first().energy.unwrap();
-    let max = run.samples.iter().map(|s| s.energy.unwrap() / e0).fold(0.0, f64::max);
-    assert!(max <= max_ratio, "{method} at ωdt = {omega_dt}: E/E₀ reached {max}");
+    let max = run
+        .samples
+        .iter()
+        .map(|s| s.energy.unwrap() / e0)
+        .fold(0.0, f64::max);
+    assert!(
+        max <= max_ratio,
+        "{method} at ωdt = {omega_dt}: E/E₀ reached {max}"
+    );
 }
 
 fn assert_diverges(method: Method, omega: f64, omega_dt: f64) {
     match run(method, omega, omega_dt) {
-        Err(Error::Diverged { method: m, step, t, .. }) => {
+        Err(Error::Diverged {
+            method: m, step, t, ..
+        }) => {
             assert_eq!(m, method);
             assert!(step > 0 && step <= STEPS);
             assert!((t - step as f64 * omega_dt / omega).abs() < 1e-9 * t);
@@ -40,9 +63,18 @@ fn assert_diverges(method: Method, omega: f64, omega_dt: f64) {
 #[test]
 fn split_methods_are_stable_below_two_and_diverge_above() {
     for omega in [1.0, 50f64.sqrt()] {
-        for method in [Method::SymplecticEuler, Method::PositionVerlet, Method::VelocityVerlet, Method::Leapfrog] {
+        for method in [
+            Method::SymplecticEuler,
+            Method::PositionVerlet,
+            Method::VelocityVerlet,
+            Method::Leapfrog,
+        ] {
             // Bound at ωh = 1.99: symplectic Euler's band 2/(2 − h) = 200; the Verlet family's 1.
-            let bound = if method == Method::SymplecticEuler { 2.0 / (2.0 - 1.99) } else { 1.0 };
+            let bound = if method == Method::SymplecticEuler {
+                2.0 / (2.0 - 1.99)
+            } else {
+                1.0
+            };
             assert_bounded(method, omega, 1.99, bound * (1.0 + 1e-6));
             assert_diverges(method, omega, 2.01);
         }
@@ -62,8 +94,18 @@ fn rk4_is_stable_below_two_root_two_and_diverges_above() {
 fn explicit_euler_diverges_at_any_step() {
     // (1 + 0.01²)^n passes the 1e100 limit (on |x|, i.e. E/E₀ ~ 1e200) after ~4.6 million steps,
     // so check the rate instead: E grows by exactly 1 + (ωh)² per step even at ωh = 0.01.
-    let osc = Oscillator { x: 1.0, v: 0.0, omega: 1.0 };
-    let run = osc.simulate().integrator(Method::ExplicitEuler).dt(0.01).steps(1000).run().unwrap();
+    let osc = Oscillator {
+        x: 1.0,
+        v: 0.0,
+        omega: 1.0,
+    };
+    let run = osc
+        .simulate()
+        .integrator(Method::ExplicitEuler)
+        .dt(0.01)
+        .steps(1000)
+        .run()
+        .unwrap();
     let expected = 1.0001f64.powi(1000);
     assert!((run.energy_ratio().unwrap() / expected - 1.0).abs() < 1e-12);
     assert_diverges(Method::ExplicitEuler, 1.0, 1.0);

@@ -16,12 +16,36 @@ pub(crate) struct MethodInfo {
 
 /// The methods an attribute may name, mirroring `odyn::Method`.
 const METHODS: [MethodInfo; 6] = [
-    MethodInfo { name: "ExplicitEuler", needs_second_order: false, needs_velocity_free_forces: false },
-    MethodInfo { name: "SymplecticEuler", needs_second_order: true, needs_velocity_free_forces: false },
-    MethodInfo { name: "PositionVerlet", needs_second_order: true, needs_velocity_free_forces: true },
-    MethodInfo { name: "VelocityVerlet", needs_second_order: true, needs_velocity_free_forces: false },
-    MethodInfo { name: "Leapfrog", needs_second_order: true, needs_velocity_free_forces: false },
-    MethodInfo { name: "Rk4", needs_second_order: false, needs_velocity_free_forces: false },
+    MethodInfo {
+        name: "ExplicitEuler",
+        needs_second_order: false,
+        needs_velocity_free_forces: false,
+    },
+    MethodInfo {
+        name: "SymplecticEuler",
+        needs_second_order: true,
+        needs_velocity_free_forces: false,
+    },
+    MethodInfo {
+        name: "PositionVerlet",
+        needs_second_order: true,
+        needs_velocity_free_forces: true,
+    },
+    MethodInfo {
+        name: "VelocityVerlet",
+        needs_second_order: true,
+        needs_velocity_free_forces: false,
+    },
+    MethodInfo {
+        name: "Leapfrog",
+        needs_second_order: true,
+        needs_velocity_free_forces: false,
+    },
+    MethodInfo {
+        name: "Rk4",
+        needs_second_order: false,
+        needs_velocity_free_forces: false,
+    },
 ];
 
 /// The parsed arguments.
@@ -41,7 +65,10 @@ pub(crate) fn parse(tokens: TokenStream, errors: &mut Errors) -> Args {
             let ident: Ident = meta.value()?.parse()?;
             match METHODS.iter().find(|m| ident == m.name) {
                 Some(info) => args.integrator = Some((ident, info)),
-                None => errors.at(&ident, format_args!("unknown integrator `{ident}`; supported: {}", names())),
+                None => errors.at(
+                    &ident,
+                    format_args!("unknown integrator `{ident}`; supported: {}", names()),
+                ),
             }
             Ok(())
         } else if meta.path.is_ident("dt") {
@@ -52,7 +79,9 @@ pub(crate) fn parse(tokens: TokenStream, errors: &mut Errors) -> Args {
         } else {
             Err(meta.error(format_args!(
                 "unknown `#[system]` argument `{}`; supported: `integrator = ...`, `dt = ...`",
-                meta.path.get_ident().map_or_else(|| "?".to_owned(), Ident::to_string)
+                meta.path
+                    .get_ident()
+                    .map_or_else(|| "?".to_owned(), Ident::to_string)
             )))
         }
     });
@@ -63,12 +92,20 @@ pub(crate) fn parse(tokens: TokenStream, errors: &mut Errors) -> Args {
 }
 
 fn names() -> String {
-    METHODS.iter().map(|m| format!("`{}`", m.name)).collect::<Vec<_>>().join(", ")
+    METHODS
+        .iter()
+        .map(|m| format!("`{}`", m.name))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// A literal dt must be finite and positive; anything else is left to the run-time check.
 fn check_dt(expr: &Expr, errors: &mut Errors) {
-    if let Expr::Unary(syn::ExprUnary { op: syn::UnOp::Neg(_), .. }) = expr {
+    if let Expr::Unary(syn::ExprUnary {
+        op: syn::UnOp::Neg(_),
+        ..
+    }) = expr
+    {
         errors.at(expr, "`dt` must be finite and positive");
         return;
     }

@@ -36,7 +36,9 @@ impl Errors {
     /// All errors as one `syn::Error`, or `Ok` when there were none.
     pub(crate) fn finish(self) -> syn::Result<()> {
         let mut errors = self.0.into_iter();
-        let Some(mut first) = errors.next() else { return Ok(()) };
+        let Some(mut first) = errors.next() else {
+            return Ok(());
+        };
         for error in errors {
             first.combine(error);
         }

@@ -77,7 +77,10 @@ fn forward_impl(args: TokenStream, item: &ItemImpl) -> TokenStream {
         );
     }
     if let Some((_, path, _)) = &item.trait_ {
-        errors.at(path, "`#[system]` goes on the model's own `impl` block, not on a trait impl");
+        errors.at(
+            path,
+            "`#[system]` goes on the model's own `impl` block, not on a trait impl",
+        );
     }
     if !item.generics.params.is_empty() {
         errors.at(&item.generics, "generic models are not supported");
@@ -90,14 +93,17 @@ fn forward_impl(args: TokenStream, item: &ItemImpl) -> TokenStream {
         _ => None,
     };
     if model.is_none() {
-        errors.at(&item.self_ty, "expected the model struct's name, such as `impl Spring`");
+        errors.at(
+            &item.self_ty,
+            "expected the model struct's name, such as `impl Spring`",
+        );
     }
     match (errors.finish(), model) {
         (Ok(()), Some(model)) => {
             let forwarder = generate::forwarder_name(model);
             quote!(#forwarder! { #item })
         }
-        (result, _) => with_error(item, result.err().expect("an error was recorded")),
+        (result, _) => with_error(item, result.expect_err("an error was recorded")),
     }
 }
 
@@ -112,7 +118,11 @@ impl Parse for Forwarded {
     fn parse(input: ParseStream<'_>) -> syn::Result<Self> {
         let content;
         syn::bracketed!(content in input);
-        Ok(Forwarded { args: content.parse()?, item: input.parse()?, imp: input.parse()? })
+        Ok(Forwarded {
+            args: content.parse()?,
+            item: input.parse()?,
+            imp: input.parse()?,
+        })
     }
 }
 
@@ -125,7 +135,10 @@ pub(crate) fn system_impl(input: TokenStream) -> TokenStream {
     let mut errors = Errors::default();
     let args = args::parse(args, &mut errors);
     let Some(model) = model::parse(&item, &mut errors) else {
-        return with_error(imp, errors.finish().err().expect("a rejected model has errors"));
+        return with_error(
+            imp,
+            errors.finish().expect_err("a rejected model has errors"),
+        );
     };
     let functions = functions::parse(&imp, &model, &mut errors);
     if let (Some((ident, info)), Some(force)) = (&args.integrator, &functions.force)

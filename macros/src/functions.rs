@@ -54,7 +54,10 @@ pub(crate) fn force_name(order: Order) -> &'static str {
 /// Reads the force and energy functions of `item` for `model`.
 pub(crate) fn parse(item: &ItemImpl, model: &Model<'_>, errors: &mut Errors) -> Functions {
     let force_name = force_name(model.order);
-    let mut functions = Functions { force: None, energy: None };
+    let mut functions = Functions {
+        force: None,
+        energy: None,
+    };
     for member in &item.items {
         let ImplItem::Fn(f) = member else { continue };
         if f.sig.ident == force_name {
@@ -67,7 +70,11 @@ pub(crate) fn parse(item: &ItemImpl, model: &Model<'_>, errors: &mut Errors) -> 
                 format_args!(
                     "`{}` is for {} models, but `{}` is {}; write `fn {force_name}`",
                     f.sig.ident,
-                    if model.order == Order::First { "second-order" } else { "first-order" },
+                    if model.order == Order::First {
+                        "second-order"
+                    } else {
+                        "first-order"
+                    },
                     model.ident(),
                     describe(model.order),
                 ),
@@ -77,7 +84,10 @@ pub(crate) fn parse(item: &ItemImpl, model: &Model<'_>, errors: &mut Errors) -> 
     if functions.force.is_none() && errors.is_empty() {
         let signature = match model.order {
             Order::Second => {
-                let types: Vec<_> = model.with_role(Role::Velocity).map(|v| v.shape.describe()).collect();
+                let types: Vec<_> = model
+                    .with_role(Role::Velocity)
+                    .map(|v| v.shape.describe())
+                    .collect();
                 match types.as_slice() {
                     [one] => format!("fn acceleration(&self) -> {one}"),
                     many => format!("fn acceleration(&self) -> ({})", many.join(", ")),
@@ -113,19 +123,31 @@ fn describe(order: Order) -> &'static str {
 }
 
 /// Checks a function's signature and rewrites its body.
-fn read(f: &ImplItemFn, model: &Model<'_>, is_force: bool, errors: &mut Errors) -> Option<Function> {
+fn read(
+    f: &ImplItemFn,
+    model: &Model<'_>,
+    is_force: bool,
+    errors: &mut Errors,
+) -> Option<Function> {
     let sig = &f.sig;
     let name = &sig.ident;
     let before = errors.len();
     if !sig.generics.params.is_empty() || sig.generics.where_clause.is_some() {
         errors.at(&sig.generics, format_args!("`{name}` cannot be generic"));
     }
-    if let Some(token) = sig.asyncness.as_ref().map(|a| a.span).or(sig.constness.map(|c| c.span)) {
+    if let Some(token) = sig
+        .asyncness
+        .as_ref()
+        .map(|a| a.span)
+        .or(sig.constness.map(|c| c.span))
+    {
         errors.at_span(token, format_args!("`{name}` must be a plain `fn`"));
     }
     let mut inputs = sig.inputs.iter();
     let receiver = match inputs.next() {
-        Some(FnArg::Receiver(r)) if r.reference.is_some() && r.mutability.is_none() => Some(r.clone()),
+        Some(FnArg::Receiver(r)) if r.reference.is_some() && r.mutability.is_none() => {
+            Some(r.clone())
+        }
         Some(other) => {
             errors.at(other, format_args!("`{name}` must take `&self`"));
             None
@@ -139,13 +161,20 @@ fn read(f: &ImplItemFn, model: &Model<'_>, is_force: bool, errors: &mut Errors) 
         None => None,
         Some(FnArg::Typed(t)) if is_f64(&t.ty) && is_force => Some(t.clone()),
         Some(other) => {
-            let allowed = if is_force { "only `&self` and an optional `t: f64`" } else { "only `&self`" };
+            let allowed = if is_force {
+                "only `&self` and an optional `t: f64`"
+            } else {
+                "only `&self`"
+            };
             errors.at(other, format_args!("`{name}` takes {allowed}"));
             None
         }
     };
     if let Some(extra) = inputs.next() {
-        errors.at(extra, format_args!("`{name}` takes at most `&self` and `t: f64`"));
+        errors.at(
+            extra,
+            format_args!("`{name}` takes at most `&self` and `t: f64`"),
+        );
     }
     let output = match &sig.output {
         ReturnType::Type(_, ty) => Some((**ty).clone()),
@@ -154,14 +183,26 @@ fn read(f: &ImplItemFn, model: &Model<'_>, is_force: bool, errors: &mut Errors) 
             None
         }
     };
-    let mut rewriter = Rewriter { model, function: name, reads: BTreeMap::new(), errors };
+    let mut rewriter = Rewriter {
+        model,
+        function: name,
+        reads: BTreeMap::new(),
+        errors,
+    };
     let mut body = f.block.clone();
     rewriter.visit_block_mut(&mut body);
     let reads = rewriter.reads;
     if errors.len() > before {
         return None;
     }
-    Some(Function { name: name.clone(), receiver: receiver?, time, output: output?, body, reads })
+    Some(Function {
+        name: name.clone(),
+        receiver: receiver?,
+        time,
+        output: output?,
+        body,
+        reads,
+    })
 }
 
 fn is_f64(ty: &Type) -> bool {
@@ -197,7 +238,9 @@ impl VisitMut for Rewriter<'_, '_> {
             if let Member::Named(name) = &field.member
                 && let Some(state) = self.model.field(name)
             {
-                self.reads.entry(name.to_string()).or_insert_with(|| field.to_token_stream());
+                self.reads
+                    .entry(name.to_string())
+                    .or_insert_with(|| field.to_token_stream());
                 let local = state_local(state.ident);
                 *expr = syn::parse_quote_spanned!(name.span() => #local);
             }
@@ -206,7 +249,10 @@ impl VisitMut for Rewriter<'_, '_> {
         if let Expr::MethodCall(call) = expr
             && is_self(&call.receiver)
         {
-            self.reject_self(call.method.span(), &format!("calling `self.{}()`", call.method));
+            self.reject_self(
+                call.method.span(),
+                &format!("calling `self.{}()`", call.method),
+            );
             return;
         }
         if is_self(expr) {
@@ -218,7 +264,12 @@ impl VisitMut for Rewriter<'_, '_> {
 
     fn visit_macro_mut(&mut self, mac: &mut syn::Macro) {
         if let Some(span) = find_self(mac.tokens.clone()) {
-            let name = mac.path.segments.last().map(|s| s.ident.to_string()).unwrap_or_default();
+            let name = mac
+                .path
+                .segments
+                .last()
+                .map(|s| s.ident.to_string())
+                .unwrap_or_default();
             self.reject_self(span, &format!("`self` inside `{name}!`"));
         }
     }
@@ -241,11 +292,18 @@ fn find_self(tokens: TokenStream) -> Option<Span> {
 }
 
 /// The velocity fields `force` reads, with the tokens of the first read of each.
-pub(crate) fn velocity_reads<'f>(force: &'f Function, model: &Model<'_>) -> Vec<(&'f str, &'f TokenStream)> {
+pub(crate) fn velocity_reads<'f>(
+    force: &'f Function,
+    model: &Model<'_>,
+) -> Vec<(&'f str, &'f TokenStream)> {
     force
         .reads
         .iter()
-        .filter(|(name, _)| model.with_role(Role::Velocity).any(|v| v.ident == name.as_str()))
+        .filter(|(name, _)| {
+            model
+                .with_role(Role::Velocity)
+                .any(|v| v.ident == name.as_str())
+        })
         .map(|(name, tokens)| (name.as_str(), tokens))
         .collect()
 }

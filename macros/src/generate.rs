@@ -80,8 +80,15 @@ pub(crate) fn forwarder(item: &ItemStruct, args: &TokenStream, ok: bool) -> Toke
 
 /// The impls that need both the struct and the functions: the runtime traits, and the user's
 /// functions re-emitted to take the state as arguments.
-pub(crate) fn model_impls(model: &Model<'_>, args: &Args, functions: &Functions, imp: &ItemImpl) -> TokenStream {
-    let Some(force) = &functions.force else { return TokenStream::new() };
+pub(crate) fn model_impls(
+    model: &Model<'_>,
+    args: &Args,
+    functions: &Functions,
+    imp: &ItemImpl,
+) -> TokenStream {
+    let Some(force) = &functions.force else {
+        return TokenStream::new();
+    };
     let ident = model.ident();
     let self_ty = &imp.self_ty;
     let state = model.state_ident();
@@ -106,7 +113,10 @@ pub(crate) fn model_impls(model: &Model<'_>, args: &Args, functions: &Functions,
         Some(e) => {
             let f = format_ident!("__odyn_energy");
             let args = read("state");
-            (hidden_fn(model, &f, e, false), quote!(::core::option::Option::Some(self.#f(#args))))
+            (
+                hidden_fn(model, &f, e, false),
+                quote!(::core::option::Option::Some(self.#f(#args))),
+            )
         }
         None => (TokenStream::new(), quote!(::core::option::Option::None)),
     };
@@ -146,8 +156,9 @@ pub(crate) fn model_impls(model: &Model<'_>, args: &Args, functions: &Functions,
         let store = if let [v] = velocities.as_slice() {
             quote!(accel.#v = a;)
         } else {
-            let parts: Vec<_> =
-                (0..velocities.len()).map(|i| format_ident!("__odyn_a{}", i, span = Span::mixed_site())).collect();
+            let parts: Vec<_> = (0..velocities.len())
+                .map(|i| format_ident!("__odyn_a{}", i, span = Span::mixed_site()))
+                .collect();
             quote! {
                 let (#(#parts,)*) = a;
                 #(accel.#velocities = #parts;)*
@@ -167,7 +178,9 @@ pub(crate) fn model_impls(model: &Model<'_>, args: &Args, functions: &Functions,
     });
     let state_init = quote!(#state { #(#fields: self.#fields),* });
     // The runtime calls the rewritten copies; mark the originals used so they draw no warning.
-    let originals = std::iter::once(force).chain(&functions.energy).map(|f| &f.name);
+    let originals = std::iter::once(force)
+        .chain(&functions.energy)
+        .map(|f| &f.name);
     quote! {
         #[automatically_derived]
         impl #self_ty {
@@ -209,7 +222,11 @@ fn hidden_fn(model: &Model<'_>, name: &syn::Ident, f: &Function, with_time: bool
     });
     let output = &f.output;
     let body = &f.body;
-    let time = if with_time { quote!(#time,) } else { TokenStream::new() };
+    let time = if with_time {
+        quote!(#time,)
+    } else {
+        TokenStream::new()
+    };
     quote_spanned! {Span::call_site()=>
         #[doc(hidden)]
         #[inline(always)]

@@ -15,11 +15,17 @@ pub(crate) enum Role {
 }
 
 impl Role {
-    const ATTRIBUTES: [(&'static str, Role); 3] =
-        [("position", Role::Position), ("velocity", Role::Velocity), ("state", Role::State)];
+    const ATTRIBUTES: [(&'static str, Role); 3] = [
+        ("position", Role::Position),
+        ("velocity", Role::Velocity),
+        ("state", Role::State),
+    ];
 
     fn attribute(self) -> &'static str {
-        Self::ATTRIBUTES.iter().find(|(_, r)| *r == self).map_or("", |(name, _)| name)
+        Self::ATTRIBUTES
+            .iter()
+            .find(|(_, r)| *r == self)
+            .map_or("", |(name, _)| name)
     }
 }
 
@@ -110,7 +116,10 @@ impl Model<'_> {
 /// Reads the model from its struct, reporting every problem to `errors`.
 pub(crate) fn parse<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Option<Model<'a>> {
     if !item.generics.params.is_empty() || item.generics.where_clause.is_some() {
-        errors.at(&item.generics, "generic models are not supported; use concrete `f64` fields");
+        errors.at(
+            &item.generics,
+            "generic models are not supported; use concrete `f64` fields",
+        );
     }
     let Fields::Named(named) = &item.fields else {
         errors.at_span(
@@ -121,10 +130,14 @@ pub(crate) fn parse<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Option<Mod
     };
     let mut declared = Vec::new();
     for field in &named.named {
-        let Some(role) = role_of(&field.attrs, errors) else { continue };
+        let Some(role) = role_of(&field.attrs, errors) else {
+            continue;
+        };
         let ident = field.ident.as_ref().expect("named fields have names");
         match shape_of(&field.ty) {
-            Some(shape) if shape.len() > 0 => declared.push((StateField { ident, role, shape }, field)),
+            Some(shape) if shape.len() > 0 => {
+                declared.push((StateField { ident, role, shape }, field))
+            }
             Some(_) => errors.at(&field.ty, "a state field needs at least one component"),
             None => errors.at(
                 &field.ty,
@@ -138,8 +151,11 @@ pub(crate) fn parse<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Option<Mod
     }
 
     let count = |role| declared.iter().filter(|(f, _)| f.role == role).count();
-    let (positions, velocities, states) =
-        (count(Role::Position), count(Role::Velocity), count(Role::State));
+    let (positions, velocities, states) = (
+        count(Role::Position),
+        count(Role::Velocity),
+        count(Role::State),
+    );
     if declared.is_empty() {
         if errors.is_empty() {
             errors.at_span(
@@ -162,20 +178,34 @@ pub(crate) fn parse<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Option<Mod
         );
         return None;
     }
-    let order = if states > 0 { Order::First } else { Order::Second };
+    let order = if states > 0 {
+        Order::First
+    } else {
+        Order::Second
+    };
     if order == Order::Second {
         pair_positions_and_velocities(&declared, errors);
     }
     let mut fields: Vec<_> = declared.into_iter().map(|(f, _)| f).collect();
     // Layout: every position, then every velocity (a stable sort keeps declaration order).
     fields.sort_by_key(|f| f.role == Role::Velocity);
-    Some(Model { item, order, states: fields })
+    Some(Model {
+        item,
+        order,
+        states: fields,
+    })
 }
 
 /// Positions and velocities pair up in declaration order, with equal shapes.
 fn pair_positions_and_velocities(declared: &[(StateField<'_>, &syn::Field)], errors: &mut Errors) {
-    let positions: Vec<_> = declared.iter().filter(|(f, _)| f.role == Role::Position).collect();
-    let velocities: Vec<_> = declared.iter().filter(|(f, _)| f.role == Role::Velocity).collect();
+    let positions: Vec<_> = declared
+        .iter()
+        .filter(|(f, _)| f.role == Role::Position)
+        .collect();
+    let velocities: Vec<_> = declared
+        .iter()
+        .filter(|(f, _)| f.role == Role::Velocity)
+        .collect();
     for (p, v) in positions.iter().zip(&velocities) {
         if p.0.shape != v.0.shape {
             errors.at(
@@ -217,12 +247,17 @@ fn pair_positions_and_velocities(declared: &[(StateField<'_>, &syn::Field)], err
 fn role_of(attrs: &[Attribute], errors: &mut Errors) -> Option<Role> {
     let mut found: Option<(Role, &Attribute)> = None;
     for attr in attrs {
-        let Some((_, role)) = Role::ATTRIBUTES.iter().find(|(name, _)| attr.path().is_ident(name))
+        let Some((_, role)) = Role::ATTRIBUTES
+            .iter()
+            .find(|(name, _)| attr.path().is_ident(name))
         else {
             continue;
         };
         if let Err(e) = attr.meta.require_path_only() {
-            errors.push(syn::Error::new(e.span(), format_args!("`#[{}]` takes no arguments", role.attribute())));
+            errors.push(syn::Error::new(
+                e.span(),
+                format_args!("`#[{}]` takes no arguments", role.attribute()),
+            ));
         }
         match found {
             Some((first, _)) => errors.at(
@@ -251,7 +286,9 @@ pub(crate) fn shape_of(ty: &Type) -> Option<Shape> {
                 return (p.path.segments.len() == 1 && last.arguments.is_none())
                     .then_some(Shape::Scalar);
             }
-            let PathArguments::AngleBracketed(args) = &last.arguments else { return None };
+            let PathArguments::AngleBracketed(args) = &last.arguments else {
+                return None;
+            };
             let args: Vec<_> = args.args.iter().collect();
             match (name.as_str(), args.as_slice()) {
                 ("SVector", [GenericArgument::Type(t), GenericArgument::Const(n)]) if is_f64(t) => {
@@ -275,7 +312,9 @@ fn is_f64(ty: &Type) -> bool {
 
 fn int_literal(expr: &Expr) -> Option<usize> {
     match expr {
-        Expr::Lit(syn::ExprLit { lit: Lit::Int(i), .. }) => i.base10_parse().ok(),
+        Expr::Lit(syn::ExprLit {
+            lit: Lit::Int(i), ..
+        }) => i.base10_parse().ok(),
         Expr::Group(g) => int_literal(&g.expr),
         Expr::Paren(p) => int_literal(&p.expr),
         _ => None,
@@ -287,7 +326,11 @@ pub(crate) fn strip_roles(item: &ItemStruct) -> ItemStruct {
     let mut item = item.clone();
     if let Fields::Named(named) = &mut item.fields {
         for field in &mut named.named {
-            field.attrs.retain(|a| !Role::ATTRIBUTES.iter().any(|(name, _)| a.path().is_ident(name)));
+            field.attrs.retain(|a| {
+                !Role::ATTRIBUTES
+                    .iter()
+                    .any(|(name, _)| a.path().is_ident(name))
+            });
         }
     }
     item

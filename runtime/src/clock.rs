@@ -28,7 +28,10 @@ pub struct FixedTimestep {
 
 impl Default for FixedTimestep {
     fn default() -> Self {
-        FixedTimestep { max_frame_time: 0.1, accumulator: 0.0 }
+        FixedTimestep {
+            max_frame_time: 0.1,
+            accumulator: 0.0,
+        }
     }
 }
 
@@ -61,7 +64,10 @@ impl FixedTimestep {
             self.accumulator -= dt;
             steps += 1;
         }
-        Ok(Tick { steps, alpha: self.accumulator / dt })
+        Ok(Tick {
+            steps,
+            alpha: self.accumulator / dt,
+        })
     }
 
     /// Time carried over to the next frame, in seconds.

@@ -10,10 +10,10 @@ mod error;
 pub mod integrators;
 mod method;
 mod model;
-pub mod reference;
 pub mod output;
 #[cfg(feature = "plot")]
 pub mod plot;
+pub mod reference;
 mod simulation;
 mod stepper;
 mod trajectory;

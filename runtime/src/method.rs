@@ -98,9 +98,15 @@ impl FromStr for Method {
 
     /// Parses the snake-case [`Method::name`].
     fn from_str(s: &str) -> Result<Self, Error> {
-        Method::ALL.into_iter().find(|m| m.name() == s).ok_or_else(|| {
-            let names: Vec<_> = Method::ALL.iter().map(|m| m.name()).collect();
-            Error::invalid("method", format!("unknown method `{s}`; supported: {}", names.join(", ")))
-        })
+        Method::ALL
+            .into_iter()
+            .find(|m| m.name() == s)
+            .ok_or_else(|| {
+                let names: Vec<_> = Method::ALL.iter().map(|m| m.name()).collect();
+                Error::invalid(
+                    "method",
+                    format!("unknown method `{s}`; supported: {}", names.join(", ")),
+                )
+            })
     }
 }

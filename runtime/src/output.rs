@@ -31,11 +31,20 @@ where
     E: Into<TempError>,
 {
     static COUNTER: AtomicU64 = AtomicU64::new(0);
-    let io = |source| Error::Io { path: path.to_path_buf(), source };
+    let io = |source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    };
     let name = path.file_name().ok_or_else(|| {
-        Error::invalid("output path", format!("`{}` does not name a file", path.display()))
+        Error::invalid(
+            "output path",
+            format!("`{}` does not name a file", path.display()),
+        )
     })?;
-    let parent = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let parent = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
     fs::create_dir_all(parent).map_err(io)?;
     let unique = COUNTER.fetch_add(1, Ordering::Relaxed);
     let mut temp_name = std::ffi::OsString::from(".");
@@ -92,7 +101,11 @@ pub fn write_csv<S: State>(path: impl AsRef<Path>, runs: &[&Trajectory<S>]) -> R
     let mut rows = Vec::new();
     for run in runs {
         for s in &run.samples {
-            let mut row = vec![run.method.name().to_owned(), s.step.to_string(), number(s.t)];
+            let mut row = vec![
+                run.method.name().to_owned(),
+                s.step.to_string(),
+                number(s.t),
+            ];
             row.extend(s.state.as_slice().iter().copied().map(number));
             if has_energy {
                 row.push(s.energy.map_or_else(String::new, number));
@@ -110,13 +123,22 @@ pub fn write_table<H: AsRef<str>, C: AsRef<str>>(
     rows: &[Vec<C>],
 ) -> Result<()> {
     let path = path.as_ref();
-    let csv_error = |source| Error::Csv { path: path.to_path_buf(), source };
+    let csv_error = |source| Error::Csv {
+        path: path.to_path_buf(),
+        source,
+    };
     let mut writer = csv::Writer::from_writer(Vec::new());
-    writer.write_record(header.iter().map(AsRef::as_ref)).map_err(csv_error)?;
+    writer
+        .write_record(header.iter().map(AsRef::as_ref))
+        .map_err(csv_error)?;
     for row in rows {
-        writer.write_record(row.iter().map(AsRef::as_ref)).map_err(csv_error)?;
+        writer
+            .write_record(row.iter().map(AsRef::as_ref))
+            .map_err(csv_error)?;
     }
-    let bytes = writer.into_inner().map_err(|e| csv_error(e.into_error().into()))?;
+    let bytes = writer
+        .into_inner()
+        .map_err(|e| csv_error(e.into_error().into()))?;
     write_atomic(path, &bytes)
 }
 

@@ -28,7 +28,12 @@ pub struct EnergyPlot {
 
 impl Default for EnergyPlot {
     fn default() -> Self {
-        EnergyPlot { title: String::new(), relative: false, log_y: false, size: (960, 600) }
+        EnergyPlot {
+            title: String::new(),
+            relative: false,
+            log_y: false,
+            size: (960, 600),
+        }
     }
 }
 
@@ -48,14 +53,30 @@ pub fn energy_with<S: State>(
     let mut series = Vec::with_capacity(runs.len());
     for (label, run) in runs {
         let e0 = run.first().energy.ok_or_else(|| {
-            Error::invalid("plot", format!("`{}` defines no `fn energy` to plot", run.model))
+            Error::invalid(
+                "plot",
+                format!("`{}` defines no `fn energy` to plot", run.model),
+            )
         })?;
         let scale = if look.relative { e0 } else { 1.0 };
         let points: Vec<(f64, f64)> = run.energies().map(|(t, e)| (t, e / scale)).collect();
-        series.push(Series { label: (*label).to_owned(), points });
+        series.push(Series {
+            label: (*label).to_owned(),
+            points,
+        });
     }
-    let y_label = if look.relative { "E(t) / E(0)" } else { "energy" };
-    let chart = Chart { title: &look.title, x_label: "t", y_label, log_y: look.log_y, series };
+    let y_label = if look.relative {
+        "E(t) / E(0)"
+    } else {
+        "energy"
+    };
+    let chart = Chart {
+        title: &look.title,
+        x_label: "t",
+        y_label,
+        log_y: look.log_y,
+        series,
+    };
     chart.write(path, look.size)
 }
 
@@ -77,23 +98,32 @@ pub(crate) struct Chart<'a> {
 impl Chart<'_> {
     pub(crate) fn write(&self, path: &Path, size: (u32, u32)) -> Result<()> {
         register_bundled_font(path)?;
-        let finite = |&(x, y): &(f64, f64)| x.is_finite() && y.is_finite() && (!self.log_y || y > 0.0);
-        let points = self.series.iter().flat_map(|s| s.points.iter().copied().filter(finite));
+        let finite =
+            |&(x, y): &(f64, f64)| x.is_finite() && y.is_finite() && (!self.log_y || y > 0.0);
+        let points = self
+            .series
+            .iter()
+            .flat_map(|s| s.points.iter().copied().filter(finite));
         let (x, y) = bounds(points).ok_or_else(|| {
-            Error::invalid("plot", "no finite points to draw (on a log axis, no positive ones)")
+            Error::invalid(
+                "plot",
+                "no finite points to draw (on a log axis, no positive ones)",
+            )
         })?;
         match path.extension().and_then(|e| e.to_str()) {
             Some("svg") => {
                 let mut text = String::new();
                 {
                     let root = SVGBackend::with_string(&mut text, size).into_drawing_area();
-                    self.draw(&root, x, y).map_err(|reason| plot_error(path, reason))?;
+                    self.draw(&root, x, y)
+                        .map_err(|reason| plot_error(path, reason))?;
                 }
                 write_atomic(path, text.as_bytes())
             }
             Some("png") => with_temporary(path, ".png", |temp| {
                 let root = BitMapBackend::new(temp, size).into_drawing_area();
-                self.draw(&root, x, y).map_err(|reason| plot_error(path, reason))
+                self.draw(&root, x, y)
+                    .map_err(|reason| plot_error(path, reason))
             }),
             _ => Err(Error::invalid(
                 "plot path",
@@ -118,8 +148,9 @@ impl Chart<'_> {
             .y_label_area_size(80);
         if self.log_y {
             let (lo, hi) = (y0 / 1.5, y1 * 1.5);
-            let mut chart =
-                builder.build_cartesian_2d(x0..x1, (lo..hi).log_scale()).map_err(e)?;
+            let mut chart = builder
+                .build_cartesian_2d(x0..x1, (lo..hi).log_scale())
+                .map_err(e)?;
             chart
                 .configure_mesh()
                 .x_desc(self.x_label)
@@ -131,7 +162,9 @@ impl Chart<'_> {
             self.draw_series(&mut chart).map_err(e)?;
         } else {
             let pad = 0.05 * (y1 - y0).max(1e-12 * y1.abs().max(1.0));
-            let mut chart = builder.build_cartesian_2d(x0..x1, (y0 - pad)..(y1 + pad)).map_err(e)?;
+            let mut chart = builder
+                .build_cartesian_2d(x0..x1, (y0 - pad)..(y1 + pad))
+                .map_err(e)?;
             chart
                 .configure_mesh()
                 .x_desc(self.x_label)
@@ -156,7 +189,11 @@ impl Chart<'_> {
             let (r, g, b) = PALETTE[i % PALETTE.len()];
             let color = RGBColor(r, g, b).to_rgba();
             let style = ShapeStyle::from(color).stroke_width(2);
-            let points = s.points.iter().copied().filter(|(x, y)| x.is_finite() && y.is_finite());
+            let points = s
+                .points
+                .iter()
+                .copied()
+                .filter(|(x, y)| x.is_finite() && y.is_finite());
             chart
                 .draw_series(LineSeries::new(points, style))?
                 .label(s.label.as_str())
@@ -194,15 +231,32 @@ fn bounds(points: impl Iterator<Item = (f64, f64)>) -> Option<((f64, f64), (f64,
             Some(((x0, x1), (y0, y1))) => ((x0.min(x), x1.max(x)), (y0.min(y), y1.max(y))),
         });
     }
-    b.map(|((x0, x1), y)| if x1 > x0 { ((x0, x1), y) } else { ((x0, x0 + 1.0), y) })
+    b.map(|((x0, x1), y)| {
+        if x1 > x0 {
+            ((x0, x1), y)
+        } else {
+            ((x0, x0 + 1.0), y)
+        }
+    })
 }
 
 fn plot_error(path: &Path, reason: String) -> Error {
-    Error::Plot { path: path.to_path_buf(), reason }
+    Error::Plot {
+        path: path.to_path_buf(),
+        reason,
+    }
 }
 
 fn register_bundled_font(path: &Path) -> Result<()> {
     static REGISTERED: OnceLock<bool> = OnceLock::new();
-    let ok = *REGISTERED.get_or_init(|| register_font("sans-serif", FontStyle::Normal, FONT).is_ok());
-    if ok { Ok(()) } else { Err(plot_error(path, "the bundled font failed to load".to_owned())) }
+    let ok =
+        *REGISTERED.get_or_init(|| register_font("sans-serif", FontStyle::Normal, FONT).is_ok());
+    if ok {
+        Ok(())
+    } else {
+        Err(plot_error(
+            path,
+            "the bundled font failed to load".to_owned(),
+        ))
+    }
 }

@@ -66,7 +66,10 @@ mod tests {
                 let (xp, _) = osc.state_at(1.0, 0.3, t + h);
                 let (xm, _) = osc.state_at(1.0, 0.3, t - h);
                 let accel = (vp - vm) / (2.0 * h);
-                assert!((osc.m * accel + b * v + osc.k * x).abs() < 1e-5, "b = {b}, t = {t}");
+                assert!(
+                    (osc.m * accel + b * v + osc.k * x).abs() < 1e-5,
+                    "b = {b}, t = {t}"
+                );
                 assert!(((xp - xm) / (2.0 * h) - v).abs() < 1e-5, "b = {b}, t = {t}");
             }
             assert_eq!(osc.state_at(1.0, 0.3, 0.0).0, 1.0);

@@ -58,9 +58,16 @@ pub struct Simulation<'m, M: Model> {
 impl<'m, M: Model> Simulation<'m, M> {
     /// A run of `model` from its own state, with its attribute's method and dt.
     pub fn new(model: &'m M) -> Self {
-        let options =
-            RunOptions { method: M::DEFAULT_METHOD, dt: M::DEFAULT_DT, ..RunOptions::default() };
-        Simulation { model, initial: None, options }
+        let options = RunOptions {
+            method: M::DEFAULT_METHOD,
+            dt: M::DEFAULT_DT,
+            ..RunOptions::default()
+        };
+        Simulation {
+            model,
+            initial: None,
+            options,
+        }
     }
 
     /// Uses `method` instead of the attribute's.
@@ -157,13 +164,20 @@ impl<'m, M: Model> Simulation<'m, M> {
     }
 
     fn unsupported(&self, reason: &'static str) -> Error {
-        Error::Unsupported { method: self.options.method, model: M::NAME, reason }
+        Error::Unsupported {
+            method: self.options.method,
+            model: M::NAME,
+            reason,
+        }
     }
 
     fn plan(&self) -> Result<Plan<M::State>> {
         let o = &self.options;
         let dt = o.dt.ok_or_else(|| {
-            Error::invalid("dt", "no step given: call `.dt(..)` or set `#[system(dt = ..)]`")
+            Error::invalid(
+                "dt",
+                "no step given: call `.dt(..)` or set `#[system(dt = ..)]`",
+            )
         })?;
         check_dt(dt)?;
         let steps = match o.length {
@@ -179,7 +193,7 @@ impl<'m, M: Model> Simulation<'m, M> {
         if o.record_every == 0 {
             return Err(Error::invalid("record_every", "must be at least 1"));
         }
-        if !(o.divergence_limit > 0.0) {
+        if o.divergence_limit.is_nan() || o.divergence_limit <= 0.0 {
             return Err(Error::invalid(
                 "divergence_limit",
                 format!("must be positive, got {}", o.divergence_limit),
@@ -205,7 +219,11 @@ fn steps_for(duration: f64, dt: f64) -> Result<u64> {
     }
     let ratio = duration / dt;
     let nearest = ratio.round();
-    let steps = if (ratio - nearest).abs() <= 1e-9 * nearest.max(1.0) { nearest } else { ratio.ceil() };
+    let steps = if (ratio - nearest).abs() <= 1e-9 * nearest.max(1.0) {
+        nearest
+    } else {
+        ratio.ceil()
+    };
     if steps > 1e15 {
         return Err(Error::invalid(
             "duration",

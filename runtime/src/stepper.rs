@@ -29,7 +29,10 @@ impl<'m, M: Model, I: Integrator<M>> Stepper<'m, M, I> {
     pub fn new(model: &'m M, state: M::State, t0: f64, dt: f64) -> Result<Self> {
         check_dt(dt)?;
         if !t0.is_finite() {
-            return Err(Error::invalid("t0", format!("start time must be finite, got {t0}")));
+            return Err(Error::invalid(
+                "t0",
+                format!("start time must be finite, got {t0}"),
+            ));
         }
         if let Some((index, value)) = first_outside(&state, f64::MAX) {
             return Err(Error::invalid(
@@ -114,7 +117,10 @@ pub(crate) fn check_dt(dt: f64) -> Result<()> {
     if dt.is_finite() && dt > 0.0 {
         Ok(())
     } else {
-        Err(Error::invalid("dt", format!("must be finite and positive, got {dt}")))
+        Err(Error::invalid(
+            "dt",
+            format!("must be finite and positive, got {dt}"),
+        ))
     }
 }
 
@@ -124,5 +130,11 @@ fn first_outside<S: State>(state: &S, limit: f64) -> Option<(usize, f64)> {
     let s = state.as_slice();
     // One branch-free pass for the common case; locate the culprit only on failure.
     let ok = s.iter().fold(true, |ok, x| ok & (x.abs() <= limit));
-    if ok { None } else { s.iter().position(|x| !(x.abs() <= limit)).map(|i| (i, s[i])) }
+    if ok {
+        None
+    } else {
+        s.iter()
+            .position(|x| x.is_nan() || x.abs() > limit)
+            .map(|i| (i, s[i]))
+    }
 }

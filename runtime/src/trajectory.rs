@@ -42,12 +42,16 @@ impl<S: State> Trajectory<S> {
 
     /// The last sample.
     pub fn last(&self) -> &Sample<S> {
-        self.samples.last().expect("a trajectory always holds its initial sample")
+        self.samples
+            .last()
+            .expect("a trajectory always holds its initial sample")
     }
 
     /// Recorded energies as (t, E), for models that define an energy.
     pub fn energies(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
-        self.samples.iter().filter_map(|s| s.energy.map(|e| (s.t, e)))
+        self.samples
+            .iter()
+            .filter_map(|s| s.energy.map(|e| (s.t, e)))
     }
 
     /// Final energy over initial energy, for models that define an energy.

@@ -1,5 +1,8 @@
 //! Models shared by the integration tests.
-#![allow(dead_code, reason = "each test crate uses a different subset of these models")]
+#![allow(
+    dead_code,
+    reason = "each test crate uses a different subset of these models"
+)]
 
 use odyn::prelude::*;
 
@@ -77,7 +80,14 @@ impl Lorenz {
 
 impl Lorenz {
     pub fn classic() -> Self {
-        Lorenz { x: 1.0, y: 1.0, z: 1.0, sigma: 10.0, rho: 28.0, beta: 8.0 / 3.0 }
+        Lorenz {
+            x: 1.0,
+            y: 1.0,
+            z: 1.0,
+            sigma: 10.0,
+            rho: 28.0,
+            beta: 8.0 / 3.0,
+        }
     }
 }
 
@@ -121,6 +131,9 @@ pub struct Pair {
 #[system]
 impl Pair {
     fn acceleration(&self, t: f64) -> (f64, [f64; 2]) {
-        (-self.a + self.drive * t.cos(), [-self.b[0], -4.0 * self.b[1]])
+        (
+            -self.a + self.drive * t.cos(),
+            [-self.b[0], -4.0 * self.b[1]],
+        )
     }
 }

@@ -28,7 +28,10 @@ impl<M: Model> Integrator<M> for ExplicitEuler<M::State> {
     const EVALUATIONS_PER_STEP: u64 = 1;
 
     fn start(_: &M, _: f64, dt: f64, state: &M::State) -> Self {
-        ExplicitEuler { dt, dydt: state.clone() }
+        ExplicitEuler {
+            dt,
+            dydt: state.clone(),
+        }
     }
 
     #[inline]

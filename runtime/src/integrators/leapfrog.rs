@@ -36,7 +36,12 @@ impl<M: SecondOrder> Integrator<M> for Leapfrog<M::State> {
     fn start(model: &M, t0: f64, dt: f64, state: &M::State) -> Self {
         let mut accel = state.clone();
         model.acceleration(t0, state, &mut accel);
-        Leapfrog { dt, next: accel.clone(), probe: state.clone(), accel }
+        Leapfrog {
+            dt,
+            next: accel.clone(),
+            probe: state.clone(),
+            accel,
+        }
     }
 
     #[inline]

@@ -41,7 +41,13 @@ impl<M: SecondOrder> Integrator<M> for PositionVerlet<M::State> {
     fn start(model: &M, t0: f64, dt: f64, state: &M::State) -> Self {
         let mut accel = state.clone();
         model.acceleration(t0, state, &mut accel);
-        PositionVerlet { dt, started: false, previous: state.clone(), current: state.clone(), accel }
+        PositionVerlet {
+            dt,
+            started: false,
+            previous: state.clone(),
+            current: state.clone(),
+            accel,
+        }
     }
 
     #[inline]

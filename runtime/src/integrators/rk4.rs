@@ -27,7 +27,11 @@ impl<M: Model> Integrator<M> for Rk4<M::State> {
     const EVALUATIONS_PER_STEP: u64 = 4;
 
     fn start(_: &M, _: f64, dt: f64, state: &M::State) -> Self {
-        Rk4 { dt, k: std::array::from_fn(|_| state.clone()), probe: state.clone() }
+        Rk4 {
+            dt,
+            k: std::array::from_fn(|_| state.clone()),
+            probe: state.clone(),
+        }
     }
 
     #[inline]
@@ -43,7 +47,12 @@ impl<M: Model> Integrator<M> for Rk4<M::State> {
         set_axpy(probe.as_mut_slice(), y.as_slice(), h, k3.as_slice());
         model.derivative(t + h, probe, k4);
         let sixth = h / 6.0;
-        let ks = k1.as_slice().iter().zip(k2.as_slice()).zip(k3.as_slice()).zip(k4.as_slice());
+        let ks = k1
+            .as_slice()
+            .iter()
+            .zip(k2.as_slice())
+            .zip(k3.as_slice())
+            .zip(k4.as_slice());
         for (yi, (((a, b), c), d)) in y.as_mut_slice().iter_mut().zip(ks) {
             *yi += sixth * (a + 2.0 * b + 2.0 * c + d);
         }

@@ -28,7 +28,10 @@ impl<M: SecondOrder> Integrator<M> for SymplecticEuler<M::State> {
     const EVALUATIONS_PER_STEP: u64 = 1;
 
     fn start(_: &M, _: f64, dt: f64, state: &M::State) -> Self {
-        SymplecticEuler { dt, accel: state.clone() }
+        SymplecticEuler {
+            dt,
+            accel: state.clone(),
+        }
     }
 
     #[inline]
