@@ -15,7 +15,7 @@ pub(crate) struct MethodInfo {
 }
 
 /// The methods an attribute may name, mirroring `odyn::Method`.
-const METHODS: [MethodInfo; 6] = [
+const METHODS: [MethodInfo; 7] = [
     MethodInfo {
         name: "ExplicitEuler",
         needs_second_order: false,
@@ -46,6 +46,11 @@ const METHODS: [MethodInfo; 6] = [
         needs_second_order: false,
         needs_velocity_free_forces: false,
     },
+    MethodInfo {
+        name: "ImplicitEuler",
+        needs_second_order: false,
+        needs_velocity_free_forces: false,
+    },
 ];
 
 /// The parsed arguments.
@@ -55,6 +60,8 @@ pub(crate) struct Args {
     pub(crate) integrator: Option<(Ident, &'static MethodInfo)>,
     /// `dt = <expr>`: a literal is checked here, any other constant expression at run time.
     pub(crate) dt: Option<Expr>,
+    /// `jacobian = false` opts out of the generated Jacobian (and so of implicit methods).
+    pub(crate) no_jacobian: Option<syn::LitBool>,
 }
 
 /// Parses the attribute's arguments, reporting problems to `errors`.
@@ -76,9 +83,16 @@ pub(crate) fn parse(tokens: TokenStream, errors: &mut Errors) -> Args {
             check_dt(&expr, errors);
             args.dt = Some(expr);
             Ok(())
+        } else if meta.path.is_ident("jacobian") {
+            let value: syn::LitBool = meta.value()?.parse()?;
+            if !value.value {
+                args.no_jacobian = Some(value);
+            }
+            Ok(())
         } else {
             Err(meta.error(format_args!(
-                "unknown `#[system]` argument `{}`; supported: `integrator = ...`, `dt = ...`",
+                "unknown `#[system]` argument `{}`; supported: `integrator = ...`, `dt = ...`, \
+                 `jacobian = false`",
                 meta.path
                     .get_ident()
                     .map_or_else(|| "?".to_owned(), Ident::to_string)

@@ -12,7 +12,7 @@ use syn::{Item, ItemImpl, ItemStruct, Type};
 
 use crate::errors::Errors;
 use crate::model::Order;
-use crate::{args, functions, generate, model};
+use crate::{args, functions, generate, lower, model};
 
 /// `#[system(...)]` on an item.
 pub(crate) fn system(args: TokenStream, item: TokenStream) -> TokenStream {
@@ -156,10 +156,40 @@ pub(crate) fn system_impl(input: TokenStream) -> TokenStream {
             errors.at(tokens, format_args!("`self.{field}` is read here"));
         }
     }
+    let lowered = match (&functions.force, &args.no_jacobian) {
+        (Some(force), None) => match lower::lower(&model, &force.original) {
+            Ok(lowered) => Some(lowered),
+            Err(error) => {
+                errors.push(error);
+                None
+            }
+        },
+        _ => None,
+    };
+    if let (Some(no), Some((ident, _))) = (&args.no_jacobian, &args.integrator)
+        && ident == "ImplicitEuler"
+    {
+        errors.at(no, "`ImplicitEuler` needs the Jacobian that `jacobian = false` turns off");
+    }
+    if lowered.is_some() && model.len() > 32 {
+        errors.at_span(
+            model.ident().span(),
+            format_args!(
+                "`{}` has {} state components; generated dense Jacobians go up to 32 (add \
+                 `jacobian = false` to `#[system]`)",
+                model.ident(),
+                model.len()
+            ),
+        );
+    }
     match errors.finish() {
         Ok(()) => {
-            let generated = generate::model_impls(&model, &args, &functions, &imp);
-            quote!(#imp #generated)
+            let generated = generate::model_impls(&model, &args, &functions, &imp, lowered.is_some());
+            let jacobian = match (lowered, &functions.force) {
+                (Some(lowered), Some(force)) => generate::jacobian(&model, lowered, force, &imp),
+                _ => TokenStream::new(),
+            };
+            quote!(#imp #generated #jacobian)
         }
         Err(error) => with_error(imp, error),
     }

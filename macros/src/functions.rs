@@ -27,6 +27,8 @@ pub(crate) struct Functions {
 pub(crate) struct Function {
     /// The user's function name (`acceleration`), which stays callable as written.
     pub(crate) name: Ident,
+    /// The function as written, for the Jacobian's lowering.
+    pub(crate) original: ImplItemFn,
     /// The user's `self` token, reused so the rewritten body resolves `self` to the same binding.
     pub(crate) receiver: syn::Receiver,
     /// The user's time argument (`t: f64`), if declared.
@@ -197,6 +199,7 @@ fn read(
     }
     Some(Function {
         name: name.clone(),
+        original: f.clone(),
         receiver: receiver?,
         time,
         output: output?,

@@ -4,11 +4,13 @@
 //! locals, and documents every public item so `cargo doc` of a user's crate explains it.
 
 use proc_macro2::{Span, TokenStream};
-use quote::{format_ident, quote, quote_spanned};
+use quote::{ToTokens, format_ident, quote, quote_spanned};
 use syn::{ItemImpl, ItemStruct};
 
 use crate::args::Args;
 use crate::functions::{Function, Functions, state_local};
+use crate::ir::{ExprId, Node};
+use crate::lower::{Lowered, Prologue};
 use crate::model::{Model, Order, Role, Shape};
 
 /// The name of the `macro_rules!` through which a struct's expansion reaches its impl block's.
@@ -85,6 +87,7 @@ pub(crate) fn model_impls(
     args: &Args,
     functions: &Functions,
     imp: &ItemImpl,
+    has_jacobian: bool,
 ) -> TokenStream {
     let Some(force) = &functions.force else {
         return TokenStream::new();
@@ -121,9 +124,26 @@ pub(crate) fn model_impls(
         None => (TokenStream::new(), quote!(::core::option::Option::None)),
     };
     let y = read("y");
+    let jacobian = if has_jacobian {
+        quote! {
+            type Jacobian = Self;
+            #[inline(always)]
+            fn as_jacobian(&self) -> ::core::option::Option<&Self> {
+                ::core::option::Option::Some(self)
+            }
+        }
+    } else {
+        quote! {
+            type Jacobian = ::odyn::Unavailable<Self>;
+            #[inline(always)]
+            fn as_jacobian(&self) -> ::core::option::Option<&Self::Jacobian> {
+                ::core::option::Option::None
+            }
+        }
+    };
     let trait_impls = match model.order {
         Order::First => quote! {
-            type SecondOrder = ::odyn::NotSecondOrder<Self>;
+            type SecondOrder = ::odyn::Unavailable<Self>;
             #[inline(always)]
             fn derivative(&self, t: f64, y: &#state, dydt: &mut #state) {
                 *dydt = self.#force_fn(t, #y);
@@ -202,6 +222,7 @@ pub(crate) fn model_impls(
                 #energy
             }
             #trait_impls
+            #jacobian
         }
         #second_order
         const _: () = { #(let _ = <#self_ty>::#originals;)* };
@@ -232,5 +253,136 @@ fn hidden_fn(model: &Model<'_>, name: &syn::Ident, f: &Function, with_time: bool
         #[inline(always)]
         #[allow(unused_variables, non_snake_case, clippy::too_many_arguments)]
         fn #name(#receiver, #time #(#params),*) -> #output #body
+    }
+}
+
+/// The `Jacobian` impl: the derivatives of the lowered force, emitted as straight-line code.
+pub(crate) fn jacobian(model: &Model<'_>, lowered: Lowered, force: &Function, imp: &ItemImpl) -> TokenStream {
+    let self_ty = &imp.self_ty;
+    let state = model.state_ident();
+    let n = proc_macro2::Literal::usize_unsuffixed(model.len());
+    let Lowered { mut graph, outputs, prologue } = lowered;
+    let mut differentiator = crate::derivative::Differentiator::default();
+    let mut entries = Vec::new();
+    for (row, &f) in outputs.iter().enumerate() {
+        for column in 0..model.len() {
+            let d = differentiator.derivative(&mut graph, f, column);
+            if !graph.is_zero(d) {
+                entries.push((row, column, d));
+            }
+        }
+    }
+    let components = component_tokens(model);
+    let operand = |id: ExprId, graph: &crate::ir::Graph| -> TokenStream {
+        match graph.node(id) {
+            Node::Const(bits) => float_literal(f64::from_bits(bits)),
+            Node::Var(k) => components[k].clone(),
+            Node::Opaque(i) => opaque_ident(i).into_token_stream(),
+            _ => node_ident(id).into_token_stream(),
+        }
+    };
+    let lets = graph.reachable(entries.iter().map(|e| e.2)).into_iter().filter_map(|id| {
+        let value = match graph.node(id) {
+            Node::Const(_) | Node::Var(_) | Node::Opaque(_) => return None,
+            Node::Add(a, b) => { let (a, b) = (operand(a, &graph), operand(b, &graph)); quote!(#a + #b) }
+            Node::Mul(a, b) => { let (a, b) = (operand(a, &graph), operand(b, &graph)); quote!(#a * #b) }
+            Node::Div(a, b) => { let (a, b) = (operand(a, &graph), operand(b, &graph)); quote!(#a / #b) }
+            Node::Neg(a) => { let a = operand(a, &graph); quote!(-#a) }
+            Node::Powi(a, k) => { let a = operand(a, &graph); quote!(#a.powi(#k)) }
+            Node::Powf(a, b) => { let (a, b) = (operand(a, &graph), operand(b, &graph)); quote!(#a.powf(#b)) }
+            Node::Call(f, a) => {
+                let a = operand(a, &graph);
+                let method = format_ident!("{}", f.method());
+                quote!(#a.#method())
+            }
+        };
+        let name = node_ident(id);
+        Some(quote!(let #name: f64 = #value;))
+    }).collect::<Vec<_>>();
+    let jac = format_ident!("__odyn_jac", span = Span::mixed_site());
+    let stores = entries.iter().map(|&(r, c, d)| {
+        let value = operand(d, &graph);
+        quote!(#jac[(#r, #c)] = #value;)
+    });
+    let nonzeros = entries.iter().map(|&(r, c, _)| quote!((#r, #c)));
+    let prologue = prologue.iter().map(|p| match p {
+        Prologue::Stmt(stmt) => stmt.to_token_stream(),
+        Prologue::Opaque(i, tokens) => {
+            let name = opaque_ident(*i);
+            quote!(let #name: f64 = #tokens;)
+        }
+    });
+    let receiver = &force.receiver;
+    let time = match &force.time {
+        Some(t) => quote!(#t),
+        None => quote!(_: f64),
+    };
+    let params = model.states.iter().map(|s| {
+        let local = state_local(s.ident);
+        let ty = s.shape.to_type();
+        quote!(#local: #ty)
+    });
+    let fields = model.states.iter().map(|f| f.ident);
+    let matrix = quote!(::odyn::__private::nalgebra::SMatrix<f64, #n, #n>);
+    let count = entries.len();
+    let doc = format!("The {count} structural non-zeros of ∂f/∂y, derived by `#[system]` from the model's code.");
+    quote! {
+        #[automatically_derived]
+        impl #self_ty {
+            #[doc(hidden)]
+            #[inline]
+            #[allow(unused_variables, unused_parens, non_snake_case, clippy::all)]
+            fn __odyn_jacobian(#receiver, #time, #(#params,)* #jac: &mut #matrix) {
+                #(#prologue)*
+                #(#lets)*
+                #(#stores)*
+            }
+        }
+        #[automatically_derived]
+        impl ::odyn::Jacobian for #self_ty {
+            type Matrix = #matrix;
+            #[doc = #doc]
+            const NONZEROS: &'static [(usize, usize)] = &[#(#nonzeros),*];
+            #[inline]
+            fn jacobian(&self, t: f64, y: &#state, jacobian: &mut #matrix) {
+                self.__odyn_jacobian(t, #(y.#fields,)* jacobian)
+            }
+        }
+    }
+}
+
+/// How each state component is read inside the generated Jacobian function.
+fn component_tokens(model: &Model<'_>) -> Vec<TokenStream> {
+    model
+        .states
+        .iter()
+        .flat_map(|f| {
+            let local = state_local(f.ident);
+            match f.shape {
+                Shape::Scalar => vec![quote!(#local)],
+                Shape::Array(n) | Shape::Vector(n) => (0..n).map(|i| quote!(#local[#i])).collect(),
+            }
+        })
+        .collect()
+}
+
+fn node_ident(id: ExprId) -> syn::Ident {
+    format_ident!("__odyn_e{}", id.index(), span = Span::mixed_site())
+}
+
+fn opaque_ident(index: usize) -> syn::Ident {
+    format_ident!("__odyn_p{}", index, span = Span::mixed_site())
+}
+
+fn float_literal(value: f64) -> TokenStream {
+    if value.is_finite() {
+        let literal = proc_macro2::Literal::f64_suffixed(value);
+        quote!((#literal))
+    } else if value.is_nan() {
+        quote!(f64::NAN)
+    } else if value > 0.0 {
+        quote!(f64::INFINITY)
+    } else {
+        quote!(f64::NEG_INFINITY)
     }
 }

@@ -7,10 +7,13 @@
 //! user sees all of them at once, each at its own token.
 
 mod args;
+mod derivative;
 mod errors;
 mod expand;
 mod functions;
 mod generate;
+mod lower;
+mod ir;
 mod model;
 
 use proc_macro::TokenStream;

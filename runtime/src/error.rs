@@ -48,6 +48,19 @@ pub enum Error {
         /// The divergence limit in force.
         limit: f64,
     },
+    /// Newton's method did not converge within an implicit step.
+    #[error(
+        "Newton's method did not converge at t = {t} after {iters} iterations (residual {residual:e}); \
+         reduce dt or raise `NewtonOptions::max_iters`"
+    )]
+    NewtonDidNotConverge {
+        /// Time at the end of the step being solved.
+        t: f64,
+        /// Iterations made.
+        iters: u32,
+        /// Max-norm of the residual y − y₀ − h·f(t, y) at the last iterate.
+        residual: f64,
+    },
     /// Reading or writing a file failed.
     #[error("cannot write `{}`: {source}", path.display())]
     Io {

@@ -9,6 +9,7 @@ pub mod clock;
 mod error;
 pub mod integrators;
 mod method;
+mod newton;
 mod model;
 pub mod output;
 #[cfg(feature = "plot")]
@@ -22,7 +23,8 @@ pub use clock::{FixedTimestep, Tick};
 pub use error::{Error, Result};
 pub use integrators::Integrator;
 pub use method::Method;
-pub use model::{Model, NotSecondOrder, SecondOrder, State};
+pub use newton::NewtonOptions;
+pub use model::{DenseMatrix, Jacobian, Model, SecondOrder, State, Unavailable};
 pub use nalgebra;
 pub use simulation::{Length, RunOptions, Simulation};
 pub use stepper::Stepper;

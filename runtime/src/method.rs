@@ -24,17 +24,21 @@ pub enum Method {
     Leapfrog,
     /// Classical fourth-order Runge–Kutta, order 4; slow secular energy drift (Kutta 1901).
     Rk4,
+    /// Implicit (backward) Euler with Newton's method, order 1; A-stable, loses energy
+    /// (Hairer & Wanner 1996, §IV.3). Needs the generated Jacobian.
+    ImplicitEuler,
 }
 
 impl Method {
     /// Every method, in the order of the comparison table.
-    pub const ALL: [Method; 6] = [
+    pub const ALL: [Method; 7] = [
         Method::ExplicitEuler,
         Method::SymplecticEuler,
         Method::PositionVerlet,
         Method::VelocityVerlet,
         Method::Leapfrog,
         Method::Rk4,
+        Method::ImplicitEuler,
     ];
 
     /// The snake-case name used in CSV files and on the command line (`symplectic_euler`).
@@ -46,6 +50,7 @@ impl Method {
             Method::VelocityVerlet => "velocity_verlet",
             Method::Leapfrog => "leapfrog",
             Method::Rk4 => "rk4",
+            Method::ImplicitEuler => "implicit_euler",
         }
     }
 
@@ -58,13 +63,14 @@ impl Method {
             Method::VelocityVerlet => "Velocity Verlet",
             Method::Leapfrog => "Leapfrog",
             Method::Rk4 => "RK4",
+            Method::ImplicitEuler => "Implicit Euler",
         }
     }
 
     /// Global order of accuracy: the error at a fixed time falls as dtᵖ.
     pub const fn order(self) -> u32 {
         match self {
-            Method::ExplicitEuler | Method::SymplecticEuler => 1,
+            Method::ExplicitEuler | Method::SymplecticEuler | Method::ImplicitEuler => 1,
             Method::PositionVerlet | Method::VelocityVerlet | Method::Leapfrog => 2,
             Method::Rk4 => 4,
         }
@@ -79,6 +85,11 @@ impl Method {
                 | Method::VelocityVerlet
                 | Method::Leapfrog
         )
+    }
+
+    /// Whether the method needs the model's Jacobian.
+    pub const fn needs_jacobian(self) -> bool {
+        matches!(self, Method::ImplicitEuler)
     }
 
     /// Whether the method needs forces that do not read velocities.

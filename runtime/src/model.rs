@@ -22,13 +22,17 @@ pub trait State: Clone + PartialEq + Debug {
 
 /// A system of ordinary differential equations, y′ = f(t, y), with optional energy.
 ///
-/// Implemented by `#[system]`; the runtime never asks a user to write it by hand.
+/// Implemented by `#[system]`; the runtime never asks a user to write it by hand. What a model
+/// can do beyond f(t, y) shows as two capabilities, each an associated type that is `Self` when
+/// the model has it and [`Unavailable`] when it does not: [`SecondOrder`] (a position/velocity
+/// split, needed by the symplectic methods) and [`Jacobian`] (∂f/∂y, needed by implicit Euler).
 pub trait Model {
     /// The typed state (`<Model>State`).
     type State: State;
-    /// This model as a [`SecondOrder`] one: `Self` when it has a position/velocity split,
-    /// [`NotSecondOrder`] otherwise.
+    /// This model as a [`SecondOrder`] one.
     type SecondOrder: SecondOrder<State = Self::State>;
+    /// This model as one with a [`Jacobian`].
+    type Jacobian: Jacobian<State = Self::State>;
     /// The model's type name, for errors.
     const NAME: &'static str;
     /// The method named by `#[system(integrator = ...)]`, else [`Method::Rk4`].
@@ -47,6 +51,9 @@ pub trait Model {
 
     /// The model as a [`SecondOrder`] one, if it is.
     fn as_second_order(&self) -> Option<&Self::SecondOrder>;
+
+    /// The model as one with a [`Jacobian`], if it has one.
+    fn as_jacobian(&self) -> Option<&Self::Jacobian>;
 
     /// Starts configuring a run from the model's own state, method and dt.
     fn simulate(&self) -> Simulation<'_, Self>
@@ -67,17 +74,94 @@ pub trait SecondOrder: Model {
     fn acceleration(&self, t: f64, state: &Self::State, accel: &mut Self::State);
 }
 
-/// The [`Model::SecondOrder`] of a first-order model: a type with no values, so a second-order
-/// method can be named for such a model but never run on it.
+/// A model whose Jacobian ∂f/∂y the macro derived exactly from the body of its force function.
+pub trait Jacobian: Model {
+    /// The dense Jacobian's type, `SMatrix<f64, N, N>` for a state of N components.
+    type Matrix: DenseMatrix;
+    /// The structural non-zeros (row, column), known at compile time; every other entry of the
+    /// Jacobian is zero at every state.
+    const NONZEROS: &'static [(usize, usize)];
+
+    /// Writes ∂f/∂y at (t, y) into `jacobian`. Only the [`Jacobian::NONZEROS`] are written: pass
+    /// a matrix whose other entries are zero (as [`DenseMatrix::zeros`] makes it).
+    fn jacobian(&self, t: f64, y: &Self::State, jacobian: &mut Self::Matrix);
+}
+
+/// The dense square matrices implicit methods solve with: fixed-size `nalgebra` matrices, whose
+/// LU lives on the stack.
+pub trait DenseMatrix: Clone + Debug {
+    /// The all-zero matrix.
+    fn zeros() -> Self;
+    /// Entry (row, column).
+    fn entry(&self, row: usize, column: usize) -> f64;
+    /// Number of rows (= columns).
+    fn dim(&self) -> usize;
+    /// Sets `self` to I − h·`jacobian`.
+    fn set_identity_minus(&mut self, h: f64, jacobian: &Self);
+    /// Solves `self`·x = b in place by LU with partial pivoting; false when `self` is singular.
+    fn solve_in_place(&self, b: &mut [f64]) -> bool;
+}
+
+/// `DenseMatrix` for `SMatrix<f64, N, N>`: nalgebra's fixed-size LU needs each size spelled out.
+macro_rules! dense_matrix {
+    ($($n:literal)*) => {$(
+        impl DenseMatrix for nalgebra::SMatrix<f64, $n, $n> {
+            fn zeros() -> Self {
+                nalgebra::SMatrix::zeros()
+            }
+            fn entry(&self, row: usize, column: usize) -> f64 {
+                self[(row, column)]
+            }
+            fn dim(&self) -> usize {
+                $n
+            }
+            #[inline]
+            fn set_identity_minus(&mut self, h: f64, jacobian: &Self) {
+                *self = nalgebra::SMatrix::identity() - jacobian * h;
+            }
+            #[inline]
+            fn solve_in_place(&self, b: &mut [f64]) -> bool {
+                let mut rhs = nalgebra::SVector::<f64, $n>::from_column_slice(b);
+                let solved = self.lu().solve_mut(&mut rhs);
+                b.copy_from_slice(rhs.as_slice());
+                solved
+            }
+        }
+    )*};
+}
+
+// Up to 32 state components: beyond that a stack LU stops paying off (a faer-backed dense
+// matrix is the planned next step).
+dense_matrix!(1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23 24 25 26 27 28 29 30 31 32);
+
+impl DenseMatrix for nalgebra::SMatrix<f64, 0, 0> {
+    fn zeros() -> Self {
+        nalgebra::SMatrix::zeros()
+    }
+    fn entry(&self, _: usize, _: usize) -> f64 {
+        0.0
+    }
+    fn dim(&self) -> usize {
+        0
+    }
+    fn set_identity_minus(&mut self, _: f64, _: &Self) {}
+    fn solve_in_place(&self, _: &mut [f64]) -> bool {
+        true
+    }
+}
+
+/// The capability type of a model that lacks it (see [`Model`]): it has no values, so a method
+/// that needs the capability can be named for such a model but never run on it.
 #[derive(Debug)]
-pub enum NotSecondOrder<M> {
+pub enum Unavailable<M> {
     #[doc(hidden)]
     Never(Infallible, PhantomData<M>),
 }
 
-impl<M: Model> Model for NotSecondOrder<M> {
+impl<M: Model> Model for Unavailable<M> {
     type State = M::State;
     type SecondOrder = Self;
+    type Jacobian = Self;
     const NAME: &'static str = M::NAME;
     const DEFAULT_METHOD: Method = M::DEFAULT_METHOD;
     const DEFAULT_DT: Option<f64> = M::DEFAULT_DT;
@@ -94,19 +178,30 @@ impl<M: Model> Model for NotSecondOrder<M> {
     fn as_second_order(&self) -> Option<&Self> {
         self.never()
     }
+    fn as_jacobian(&self) -> Option<&Self> {
+        self.never()
+    }
 }
 
-impl<M: Model> SecondOrder for NotSecondOrder<M> {
+impl<M: Model> SecondOrder for Unavailable<M> {
     const READS_VELOCITY: bool = false;
     fn acceleration(&self, _: f64, _: &Self::State, _: &mut Self::State) {
         self.never()
     }
 }
 
-impl<M> NotSecondOrder<M> {
+impl<M: Model> Jacobian for Unavailable<M> {
+    type Matrix = nalgebra::SMatrix<f64, 0, 0>;
+    const NONZEROS: &'static [(usize, usize)] = &[];
+    fn jacobian(&self, _: f64, _: &Self::State, _: &mut Self::Matrix) {
+        self.never()
+    }
+}
+
+impl<M> Unavailable<M> {
     fn never(&self) -> ! {
         match *self {
-            NotSecondOrder::Never(never, _) => match never {},
+            Unavailable::Never(never, _) => match never {},
         }
     }
 }

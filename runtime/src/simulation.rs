@@ -1,10 +1,11 @@
 //! [`Simulation`]: configure a run, pick the integrator at run time, record a [`Trajectory`].
 
 use crate::integrators::{
-    ExplicitEuler, Integrator, Leapfrog, PositionVerlet, Rk4, SymplecticEuler, VelocityVerlet,
+    ExplicitEuler, ImplicitEuler, Integrator, Leapfrog, PositionVerlet, Rk4, SymplecticEuler,
+    VelocityVerlet,
 };
 use crate::stepper::{DEFAULT_DIVERGENCE_LIMIT, check_dt};
-use crate::{Error, Method, Model, Result, Sample, SecondOrder, Stepper, Trajectory};
+use crate::{Error, Method, Model, NewtonOptions, Result, Sample, SecondOrder, Stepper, Trajectory};
 
 /// How long a run lasts.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -31,6 +32,8 @@ pub struct RunOptions {
     pub record_every: u64,
     /// |component| beyond which the run counts as diverged (default 1e100).
     pub divergence_limit: f64,
+    /// Newton's method in implicit steps (see [`NewtonOptions`] for the defaults).
+    pub newton: NewtonOptions,
 }
 
 impl Default for RunOptions {
@@ -42,6 +45,7 @@ impl Default for RunOptions {
             t0: 0.0,
             record_every: 1,
             divergence_limit: DEFAULT_DIVERGENCE_LIMIT,
+            newton: NewtonOptions::default(),
         }
     }
 }
@@ -118,6 +122,12 @@ impl<'m, M: Model> Simulation<'m, M> {
         self
     }
 
+    /// Uses `newton` for the nonlinear solves of implicit methods.
+    pub fn newton(mut self, newton: NewtonOptions) -> Self {
+        self.options.newton = newton;
+        self
+    }
+
     /// Runs and returns the trajectory.
     ///
     /// Errors: [`Error::InvalidInput`] for bad options or a non-finite initial state,
@@ -137,6 +147,14 @@ impl<'m, M: Model> Simulation<'m, M> {
     pub fn run_partial(&self) -> Result<(Trajectory<M::State>, Option<Error>)> {
         let plan = self.plan()?;
         let method = self.options.method;
+        if method.needs_jacobian() {
+            let Some(jacobian) = self.model.as_jacobian() else {
+                return Err(self.unsupported(
+                    "it has no Jacobian (its `#[system]` says `jacobian = false`)",
+                ));
+            };
+            return plan.drive::<_, ImplicitEuler<_>>(jacobian);
+        }
         if !method.needs_second_order() {
             return match method {
                 Method::ExplicitEuler => plan.drive::<M, ExplicitEuler<_>>(self.model),
@@ -206,6 +224,7 @@ impl<'m, M: Model> Simulation<'m, M> {
             t0: o.t0,
             record_every: o.record_every,
             divergence_limit: o.divergence_limit,
+            newton: o.newton,
         })
     }
 }
@@ -241,6 +260,7 @@ struct Plan<S> {
     t0: f64,
     record_every: u64,
     divergence_limit: f64,
+    newton: NewtonOptions,
 }
 
 impl<S: crate::State> Plan<S> {
@@ -249,7 +269,8 @@ impl<S: crate::State> Plan<S> {
         N: Model<State = S>,
         I: Integrator<N>,
     {
-        let mut stepper = Stepper::<N, I>::new(model, self.initial, self.t0, self.dt)?
+        let mut stepper =
+            Stepper::<N, I>::with_newton(model, self.initial, self.t0, self.dt, &self.newton)?
             .with_divergence_limit(self.divergence_limit);
         let capacity = (self.steps / self.record_every + 2).min(1 << 20) as usize;
         let mut samples = Vec::with_capacity(capacity);
@@ -278,12 +299,14 @@ impl<S: crate::State> Plan<S> {
             }
         }
         let good_steps = stepper.steps() - u64::from(failure.is_some());
+        let evaluations = stepper.evaluations();
         let trajectory = Trajectory {
             model: N::NAME,
             method: I::METHOD,
             dt: self.dt,
             steps: good_steps,
-            evaluations: stepper.evaluations(),
+            evaluations: evaluations.force,
+            jacobian_evaluations: evaluations.jacobian,
             samples,
         };
         Ok((trajectory, failure))

@@ -1,6 +1,7 @@
 //! [`Stepper`]: a model, an integrator and a state, advanced one checked step at a time.
 
-use crate::{Error, Integrator, Model, Result, State};
+use crate::integrators::Evaluations;
+use crate::{Error, Integrator, Model, NewtonOptions, Result, State};
 
 /// The default bound on |state component| beyond which a run counts as diverged.
 pub(crate) const DEFAULT_DIVERGENCE_LIMIT: f64 = 1e100;
@@ -27,6 +28,17 @@ impl<'m, M: Model, I: Integrator<M>> Stepper<'m, M, I> {
     /// Errors with [`Error::InvalidInput`] when dt is not finite and positive, t0 is not finite,
     /// or the state has a non-finite component.
     pub fn new(model: &'m M, state: M::State, t0: f64, dt: f64) -> Result<Self> {
+        Self::with_newton(model, state, t0, dt, &NewtonOptions::default())
+    }
+
+    /// [`Stepper::new`] with the Newton options of implicit methods.
+    pub fn with_newton(
+        model: &'m M,
+        state: M::State,
+        t0: f64,
+        dt: f64,
+        newton: &NewtonOptions,
+    ) -> Result<Self> {
         check_dt(dt)?;
         if !t0.is_finite() {
             return Err(Error::invalid(
@@ -40,7 +52,7 @@ impl<'m, M: Model, I: Integrator<M>> Stepper<'m, M, I> {
                 format!("must be finite, got {value}"),
             ));
         }
-        let integrator = I::start(model, t0, dt, &state);
+        let integrator = I::start(model, t0, dt, &state, newton);
         Ok(Stepper {
             model,
             integrator,
@@ -62,13 +74,14 @@ impl<'m, M: Model, I: Integrator<M>> Stepper<'m, M, I> {
     /// Takes one step.
     ///
     /// Errors with [`Error::Diverged`] when a component of the new state is non-finite or beyond
-    /// the divergence limit; the state is then the rejected one, and stepping further is
-    /// pointless.
+    /// the divergence limit, and with [`Error::NewtonDidNotConverge`] when an implicit step
+    /// fails; the state is then the rejected one, and stepping further is pointless.
     #[inline]
     pub fn step(&mut self) -> Result<()> {
         let t = self.t();
-        self.integrator.step(self.model, t, &mut self.state);
+        let stepped = self.integrator.step(self.model, t, &mut self.state);
         self.steps += 1;
+        stepped?;
         match first_outside(&self.state, self.divergence_limit) {
             None => Ok(()),
             Some((index, value)) => Err(Error::Diverged {
@@ -102,9 +115,9 @@ impl<'m, M: Model, I: Integrator<M>> Stepper<'m, M, I> {
         self.steps
     }
 
-    /// Force (derivative or acceleration) evaluations made so far.
-    pub fn evaluations(&self) -> u64 {
-        I::STARTUP_EVALUATIONS + self.steps * I::EVALUATIONS_PER_STEP
+    /// Force and Jacobian evaluations made so far.
+    pub fn evaluations(&self) -> Evaluations {
+        self.integrator.evaluations(self.steps)
     }
 
     /// The model being stepped.

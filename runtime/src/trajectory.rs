@@ -30,6 +30,8 @@ pub struct Trajectory<S> {
     pub steps: u64,
     /// Force (derivative or acceleration) evaluations made.
     pub evaluations: u64,
+    /// Jacobian evaluations made (implicit methods only).
+    pub jacobian_evaluations: u64,
     /// Recorded samples, in step order; never empty (step 0 is always recorded).
     pub samples: Vec<Sample<S>>,
 }

@@ -1,7 +1,7 @@
 //! Explicit (forward) Euler.
 
 use super::{Integrator, axpy};
-use crate::{Method, Model, State};
+use crate::{Method, NewtonOptions, Result, Model, State};
 
 /// Explicit (forward) Euler: yₙ₊₁ = yₙ + h·f(tₙ, yₙ).
 ///
@@ -27,7 +27,7 @@ impl<M: Model> Integrator<M> for ExplicitEuler<M::State> {
     const STARTUP_EVALUATIONS: u64 = 0;
     const EVALUATIONS_PER_STEP: u64 = 1;
 
-    fn start(_: &M, _: f64, dt: f64, state: &M::State) -> Self {
+    fn start(_: &M, _: f64, dt: f64, state: &M::State, _: &NewtonOptions) -> Self {
         ExplicitEuler {
             dt,
             dydt: state.clone(),
@@ -35,8 +35,9 @@ impl<M: Model> Integrator<M> for ExplicitEuler<M::State> {
     }
 
     #[inline]
-    fn step(&mut self, model: &M, t: f64, y: &mut M::State) {
+    fn step(&mut self, model: &M, t: f64, y: &mut M::State) -> Result<()> {
         model.derivative(t, y, &mut self.dydt);
         axpy(y.as_mut_slice(), self.dt, self.dydt.as_slice());
+        Ok(())
     }
 }

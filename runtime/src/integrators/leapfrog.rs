@@ -2,7 +2,7 @@
 
 use super::{Integrator, axpy};
 use crate::model::{split, split_mut};
-use crate::{Method, SecondOrder, State};
+use crate::{Method, NewtonOptions, Result, SecondOrder, State};
 
 /// Leapfrog, kick-drift-kick: vₙ₊½ = vₙ + ½h·aₙ, xₙ₊₁ = xₙ + h·vₙ₊½, vₙ₊₁ = vₙ₊½ + ½h·aₙ₊₁.
 ///
@@ -33,7 +33,7 @@ impl<M: SecondOrder> Integrator<M> for Leapfrog<M::State> {
     const STARTUP_EVALUATIONS: u64 = 1;
     const EVALUATIONS_PER_STEP: u64 = 1;
 
-    fn start(model: &M, t0: f64, dt: f64, state: &M::State) -> Self {
+    fn start(model: &M, t0: f64, dt: f64, state: &M::State, _: &NewtonOptions) -> Self {
         let mut accel = state.clone();
         model.acceleration(t0, state, &mut accel);
         Leapfrog {
@@ -45,7 +45,7 @@ impl<M: SecondOrder> Integrator<M> for Leapfrog<M::State> {
     }
 
     #[inline]
-    fn step(&mut self, model: &M, t: f64, state: &mut M::State) {
+    fn step(&mut self, model: &M, t: f64, state: &mut M::State) -> Result<()> {
         let half = 0.5 * self.dt;
         let (_, a) = split(self.accel.as_slice());
         {
@@ -65,5 +65,6 @@ impl<M: SecondOrder> Integrator<M> for Leapfrog<M::State> {
         let (_, v) = split_mut(state.as_mut_slice());
         axpy(v, half, a_next); // kick
         std::mem::swap(&mut self.accel, &mut self.next);
+        Ok(())
     }
 }

@@ -2,7 +2,7 @@
 
 use super::Integrator;
 use crate::model::{split, split_mut};
-use crate::{Method, SecondOrder, State};
+use crate::{Method, NewtonOptions, Result, SecondOrder, State};
 
 /// Position (Störmer) Verlet: xₙ₊₁ = 2xₙ − xₙ₋₁ + h²·a(xₙ).
 ///
@@ -38,7 +38,7 @@ impl<M: SecondOrder> Integrator<M> for PositionVerlet<M::State> {
     const STARTUP_EVALUATIONS: u64 = 1;
     const EVALUATIONS_PER_STEP: u64 = 1;
 
-    fn start(model: &M, t0: f64, dt: f64, state: &M::State) -> Self {
+    fn start(model: &M, t0: f64, dt: f64, state: &M::State, _: &NewtonOptions) -> Self {
         let mut accel = state.clone();
         model.acceleration(t0, state, &mut accel);
         PositionVerlet {
@@ -51,7 +51,7 @@ impl<M: SecondOrder> Integrator<M> for PositionVerlet<M::State> {
     }
 
     #[inline]
-    fn step(&mut self, model: &M, t: f64, state: &mut M::State) {
+    fn step(&mut self, model: &M, t: f64, state: &mut M::State) -> Result<()> {
         let h = self.dt;
         self.current.clone_from(state);
         {
@@ -77,5 +77,6 @@ impl<M: SecondOrder> Integrator<M> for PositionVerlet<M::State> {
         }
         std::mem::swap(&mut self.previous, &mut self.current);
         self.started = true;
+        Ok(())
     }
 }

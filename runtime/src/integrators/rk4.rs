@@ -1,7 +1,7 @@
 //! The classical fourth-order Runge–Kutta method.
 
 use super::{Integrator, set_axpy};
-use crate::{Method, Model, State};
+use crate::{Method, NewtonOptions, Result, Model, State};
 
 /// Classical Runge–Kutta: k₁ = f(tₙ, yₙ), k₂ = f(tₙ + h/2, yₙ + h/2·k₁),
 /// k₃ = f(tₙ + h/2, yₙ + h/2·k₂), k₄ = f(tₙ + h, yₙ + h·k₃),
@@ -26,7 +26,7 @@ impl<M: Model> Integrator<M> for Rk4<M::State> {
     const STARTUP_EVALUATIONS: u64 = 0;
     const EVALUATIONS_PER_STEP: u64 = 4;
 
-    fn start(_: &M, _: f64, dt: f64, state: &M::State) -> Self {
+    fn start(_: &M, _: f64, dt: f64, state: &M::State, _: &NewtonOptions) -> Self {
         Rk4 {
             dt,
             k: std::array::from_fn(|_| state.clone()),
@@ -35,7 +35,7 @@ impl<M: Model> Integrator<M> for Rk4<M::State> {
     }
 
     #[inline]
-    fn step(&mut self, model: &M, t: f64, y: &mut M::State) {
+    fn step(&mut self, model: &M, t: f64, y: &mut M::State) -> Result<()> {
         let h = self.dt;
         let [k1, k2, k3, k4] = &mut self.k;
         let probe = &mut self.probe;
@@ -56,5 +56,6 @@ impl<M: Model> Integrator<M> for Rk4<M::State> {
         for (yi, (((a, b), c), d)) in y.as_mut_slice().iter_mut().zip(ks) {
             *yi += sixth * (a + 2.0 * b + 2.0 * c + d);
         }
+        Ok(())
     }
 }

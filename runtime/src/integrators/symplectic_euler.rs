@@ -2,7 +2,7 @@
 
 use super::{Integrator, axpy};
 use crate::model::{split, split_mut};
-use crate::{Method, SecondOrder, State};
+use crate::{Method, NewtonOptions, Result, SecondOrder, State};
 
 /// Symplectic (semi-implicit) Euler, velocity first:
 /// vₙ₊₁ = vₙ + h·a(tₙ, xₙ, vₙ), xₙ₊₁ = xₙ + h·vₙ₊₁.
@@ -27,7 +27,7 @@ impl<M: SecondOrder> Integrator<M> for SymplecticEuler<M::State> {
     const STARTUP_EVALUATIONS: u64 = 0;
     const EVALUATIONS_PER_STEP: u64 = 1;
 
-    fn start(_: &M, _: f64, dt: f64, state: &M::State) -> Self {
+    fn start(_: &M, _: f64, dt: f64, state: &M::State, _: &NewtonOptions) -> Self {
         SymplecticEuler {
             dt,
             accel: state.clone(),
@@ -35,11 +35,12 @@ impl<M: SecondOrder> Integrator<M> for SymplecticEuler<M::State> {
     }
 
     #[inline]
-    fn step(&mut self, model: &M, t: f64, state: &mut M::State) {
+    fn step(&mut self, model: &M, t: f64, state: &mut M::State) -> Result<()> {
         model.acceleration(t, state, &mut self.accel);
         let (_, a) = split(self.accel.as_slice());
         let (x, v) = split_mut(state.as_mut_slice());
         axpy(v, self.dt, a);
         axpy(x, self.dt, v);
+        Ok(())
     }
 }

@@ -2,7 +2,7 @@
 
 use super::{Integrator, axpy};
 use crate::model::{split, split_mut};
-use crate::{Method, SecondOrder, State};
+use crate::{Method, NewtonOptions, Result, SecondOrder, State};
 
 /// Velocity Verlet: xₙ₊₁ = xₙ + h·vₙ + ½h²·aₙ, vₙ₊₁ = vₙ + ½h·(aₙ + aₙ₊₁).
 ///
@@ -34,7 +34,7 @@ impl<M: SecondOrder> Integrator<M> for VelocityVerlet<M::State> {
     const STARTUP_EVALUATIONS: u64 = 1;
     const EVALUATIONS_PER_STEP: u64 = 1;
 
-    fn start(model: &M, t0: f64, dt: f64, state: &M::State) -> Self {
+    fn start(model: &M, t0: f64, dt: f64, state: &M::State, _: &NewtonOptions) -> Self {
         let mut accel = state.clone();
         model.acceleration(t0, state, &mut accel);
         VelocityVerlet {
@@ -46,7 +46,7 @@ impl<M: SecondOrder> Integrator<M> for VelocityVerlet<M::State> {
     }
 
     #[inline]
-    fn step(&mut self, model: &M, t: f64, state: &mut M::State) {
+    fn step(&mut self, model: &M, t: f64, state: &mut M::State) -> Result<()> {
         let h = self.dt;
         let (_, a) = split(self.accel.as_slice());
         {
@@ -67,5 +67,6 @@ impl<M: SecondOrder> Integrator<M> for VelocityVerlet<M::State> {
             *vi += 0.5 * h * (ai + bi);
         }
         std::mem::swap(&mut self.accel, &mut self.next);
+        Ok(())
     }
 }

@@ -1,0 +1,250 @@
+//! Stage 4a: the expression graph the force function is lowered to and differentiated in.
+//!
+//! A flat arena: an [`ExprId`] indexes a [`Node`] whose children were created before it, so the
+//! arena order is a valid evaluation order. Nodes are hash-consed — building the same node twice
+//! returns the same id — so common subexpressions are shared for free, and the smart
+//! constructors fold constants and the identities 0 + x, 1·x, 0·x, −(−x), x¹, x⁰. This stage is
+//! pure: no syn, no quote.
+
+use std::collections::HashMap;
+
+/// An index into a [`Graph`].
+#[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Debug)]
+pub(crate) struct ExprId(u32);
+
+impl ExprId {
+    pub(crate) fn index(self) -> usize {
+        self.0 as usize
+    }
+}
+
+/// A one-argument function.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+pub(crate) enum Func {
+    Sqrt,
+    Exp,
+    Ln,
+    Sin,
+    Cos,
+    Tan,
+    Tanh,
+    Abs,
+    Signum,
+}
+
+impl Func {
+    /// The `f64` method that evaluates it.
+    pub(crate) fn method(self) -> &'static str {
+        match self {
+            Func::Sqrt => "sqrt",
+            Func::Exp => "exp",
+            Func::Ln => "ln",
+            Func::Sin => "sin",
+            Func::Cos => "cos",
+            Func::Tan => "tan",
+            Func::Tanh => "tanh",
+            Func::Abs => "abs",
+            Func::Signum => "signum",
+        }
+    }
+
+    fn eval(self, x: f64) -> f64 {
+        match self {
+            Func::Sqrt => x.sqrt(),
+            Func::Exp => x.exp(),
+            Func::Ln => x.ln(),
+            Func::Sin => x.sin(),
+            Func::Cos => x.cos(),
+            Func::Tan => x.tan(),
+            Func::Tanh => x.tanh(),
+            Func::Abs => x.abs(),
+            Func::Signum => x.signum(),
+        }
+    }
+}
+
+/// One node of the graph.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+pub(crate) enum Node {
+    /// A constant, by its bits (so it can be hashed); −0 is stored as +0.
+    Const(u64),
+    /// State component `k`: what the Jacobian differentiates with respect to.
+    Var(usize),
+    /// A state-independent value computed by user code (a parameter, the time, a call), by index.
+    Opaque(usize),
+    Add(ExprId, ExprId),
+    Mul(ExprId, ExprId),
+    Div(ExprId, ExprId),
+    Neg(ExprId),
+    Powi(ExprId, i32),
+    /// xʸ with a state-independent y.
+    Powf(ExprId, ExprId),
+    Call(Func, ExprId),
+}
+
+/// The arena.
+#[derive(Default, Debug)]
+pub(crate) struct Graph {
+    nodes: Vec<Node>,
+    index: HashMap<Node, ExprId>,
+}
+
+impl Graph {
+    pub(crate) fn node(&self, id: ExprId) -> Node {
+        self.nodes[id.index()]
+    }
+
+    #[cfg(test)]
+    pub(crate) fn len(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// The value of a constant node.
+    pub(crate) fn constant(&self, id: ExprId) -> Option<f64> {
+        match self.node(id) {
+            Node::Const(bits) => Some(f64::from_bits(bits)),
+            _ => None,
+        }
+    }
+
+    pub(crate) fn is_zero(&self, id: ExprId) -> bool {
+        self.constant(id) == Some(0.0)
+    }
+
+    fn intern(&mut self, node: Node) -> ExprId {
+        if let Some(&id) = self.index.get(&node) {
+            return id;
+        }
+        let id = ExprId(u32::try_from(self.nodes.len()).expect("fewer than 2³² nodes"));
+        self.nodes.push(node);
+        self.index.insert(node, id);
+        id
+    }
+
+    pub(crate) fn num(&mut self, value: f64) -> ExprId {
+        let value = if value == 0.0 { 0.0 } else { value };
+        self.intern(Node::Const(value.to_bits()))
+    }
+
+    pub(crate) fn var(&mut self, component: usize) -> ExprId {
+        self.intern(Node::Var(component))
+    }
+
+    pub(crate) fn opaque(&mut self, index: usize) -> ExprId {
+        self.intern(Node::Opaque(index))
+    }
+
+    pub(crate) fn add(&mut self, a: ExprId, b: ExprId) -> ExprId {
+        match (self.constant(a), self.constant(b)) {
+            (Some(x), Some(y)) => self.num(x + y),
+            (Some(x), _) if x == 0.0 => b,
+            (_, Some(y)) if y == 0.0 => a,
+            _ => {
+                // x + (−y) stays as written; order the operands so a + b and b + a share a node.
+                let (a, b) = if a <= b { (a, b) } else { (b, a) };
+                self.intern(Node::Add(a, b))
+            }
+        }
+    }
+
+    pub(crate) fn sub(&mut self, a: ExprId, b: ExprId) -> ExprId {
+        let minus_b = self.neg(b);
+        self.add(a, minus_b)
+    }
+
+    pub(crate) fn mul(&mut self, a: ExprId, b: ExprId) -> ExprId {
+        match (self.constant(a), self.constant(b)) {
+            (Some(x), Some(y)) => self.num(x * y),
+            (Some(x), _) | (_, Some(x)) if x == 0.0 => self.num(0.0),
+            (Some(x), _) if x == 1.0 => b,
+            (_, Some(y)) if y == 1.0 => a,
+            (Some(x), _) if x == -1.0 => self.neg(b),
+            (_, Some(y)) if y == -1.0 => self.neg(a),
+            _ => {
+                let (a, b) = if a <= b { (a, b) } else { (b, a) };
+                self.intern(Node::Mul(a, b))
+            }
+        }
+    }
+
+    pub(crate) fn div(&mut self, a: ExprId, b: ExprId) -> ExprId {
+        match (self.constant(a), self.constant(b)) {
+            (Some(x), Some(y)) => self.num(x / y),
+            (Some(x), _) if x == 0.0 => self.num(0.0),
+            (_, Some(y)) if y == 1.0 => a,
+            (_, Some(y)) if y == -1.0 => self.neg(a),
+            _ => self.intern(Node::Div(a, b)),
+        }
+    }
+
+    pub(crate) fn neg(&mut self, a: ExprId) -> ExprId {
+        match self.node(a) {
+            Node::Const(bits) => self.num(-f64::from_bits(bits)),
+            Node::Neg(inner) => inner,
+            _ => self.intern(Node::Neg(a)),
+        }
+    }
+
+    pub(crate) fn powi(&mut self, a: ExprId, n: i32) -> ExprId {
+        match (n, self.constant(a)) {
+            (0, _) => self.num(1.0),
+            (1, _) => a,
+            (_, Some(x)) => self.num(x.powi(n)),
+            _ => self.intern(Node::Powi(a, n)),
+        }
+    }
+
+    pub(crate) fn powf(&mut self, a: ExprId, b: ExprId) -> ExprId {
+        match (self.constant(a), self.constant(b)) {
+            (Some(x), Some(y)) => self.num(x.powf(y)),
+            (_, Some(y)) if y == 1.0 => a,
+            (_, Some(y)) if y == 0.0 => self.num(1.0),
+            (_, Some(y)) if y.fract() == 0.0 && y.abs() <= 64.0 => self.powi(a, y as i32),
+            _ => self.intern(Node::Powf(a, b)),
+        }
+    }
+
+    pub(crate) fn call(&mut self, f: Func, a: ExprId) -> ExprId {
+        match self.constant(a) {
+            Some(x) => self.num(f.eval(x)),
+            None => self.intern(Node::Call(f, a)),
+        }
+    }
+
+    /// The ids reachable from `roots`, in arena (evaluation) order.
+    pub(crate) fn reachable(&self, roots: impl IntoIterator<Item = ExprId>) -> Vec<ExprId> {
+        let mut seen = vec![false; self.nodes.len()];
+        let mut stack: Vec<ExprId> = roots.into_iter().collect();
+        while let Some(id) = stack.pop() {
+            if std::mem::replace(&mut seen[id.index()], true) {
+                continue;
+            }
+            match self.node(id) {
+                Node::Const(_) | Node::Var(_) | Node::Opaque(_) => {}
+                Node::Neg(a) | Node::Powi(a, _) | Node::Call(_, a) => stack.push(a),
+                Node::Add(a, b) | Node::Mul(a, b) | Node::Div(a, b) | Node::Powf(a, b) => {
+                    stack.extend([a, b]);
+                }
+            }
+        }
+        (0..self.nodes.len()).filter(|&i| seen[i]).map(|i| ExprId(i as u32)).collect()
+    }
+
+    /// Evaluates `id` with state `vars` and opaque values `opaques` (for tests).
+    #[cfg(test)]
+    pub(crate) fn eval(&self, id: ExprId, vars: &[f64], opaques: &[f64]) -> f64 {
+        let e = |id| self.eval(id, vars, opaques);
+        match self.node(id) {
+            Node::Const(bits) => f64::from_bits(bits),
+            Node::Var(k) => vars[k],
+            Node::Opaque(i) => opaques[i],
+            Node::Add(a, b) => e(a) + e(b),
+            Node::Mul(a, b) => e(a) * e(b),
+            Node::Div(a, b) => e(a) / e(b),
+            Node::Neg(a) => -e(a),
+            Node::Powi(a, n) => e(a).powi(n),
+            Node::Powf(a, b) => e(a).powf(e(b)),
+            Node::Call(f, a) => f.eval(e(a)),
+        }
+    }
+}
