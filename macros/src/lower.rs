@@ -246,6 +246,8 @@ impl Lowering<'_> {
             },
             Expr::Paren(p) => self.expr(&p.expr),
             Expr::Group(g) => self.expr(&g.expr),
+            // nalgebra takes vector arguments by reference (`a.dot(&b)`): same value.
+            Expr::Reference(r) if r.mutability.is_none() => self.expr(&r.expr),
             Expr::Path(p) => {
                 let name = path_name(e).ok_or_else(|| self.error(p, "a path"))?;
                 if let Some(binding) = self.lookup(&name) {

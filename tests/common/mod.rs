@@ -137,3 +137,86 @@ impl Pair {
         )
     }
 }
+
+/// Simple pendulum θ̈ = −(g/L)·sin θ.
+#[system(integrator = VelocityVerlet, dt = 0.01)]
+pub struct Pendulum {
+    #[position]
+    pub theta: f64,
+    #[velocity]
+    pub omega: f64,
+    pub g: f64,
+    pub length: f64,
+}
+
+#[system]
+impl Pendulum {
+    fn acceleration(&self) -> f64 {
+        -self.g / self.length * self.theta.sin()
+    }
+
+    fn energy(&self) -> f64 {
+        0.5 * self.length * self.length * self.omega * self.omega
+            + self.g * self.length * (1.0 - self.theta.cos())
+    }
+}
+
+/// Van der Pol, y1′ = y2, y2′ = μ(1 − y1²)y2 − y1 (stiff for large μ).
+#[system(integrator = ImplicitEuler)]
+pub struct VanDerPol {
+    #[state]
+    pub y1: f64,
+    #[state]
+    pub y2: f64,
+    pub mu: f64,
+}
+
+#[system]
+impl VanDerPol {
+    fn derivative(&self) -> VanDerPolState {
+        VanDerPolState { y1: self.y2, y2: self.mu * (1.0 - self.y1.powi(2)) * self.y2 - self.y1 }
+    }
+}
+
+/// Robertson's chemical kinetics (Robertson 1966), the classic stiff test problem.
+#[system(integrator = ImplicitEuler)]
+pub struct Robertson {
+    #[state]
+    pub a: f64,
+    #[state]
+    pub b: f64,
+    #[state]
+    pub c: f64,
+}
+
+#[system]
+impl Robertson {
+    fn derivative(&self) -> RobertsonState {
+        let slow = 0.04 * self.a;
+        let exchange = 1e4 * self.b * self.c;
+        let fast = 3e7 * self.b * self.b;
+        RobertsonState { a: -slow + exchange, b: slow - exchange - fast, c: fast }
+    }
+}
+
+/// A charged particle in 3-D: Kepler attraction plus a magnetic (Lorentz) force q·v × B,
+/// exercising `Vector3`, `cross`, `normalize` and vector parameters.
+#[system(integrator = Rk4, dt = 0.01)]
+pub struct Charged {
+    #[position]
+    pub r: Vector3<f64>,
+    #[velocity]
+    pub v: Vector3<f64>,
+    pub gm: f64,
+    pub qb: Vector3<f64>,
+}
+
+#[system]
+impl Charged {
+    fn acceleration(&self, t: f64) -> Vector3<f64> {
+        let distance = self.r.norm();
+        let radial = self.r.normalize();
+        let lorentz = self.v.cross(&self.qb) * (1.0 + 0.1 * t.sin());
+        -self.gm / (distance * distance) * radial + lorentz
+    }
+}
