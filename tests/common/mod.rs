@@ -220,3 +220,19 @@ impl Charged {
         -self.gm / (distance * distance) * radial + lorentz
     }
 }
+
+/// A force odyn cannot differentiate (a branch on the state), opted out of the Jacobian.
+#[system(integrator = SymplecticEuler, jacobian = false)]
+pub struct NoJacobian {
+    #[position]
+    pub x: f64,
+    #[velocity]
+    pub v: f64,
+}
+
+#[system]
+impl NoJacobian {
+    fn acceleration(&self) -> f64 {
+        if self.x > 0.0 { -1.0 } else { 1.0 }
+    }
+}
