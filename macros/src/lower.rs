@@ -153,8 +153,12 @@ impl Lowering<'_> {
                 self.prologue.push(Prologue::Stmt(Box::new(stmt.clone())));
                 Ok(())
             }
-            Stmt::Expr(e, Some(_)) if !self.depends(e) => Ok(()),
+            Stmt::Expr(e, _) if !self.depends(e) => Ok(()),
             Stmt::Macro(m) if !self.depends_tokens(&m.mac.tokens) => Ok(()),
+            // A loop or branch statement: its own error says which part reads the state.
+            Stmt::Expr(e @ (Expr::ForLoop(_) | Expr::While(_) | Expr::Loop(_) | Expr::If(_) | Expr::Match(_)), _) => {
+                self.structural(e).map(|_| ())
+            }
             other => Err(self.error(other, "a statement other than `let` or an assignment to a local")),
         }
     }
@@ -278,7 +282,8 @@ impl Lowering<'_> {
             Expr::Block(b) if b.label.is_none() => self.block(&b.block),
             Expr::If(i) => Err(self.error(&i.cond, "branching on the state (`if`)")),
             Expr::Match(m) => Err(self.error(&m.expr, "matching on the state (`match`)")),
-            Expr::ForLoop(l) => Err(self.error(&l.expr, "the state in a loop bound (`for`)")),
+            Expr::ForLoop(l) if self.depends(&l.expr) => Err(self.error(&l.expr, "the state in a loop bound (`for`)")),
+            Expr::ForLoop(l) => Err(self.error(l.for_token, "a loop over the state (`for`)")),
             Expr::While(w) => Err(self.error(&w.cond, "the state in a loop condition (`while`)")),
             Expr::Loop(l) => Err(self.error(l.loop_token, "a `loop`")),
             Expr::Cast(c) => Err(self.error(c, "a cast (`as`) of a state-dependent value")),

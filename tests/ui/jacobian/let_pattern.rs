@@ -1,0 +1,20 @@
+use odyn::prelude::*;
+
+#[system()]
+pub struct Model {
+    #[position]
+    pub x: f64,
+    #[velocity]
+    pub v: f64,
+    pub k: f64,
+}
+
+#[system]
+impl Model {
+    fn acceleration(&self) -> f64 {
+        let (a, b) = (self.x, self.v);
+        -a - b
+    }
+}
+
+fn main() {}
