@@ -10,9 +10,23 @@ use odyn::{Error, NewtonOptions};
 /// On ẍ = −ω²x a step divides (x, v/ω) by 1 − iωh: the energy is multiplied by exactly
 /// 1/(1 + ω²h²) (Hairer & Wanner, *Solving ODEs II*, §IV.3, R(z) = 1/(1 − z) at z = iωh).
 fn energy_factors(omega: f64, dt: f64, steps: u64) -> (Vec<f64>, f64) {
-    let osc = Oscillator { x: 1.0, v: 0.0, omega };
-    let run = osc.simulate().integrator(Method::ImplicitEuler).dt(dt).steps(steps).run().unwrap();
-    let factors = run.samples.windows(2).map(|w| w[1].energy.unwrap() / w[0].energy.unwrap()).collect();
+    let osc = Oscillator {
+        x: 1.0,
+        v: 0.0,
+        omega,
+    };
+    let run = osc
+        .simulate()
+        .integrator(Method::ImplicitEuler)
+        .dt(dt)
+        .steps(steps)
+        .run()
+        .unwrap();
+    let factors = run
+        .samples
+        .windows(2)
+        .map(|w| w[1].energy.unwrap() / w[0].energy.unwrap())
+        .collect();
     (factors, 1.0 / (1.0 + omega * omega * dt * dt))
 }
 
@@ -20,7 +34,11 @@ fn energy_factors(omega: f64, dt: f64, steps: u64) -> (Vec<f64>, f64) {
 fn energy_falls_by_exactly_one_over_one_plus_dt_squared() {
     let (factors, expected) = energy_factors(1.0, 0.05, 400);
     for (n, f) in factors.iter().enumerate() {
-        assert!((f / expected - 1.0).abs() < 1e-12, "step {}: {f} vs {expected}", n + 1);
+        assert!(
+            (f / expected - 1.0).abs() < 1e-12,
+            "step {}: {f} vs {expected}",
+            n + 1
+        );
     }
 }
 
@@ -31,20 +49,42 @@ fn the_stiff_spring_loses_all_but_9_2509_of_its_energy_per_step() {
     let (factors, expected) = energy_factors(1000.0, 1.0 / 60.0, 120);
     assert!((expected - 9.0 / 2509.0).abs() < 1e-18);
     for (n, f) in factors.iter().enumerate() {
-        assert!((f / (9.0 / 2509.0) - 1.0).abs() < 1e-12, "step {}: {f}", n + 1);
+        assert!(
+            (f / (9.0 / 2509.0) - 1.0).abs() < 1e-12,
+            "step {}: {f}",
+            n + 1
+        );
     }
 }
 
 #[test]
 fn implicit_euler_is_first_order_and_counts_its_work() {
-    let spring = Spring { x: 1.0, v: 0.0, k: 4.0, b: 0.5, m: 1.0 };
-    let exact = odyn::reference::DampedOscillator { k: 4.0, b: 0.5, m: 1.0 };
+    let spring = Spring {
+        x: 1.0,
+        v: 0.0,
+        k: 4.0,
+        b: 0.5,
+        m: 1.0,
+    };
+    let exact = odyn::reference::DampedOscillator {
+        k: 4.0,
+        b: 0.5,
+        m: 1.0,
+    };
     let errors: Vec<f64> = [0.01, 0.005, 0.0025]
         .iter()
         .map(|&dt| {
-            let run = spring.simulate().integrator(Method::ImplicitEuler).dt(dt).duration(2.0).run().unwrap();
+            let run = spring
+                .simulate()
+                .integrator(Method::ImplicitEuler)
+                .dt(dt)
+                .duration(2.0)
+                .run()
+                .unwrap();
             let (x, v) = exact.state_at(1.0, 0.0, 2.0);
-            (run.last().state.x - x).abs().max((run.last().state.v - v).abs())
+            (run.last().state.x - x)
+                .abs()
+                .max((run.last().state.v - v).abs())
         })
         .collect();
     for pair in errors.windows(2) {
@@ -52,10 +92,21 @@ fn implicit_euler_is_first_order_and_counts_its_work() {
         assert!((order - 1.0).abs() < 0.1, "observed order {order}");
     }
     // A linear model converges in one Newton iteration; the second confirms it.
-    let run = spring.simulate().integrator(Method::ImplicitEuler).dt(0.01).steps(100).run().unwrap();
+    let run = spring
+        .simulate()
+        .integrator(Method::ImplicitEuler)
+        .dt(0.01)
+        .steps(100)
+        .run()
+        .unwrap();
     assert_eq!((run.evaluations, run.jacobian_evaluations), (200, 200));
     // First-order models take implicit Euler too.
-    let lorenz = Lorenz::classic().simulate().integrator(Method::ImplicitEuler).steps(100).run().unwrap();
+    let lorenz = Lorenz::classic()
+        .simulate()
+        .integrator(Method::ImplicitEuler)
+        .steps(100)
+        .run()
+        .unwrap();
     assert!(lorenz.last().state.x.is_finite());
 }
 
@@ -73,14 +124,32 @@ fn slope(points: &[(f64, f64)]) -> f64 {
 /// Wanner, *Solving ODEs II*, §IV.10 (0.7158270687, 9.185534764e-6, 0.2841637457).
 #[test]
 fn robertson_error_falls_linearly_with_dt() {
-    let reference = [7.158270687199023e-01, 9.185534764554085e-06, 2.841637457453337e-01];
-    let model = Robertson { a: 1.0, b: 0.0, c: 0.0 };
+    let reference = [
+        7.158270687199023e-01,
+        9.185534764554085e-06,
+        2.841637457453337e-01,
+    ];
+    let model = Robertson {
+        a: 1.0,
+        b: 0.0,
+        c: 0.0,
+    };
     let points: Vec<(f64, f64)> = [0.04, 0.02, 0.01, 0.005]
         .iter()
         .map(|&dt| {
-            let run = model.simulate().dt(dt).duration(40.0).record_every(u64::MAX).run().unwrap();
+            let run = model
+                .simulate()
+                .dt(dt)
+                .duration(40.0)
+                .record_every(u64::MAX)
+                .run()
+                .unwrap();
             let s = run.last().state;
-            let error = [s.a, s.b, s.c].iter().zip(reference).map(|(y, r)| (y - r).abs()).fold(0.0, f64::max);
+            let error = [s.a, s.b, s.c]
+                .iter()
+                .zip(reference)
+                .map(|(y, r)| (y - r).abs())
+                .fold(0.0, f64::max);
             (dt, error)
         })
         .collect();
@@ -99,13 +168,26 @@ fn robertson_error_falls_linearly_with_dt() {
 #[test]
 fn van_der_pol_error_falls_linearly_with_dt() {
     let reference = [1.931361320527369, -7.074176282303548e-04];
-    let model = VanDerPol { y1: 2.0, y2: 0.0, mu: 1000.0 };
+    let model = VanDerPol {
+        y1: 2.0,
+        y2: 0.0,
+        mu: 1000.0,
+    };
     let points: Vec<(f64, f64)> = [0.4, 0.2, 0.1, 0.05]
         .iter()
         .map(|&dt| {
-            let run = model.simulate().dt(dt).duration(100.0).record_every(u64::MAX).run().unwrap();
+            let run = model
+                .simulate()
+                .dt(dt)
+                .duration(100.0)
+                .record_every(u64::MAX)
+                .run()
+                .unwrap();
             let s = run.last().state;
-            ((dt), (s.y1 - reference[0]).abs().max((s.y2 - reference[1]).abs()))
+            (
+                (dt),
+                (s.y1 - reference[0]).abs().max((s.y2 - reference[1]).abs()),
+            )
         })
         .collect();
     let order = slope(&points);
@@ -115,9 +197,22 @@ fn van_der_pol_error_falls_linearly_with_dt() {
 
 #[test]
 fn newton_failure_is_a_typed_error() {
-    let model = VanDerPol { y1: 2.0, y2: 0.0, mu: 1000.0 };
-    let one_iteration = NewtonOptions { max_iters: 1, ..NewtonOptions::default() };
-    match model.simulate().dt(0.1).steps(10).newton(one_iteration).run() {
+    let model = VanDerPol {
+        y1: 2.0,
+        y2: 0.0,
+        mu: 1000.0,
+    };
+    let one_iteration = NewtonOptions {
+        max_iters: 1,
+        ..NewtonOptions::default()
+    };
+    match model
+        .simulate()
+        .dt(0.1)
+        .steps(10)
+        .newton(one_iteration)
+        .run()
+    {
         Err(Error::NewtonDidNotConverge { t, iters, residual }) => {
             assert_eq!((t, iters), (0.1, 1));
             assert!(residual > 0.0 && residual.is_finite());
@@ -135,8 +230,22 @@ fn a_model_without_jacobian_cannot_take_implicit_euler() {
         .steps(1)
         .run()
         .unwrap_err();
-    assert!(matches!(error, Error::Unsupported { method: Method::ImplicitEuler, .. }), "{error}");
+    assert!(
+        matches!(
+            error,
+            Error::Unsupported {
+                method: Method::ImplicitEuler,
+                ..
+            }
+        ),
+        "{error}"
+    );
     // It still runs the explicit methods, and its force may use anything Rust allows.
-    let run = common::NoJacobian { x: 1.0, v: 0.0 }.simulate().dt(0.1).steps(10).run().unwrap();
+    let run = common::NoJacobian { x: 1.0, v: 0.0 }
+        .simulate()
+        .dt(0.1)
+        .steps(10)
+        .run()
+        .unwrap();
     assert!(run.last().state.x < 1.0);
 }

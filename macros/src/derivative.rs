@@ -140,7 +140,16 @@ mod tests {
         let sq = g.powi(x, 3);
         cases.push(g.sub(sq, y));
         cases.push(g.powf(y, p));
-        for f in [Func::Sqrt, Func::Exp, Func::Ln, Func::Sin, Func::Cos, Func::Tan, Func::Tanh, Func::Abs] {
+        for f in [
+            Func::Sqrt,
+            Func::Exp,
+            Func::Ln,
+            Func::Sin,
+            Func::Cos,
+            Func::Tan,
+            Func::Tanh,
+            Func::Abs,
+        ] {
             let inner = g.mul(x, y);
             cases.push(g.call(f, inner));
         }
@@ -163,7 +172,11 @@ mod tests {
                     if numeric.is_nan() {
                         continue;
                     }
-                    assert!((exact - numeric).abs() < 1e-6 * scale, "{:?} ∂{k}: {exact} vs {numeric}", g.node(case));
+                    assert!(
+                        (exact - numeric).abs() < 1e-6 * scale,
+                        "{:?} ∂{k}: {exact} vs {numeric}",
+                        g.node(case)
+                    );
                 }
             }
         }

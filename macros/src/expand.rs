@@ -169,7 +169,10 @@ pub(crate) fn system_impl(input: TokenStream) -> TokenStream {
     if let (Some(no), Some((ident, _))) = (&args.no_jacobian, &args.integrator)
         && ident == "ImplicitEuler"
     {
-        errors.at(no, "`ImplicitEuler` needs the Jacobian that `jacobian = false` turns off");
+        errors.at(
+            no,
+            "`ImplicitEuler` needs the Jacobian that `jacobian = false` turns off",
+        );
     }
     if lowered.is_some() && model.len() > 32 {
         errors.at_span(
@@ -184,7 +187,8 @@ pub(crate) fn system_impl(input: TokenStream) -> TokenStream {
     }
     match errors.finish() {
         Ok(()) => {
-            let generated = generate::model_impls(&model, &args, &functions, &imp, lowered.is_some());
+            let generated =
+                generate::model_impls(&model, &args, &functions, &imp, lowered.is_some());
             let jacobian = match (lowered, &functions.force) {
                 (Some(lowered), Some(force)) => generate::jacobian(&model, lowered, force, &imp),
                 _ => TokenStream::new(),

@@ -257,11 +257,20 @@ fn hidden_fn(model: &Model<'_>, name: &syn::Ident, f: &Function, with_time: bool
 }
 
 /// The `Jacobian` impl: the derivatives of the lowered force, emitted as straight-line code.
-pub(crate) fn jacobian(model: &Model<'_>, lowered: Lowered, force: &Function, imp: &ItemImpl) -> TokenStream {
+pub(crate) fn jacobian(
+    model: &Model<'_>,
+    lowered: Lowered,
+    force: &Function,
+    imp: &ItemImpl,
+) -> TokenStream {
     let self_ty = &imp.self_ty;
     let state = model.state_ident();
     let n = proc_macro2::Literal::usize_unsuffixed(model.len());
-    let Lowered { mut graph, outputs, prologue } = lowered;
+    let Lowered {
+        mut graph,
+        outputs,
+        prologue,
+    } = lowered;
     let mut differentiator = crate::derivative::Differentiator::default();
     let mut entries = Vec::new();
     for (row, &f) in outputs.iter().enumerate() {
@@ -281,24 +290,46 @@ pub(crate) fn jacobian(model: &Model<'_>, lowered: Lowered, force: &Function, im
             _ => node_ident(id).into_token_stream(),
         }
     };
-    let lets = graph.reachable(entries.iter().map(|e| e.2)).into_iter().filter_map(|id| {
-        let value = match graph.node(id) {
-            Node::Const(_) | Node::Var(_) | Node::Opaque(_) => return None,
-            Node::Add(a, b) => { let (a, b) = (operand(a, &graph), operand(b, &graph)); quote!(#a + #b) }
-            Node::Mul(a, b) => { let (a, b) = (operand(a, &graph), operand(b, &graph)); quote!(#a * #b) }
-            Node::Div(a, b) => { let (a, b) = (operand(a, &graph), operand(b, &graph)); quote!(#a / #b) }
-            Node::Neg(a) => { let a = operand(a, &graph); quote!(-#a) }
-            Node::Powi(a, k) => { let a = operand(a, &graph); quote!(#a.powi(#k)) }
-            Node::Powf(a, b) => { let (a, b) = (operand(a, &graph), operand(b, &graph)); quote!(#a.powf(#b)) }
-            Node::Call(f, a) => {
-                let a = operand(a, &graph);
-                let method = format_ident!("{}", f.method());
-                quote!(#a.#method())
-            }
-        };
-        let name = node_ident(id);
-        Some(quote!(let #name: f64 = #value;))
-    }).collect::<Vec<_>>();
+    let lets = graph
+        .reachable(entries.iter().map(|e| e.2))
+        .into_iter()
+        .filter_map(|id| {
+            let value = match graph.node(id) {
+                Node::Const(_) | Node::Var(_) | Node::Opaque(_) => return None,
+                Node::Add(a, b) => {
+                    let (a, b) = (operand(a, &graph), operand(b, &graph));
+                    quote!(#a + #b)
+                }
+                Node::Mul(a, b) => {
+                    let (a, b) = (operand(a, &graph), operand(b, &graph));
+                    quote!(#a * #b)
+                }
+                Node::Div(a, b) => {
+                    let (a, b) = (operand(a, &graph), operand(b, &graph));
+                    quote!(#a / #b)
+                }
+                Node::Neg(a) => {
+                    let a = operand(a, &graph);
+                    quote!(-#a)
+                }
+                Node::Powi(a, k) => {
+                    let a = operand(a, &graph);
+                    quote!(#a.powi(#k))
+                }
+                Node::Powf(a, b) => {
+                    let (a, b) = (operand(a, &graph), operand(b, &graph));
+                    quote!(#a.powf(#b))
+                }
+                Node::Call(f, a) => {
+                    let a = operand(a, &graph);
+                    let method = format_ident!("{}", f.method());
+                    quote!(#a.#method())
+                }
+            };
+            let name = node_ident(id);
+            Some(quote!(let #name: f64 = #value;))
+        })
+        .collect::<Vec<_>>();
     let jac = format_ident!("__odyn_jac", span = Span::mixed_site());
     let stores = entries.iter().map(|&(r, c, d)| {
         let value = operand(d, &graph);
@@ -325,7 +356,9 @@ pub(crate) fn jacobian(model: &Model<'_>, lowered: Lowered, force: &Function, im
     let fields = model.states.iter().map(|f| f.ident);
     let matrix = quote!(::odyn::__private::nalgebra::SMatrix<f64, #n, #n>);
     let count = entries.len();
-    let doc = format!("The {count} structural non-zeros of ∂f/∂y, derived by `#[system]` from the model's code.");
+    let doc = format!(
+        "The {count} structural non-zeros of ∂f/∂y, derived by `#[system]` from the model's code."
+    );
     quote! {
         #[automatically_derived]
         impl #self_ty {

@@ -227,7 +227,10 @@ impl Graph {
                 }
             }
         }
-        (0..self.nodes.len()).filter(|&i| seen[i]).map(|i| ExprId(i as u32)).collect()
+        (0..self.nodes.len())
+            .filter(|&i| seen[i])
+            .map(|i| ExprId(i as u32))
+            .collect()
     }
 
     /// Evaluates `id` with state `vars` and opaque values `opaques` (for tests).

@@ -12,8 +12,8 @@ mod errors;
 mod expand;
 mod functions;
 mod generate;
-mod lower;
 mod ir;
+mod lower;
 mod model;
 
 use proc_macro::TokenStream;

@@ -11,7 +11,9 @@ use std::collections::HashMap;
 use proc_macro2::TokenStream;
 use quote::{ToTokens, quote};
 use syn::visit::{self, Visit};
-use syn::{BinOp, Block, Expr, ExprBinary, ExprField, ExprMethodCall, Ident, Lit, Member, Pat, Stmt, UnOp};
+use syn::{
+    BinOp, Block, Expr, ExprBinary, ExprField, ExprMethodCall, Ident, Lit, Member, Pat, Stmt, UnOp,
+};
 
 use crate::ir::{ExprId, Func, Graph};
 use crate::model::{Model, Order, Role, Shape, shape_of};
@@ -83,7 +85,11 @@ pub(crate) fn lower(model: &Model<'_>, f: &syn::ImplItemFn) -> syn::Result<Lower
     };
     let value = l.block(&f.block)?;
     let outputs = l.outputs(value, f)?;
-    Ok(Lowered { graph: l.graph, outputs, prologue: l.prologue })
+    Ok(Lowered {
+        graph: l.graph,
+        outputs,
+        prologue: l.prologue,
+    })
 }
 
 impl Lowering<'_> {
@@ -126,7 +132,10 @@ impl Lowering<'_> {
                 let name = pattern_name(&local.pat).ok_or_else(|| {
                     self.error(&local.pat, "a `let` pattern other than a plain name")
                 })?;
-                let init = local.init.as_ref().ok_or_else(|| self.error(local, "a `let` without a value"))?;
+                let init = local
+                    .init
+                    .as_ref()
+                    .ok_or_else(|| self.error(local, "a `let` without a value"))?;
                 if let Some((_, diverge)) = &init.diverge {
                     return Err(self.error(diverge, "`let … else`"));
                 }
@@ -140,14 +149,24 @@ impl Lowering<'_> {
             }
             Stmt::Expr(Expr::Assign(assign), Some(_)) => {
                 let value = self.expr(&assign.right)?;
-                self.reassign(stmt, &assign.left, |_, _| Ok(value), self.depends(&assign.right))
+                self.reassign(
+                    stmt,
+                    &assign.left,
+                    |_, _| Ok(value),
+                    self.depends(&assign.right),
+                )
             }
             Stmt::Expr(Expr::Binary(b), Some(_)) if compound(&b.op).is_some() => {
                 let op = compound(&b.op).expect("checked by the guard");
                 let rhs = self.expr(&b.right)?;
                 let dependent = self.depends(&b.right);
                 let span = b.op.to_token_stream();
-                self.reassign(stmt, &b.left, |l, old| l.arithmetic(&span, op, old, rhs), dependent)
+                self.reassign(
+                    stmt,
+                    &b.left,
+                    |l, old| l.arithmetic(&span, op, old, rhs),
+                    dependent,
+                )
             }
             Stmt::Item(_) => {
                 self.prologue.push(Prologue::Stmt(Box::new(stmt.clone())));
@@ -156,10 +175,18 @@ impl Lowering<'_> {
             Stmt::Expr(e, _) if !self.depends(e) => Ok(()),
             Stmt::Macro(m) if !self.depends_tokens(&m.mac.tokens) => Ok(()),
             // A loop or branch statement: its own error says which part reads the state.
-            Stmt::Expr(e @ (Expr::ForLoop(_) | Expr::While(_) | Expr::Loop(_) | Expr::If(_) | Expr::Match(_)), _) => {
-                self.structural(e).map(|_| ())
-            }
-            other => Err(self.error(other, "a statement other than `let` or an assignment to a local")),
+            Stmt::Expr(
+                e @ (Expr::ForLoop(_)
+                | Expr::While(_)
+                | Expr::Loop(_)
+                | Expr::If(_)
+                | Expr::Match(_)),
+                _,
+            ) => self.structural(e).map(|_| ()),
+            other => Err(self.error(
+                other,
+                "a statement other than `let` or an assignment to a local",
+            )),
         }
     }
 
@@ -175,7 +202,10 @@ impl Lowering<'_> {
             return Err(self.error(target, "assigning to something other than a local"));
         };
         let Some(old) = self.lookup(&name).map(|b| (b.value.clone(), b.dependent)) else {
-            return Err(self.error(target, format_args!("assigning to `{name}`, which is not a local")));
+            return Err(self.error(
+                target,
+                format_args!("assigning to `{name}`, which is not a local"),
+            ));
         };
         let value = update(self, old.0)?;
         let dependent = old.1 || rhs_dependent;
@@ -203,14 +233,19 @@ impl Lowering<'_> {
     // ----- dependence -------------------------------------------------------------------------
 
     fn depends(&self, e: &Expr) -> bool {
-        let mut finder = Depends { lowering: self, found: false };
+        let mut finder = Depends {
+            lowering: self,
+            found: false,
+        };
         finder.visit_expr(e);
         finder.found
     }
 
     fn depends_tokens(&self, tokens: &TokenStream) -> bool {
         tokens.clone().into_iter().any(|tree| match tree {
-            proc_macro2::TokenTree::Ident(i) => self.lookup(&i.to_string()).is_some_and(|b| b.dependent),
+            proc_macro2::TokenTree::Ident(i) => {
+                self.lookup(&i.to_string()).is_some_and(|b| b.dependent)
+            }
             proc_macro2::TokenTree::Group(g) => self.depends_tokens(&g.stream()),
             _ => false,
         })
@@ -265,8 +300,9 @@ impl Lowering<'_> {
             Expr::Field(f) => self.field(f),
             Expr::Index(index) => {
                 let base = self.expr(&index.expr)?;
-                let i = int_literal(&index.index)
-                    .ok_or_else(|| self.error(&index.index, "an index that is not an integer literal"))?;
+                let i = int_literal(&index.index).ok_or_else(|| {
+                    self.error(&index.index, "an index that is not an integer literal")
+                })?;
                 self.component(&base, i as usize, &index.index)
             }
             Expr::Unary(u) if matches!(u.op, UnOp::Neg(_)) => {
@@ -277,12 +313,24 @@ impl Lowering<'_> {
             Expr::MethodCall(m) => self.method(m),
             Expr::Call(c) => self.call(c),
             Expr::Struct(s) => self.state_literal(s),
-            Expr::Tuple(t) => Ok(Value::Tuple(t.elems.iter().map(|e| self.expr(e)).collect::<syn::Result<_>>()?)),
-            Expr::Array(a) => Ok(Value::Vector(a.elems.iter().map(|e| self.scalar(e)).collect::<syn::Result<_>>()?)),
+            Expr::Tuple(t) => Ok(Value::Tuple(
+                t.elems
+                    .iter()
+                    .map(|e| self.expr(e))
+                    .collect::<syn::Result<_>>()?,
+            )),
+            Expr::Array(a) => Ok(Value::Vector(
+                a.elems
+                    .iter()
+                    .map(|e| self.scalar(e))
+                    .collect::<syn::Result<_>>()?,
+            )),
             Expr::Block(b) if b.label.is_none() => self.block(&b.block),
             Expr::If(i) => Err(self.error(&i.cond, "branching on the state (`if`)")),
             Expr::Match(m) => Err(self.error(&m.expr, "matching on the state (`match`)")),
-            Expr::ForLoop(l) if self.depends(&l.expr) => Err(self.error(&l.expr, "the state in a loop bound (`for`)")),
+            Expr::ForLoop(l) if self.depends(&l.expr) => {
+                Err(self.error(&l.expr, "the state in a loop bound (`for`)"))
+            }
             Expr::ForLoop(l) => Err(self.error(l.for_token, "a loop over the state (`for`)")),
             Expr::While(w) => Err(self.error(&w.cond, "the state in a loop condition (`while`)")),
             Expr::Loop(l) => Err(self.error(l.loop_token, "a `loop`")),
@@ -296,7 +344,9 @@ impl Lowering<'_> {
 
     fn field(&mut self, f: &ExprField) -> syn::Result<Value> {
         if is_self(&f.base) {
-            let Member::Named(name) = &f.member else { return Err(self.error(f, "a tuple field of `self`")) };
+            let Member::Named(name) = &f.member else {
+                return Err(self.error(f, "a tuple field of `self`"));
+            };
             if let Some(offset) = self.offset(name) {
                 let shape = self.model.field(name).expect("offset found it").shape;
                 return Ok(self.state_value(offset, shape));
@@ -305,7 +355,9 @@ impl Lowering<'_> {
             return match self.parameter_shape(name) {
                 Some(Shape::Scalar) | None => Ok(Value::Scalar(self.opaque(f.to_token_stream()))),
                 Some(shape) => Ok(Value::Vector(
-                    (0..shape.len()).map(|i| self.opaque(quote!(#f[#i]))).collect(),
+                    (0..shape.len())
+                        .map(|i| self.opaque(quote!(#f[#i])))
+                        .collect(),
                 )),
             };
         }
@@ -314,7 +366,8 @@ impl Lowering<'_> {
             Member::Named(n) => ["x", "y", "z", "w"].iter().position(|c| n == c),
             Member::Unnamed(i) => Some(i.index as usize),
         };
-        let index = index.ok_or_else(|| self.error(&f.member, "a field other than `x`, `y`, `z`, `w`"))?;
+        let index =
+            index.ok_or_else(|| self.error(&f.member, "a field other than `x`, `y`, `z`, `w`"))?;
         self.component(&base, index, &f.member)
     }
 
@@ -332,13 +385,24 @@ impl Lowering<'_> {
             BinOp::Sub(_) => Arith::Sub,
             BinOp::Mul(_) => Arith::Mul,
             BinOp::Div(_) => Arith::Div,
-            _ => return Err(self.error(b.op, format_args!("the operator `{}`", b.op.to_token_stream()))),
+            _ => {
+                return Err(self.error(
+                    b.op,
+                    format_args!("the operator `{}`", b.op.to_token_stream()),
+                ));
+            }
         };
         let (left, right) = (self.expr(&b.left)?, self.expr(&b.right)?);
         self.arithmetic(&b.op.to_token_stream(), op, left, right)
     }
 
-    fn arithmetic(&mut self, at: &TokenStream, op: Arith, left: Value, right: Value) -> syn::Result<Value> {
+    fn arithmetic(
+        &mut self,
+        at: &TokenStream,
+        op: Arith,
+        left: Value,
+        right: Value,
+    ) -> syn::Result<Value> {
         let g = &mut self.graph;
         let scalar = |g: &mut Graph, a, b| match op {
             Arith::Add => g.add(a, b),
@@ -348,15 +412,19 @@ impl Lowering<'_> {
         };
         match (left, right) {
             (Value::Scalar(a), Value::Scalar(b)) => Ok(Value::Scalar(scalar(g, a, b))),
-            (Value::Vector(a), Value::Vector(b)) if a.len() == b.len() && matches!(op, Arith::Add | Arith::Sub) => {
-                Ok(Value::Vector(a.into_iter().zip(b).map(|(x, y)| scalar(g, x, y)).collect()))
+            (Value::Vector(a), Value::Vector(b))
+                if a.len() == b.len() && matches!(op, Arith::Add | Arith::Sub) =>
+            {
+                Ok(Value::Vector(
+                    a.into_iter().zip(b).map(|(x, y)| scalar(g, x, y)).collect(),
+                ))
             }
             (Value::Scalar(s), Value::Vector(v)) if matches!(op, Arith::Mul) => {
                 Ok(Value::Vector(v.into_iter().map(|x| g.mul(s, x)).collect()))
             }
-            (Value::Vector(v), Value::Scalar(s)) if matches!(op, Arith::Mul | Arith::Div) => {
-                Ok(Value::Vector(v.into_iter().map(|x| scalar(g, x, s)).collect()))
-            }
+            (Value::Vector(v), Value::Scalar(s)) if matches!(op, Arith::Mul | Arith::Div) => Ok(
+                Value::Vector(v.into_iter().map(|x| scalar(g, x, s)).collect()),
+            ),
             (Value::Vector(_), Value::Vector(_)) if matches!(op, Arith::Mul) => Err(self.error(
                 at,
                 "vector × vector (use `dot`, `cross` or `component_mul`)",
@@ -368,7 +436,9 @@ impl Lowering<'_> {
     fn map(&mut self, value: Value, f: impl Fn(&mut Graph, ExprId) -> ExprId + Copy) -> Value {
         match value {
             Value::Scalar(x) => Value::Scalar(f(&mut self.graph, x)),
-            Value::Vector(v) => Value::Vector(v.into_iter().map(|x| f(&mut self.graph, x)).collect()),
+            Value::Vector(v) => {
+                Value::Vector(v.into_iter().map(|x| f(&mut self.graph, x)).collect())
+            }
             Value::Tuple(t) => Value::Tuple(t.into_iter().map(|v| self.map(v, f)).collect()),
         }
     }
@@ -381,10 +451,18 @@ impl Lowering<'_> {
     }
 
     /// `receiver.name(args)`, for a method call or its `f64::name(receiver, args)` form.
-    fn apply(&mut self, name: &str, receiver: Value, args: &[&Expr], at: &Ident) -> syn::Result<Value> {
+    fn apply(
+        &mut self,
+        name: &str,
+        receiver: Value,
+        args: &[&Expr],
+        at: &Ident,
+    ) -> syn::Result<Value> {
         let unsupported = |l: &Self| l.error(at, format_args!("the method `{name}`"));
         match (receiver, args) {
-            (value, []) if name == "clone" || name == "into_owned" || name == "to_owned" => Ok(value),
+            (value, []) if name == "clone" || name == "into_owned" || name == "to_owned" => {
+                Ok(value)
+            }
             (Value::Scalar(x), []) => {
                 let f = match name {
                     "sqrt" => Func::Sqrt,
@@ -404,12 +482,17 @@ impl Lowering<'_> {
                 Ok(Value::Scalar(self.graph.call(f, x)))
             }
             (Value::Scalar(x), [n]) if name == "powi" => {
-                let n = self.integer(n).ok_or_else(|| self.error(n, "a `powi` exponent that is not an integer constant"))?;
+                let n = self.integer(n).ok_or_else(|| {
+                    self.error(n, "a `powi` exponent that is not an integer constant")
+                })?;
                 Ok(Value::Scalar(self.graph.powi(x, n)))
             }
             (Value::Scalar(x), [y]) if name == "powf" => {
                 if self.depends(y) {
-                    return Err(self.error(y, "a state-dependent `powf` exponent (write `(y * x.ln()).exp()`)"));
+                    return Err(self.error(
+                        y,
+                        "a state-dependent `powf` exponent (write `(y * x.ln()).exp()`)",
+                    ));
                 }
                 let y = self.scalar(y)?;
                 Ok(Value::Scalar(self.graph.powf(x, y)))
@@ -426,7 +509,9 @@ impl Lowering<'_> {
                     "norm" => Ok(Value::Scalar(self.graph.call(Func::Sqrt, squares))),
                     "normalize" => {
                         let norm = self.graph.call(Func::Sqrt, squares);
-                        Ok(Value::Vector(v.iter().map(|&x| self.graph.div(x, norm)).collect()))
+                        Ok(Value::Vector(
+                            v.iter().map(|&x| self.graph.div(x, norm)).collect(),
+                        ))
                     }
                     _ => Err(unsupported(self)),
                 }
@@ -434,15 +519,24 @@ impl Lowering<'_> {
             (Value::Vector(v), [other]) => {
                 if name == "scale" {
                     let s = self.scalar(other)?;
-                    return Ok(Value::Vector(v.iter().map(|&x| self.graph.mul(x, s)).collect()));
+                    return Ok(Value::Vector(
+                        v.iter().map(|&x| self.graph.mul(x, s)).collect(),
+                    ));
                 }
-                let Value::Vector(w) = self.expr(other)? else { return Err(self.error(other, "a number where a vector is expected")) };
+                let Value::Vector(w) = self.expr(other)? else {
+                    return Err(self.error(other, "a number where a vector is expected"));
+                };
                 if w.len() != v.len() {
                     return Err(self.error(other, "vectors of different lengths"));
                 }
                 match name {
                     "dot" => Ok(Value::Scalar(self.dot(&v, &w))),
-                    "component_mul" => Ok(Value::Vector(v.iter().zip(&w).map(|(&a, &b)| self.graph.mul(a, b)).collect())),
+                    "component_mul" => Ok(Value::Vector(
+                        v.iter()
+                            .zip(&w)
+                            .map(|(&a, &b)| self.graph.mul(a, b))
+                            .collect(),
+                    )),
                     "cross" if v.len() == 3 => {
                         let mut c = Vec::with_capacity(3);
                         for (i, j) in [(1, 2), (2, 0), (0, 1)] {
@@ -468,12 +562,27 @@ impl Lowering<'_> {
     }
 
     fn call(&mut self, c: &syn::ExprCall) -> syn::Result<Value> {
-        let Expr::Path(path) = &*c.func else { return Err(self.error(&c.func, "a call")) };
-        let segments: Vec<String> = path.path.segments.iter().map(|s| s.ident.to_string()).collect();
+        let Expr::Path(path) = &*c.func else {
+            return Err(self.error(&c.func, "a call"));
+        };
+        let segments: Vec<String> = path
+            .path
+            .segments
+            .iter()
+            .map(|s| s.ident.to_string())
+            .collect();
         let args: Vec<&Expr> = c.args.iter().collect();
-        match segments.iter().map(String::as_str).collect::<Vec<_>>().as_slice() {
+        match segments
+            .iter()
+            .map(String::as_str)
+            .collect::<Vec<_>>()
+            .as_slice()
+        {
             [.., ty, "new"] if vector_len(ty).is_some() || *ty == "SVector" => {
-                let parts = args.iter().map(|a| self.scalar(a)).collect::<syn::Result<_>>()?;
+                let parts = args
+                    .iter()
+                    .map(|a| self.scalar(a))
+                    .collect::<syn::Result<_>>()?;
                 Ok(Value::Vector(parts))
             }
             [.., ty, "zeros"] if vector_len(ty).is_some() => {
@@ -482,10 +591,21 @@ impl Lowering<'_> {
             }
             [.., "f64", name] if !args.is_empty() => {
                 let receiver = self.expr(args[0])?;
-                let method = &path.path.segments.last().expect("a path has segments").ident;
+                let method = &path
+                    .path
+                    .segments
+                    .last()
+                    .expect("a path has segments")
+                    .ident;
                 self.apply(name, receiver, &args[1..], method)
             }
-            _ => Err(self.error(&c.func, format_args!("a call of `{}` (odyn cannot see inside functions; inline it)", segments.join("::")))),
+            _ => Err(self.error(
+                &c.func,
+                format_args!(
+                    "a call of `{}` (odyn cannot see inside functions; inline it)",
+                    segments.join("::")
+                ),
+            )),
         }
     }
 
@@ -499,8 +619,12 @@ impl Lowering<'_> {
         }
         let mut components = vec![None; self.model.len()];
         for field in &s.fields {
-            let Member::Named(name) = &field.member else { return Err(self.error(field, "a tuple field")) };
-            let offset = self.offset(name).ok_or_else(|| self.error(name, "an unknown state field"))?;
+            let Member::Named(name) = &field.member else {
+                return Err(self.error(field, "a tuple field"));
+            };
+            let offset = self
+                .offset(name)
+                .ok_or_else(|| self.error(name, "an unknown state field"))?;
             let parts = match self.expr(&field.expr)? {
                 Value::Scalar(x) => vec![x],
                 Value::Vector(v) => v,
@@ -511,7 +635,9 @@ impl Lowering<'_> {
             }
         }
         let components: Option<Vec<_>> = components.into_iter().collect();
-        components.map(Value::Vector).ok_or_else(|| self.error(s, "a state literal with missing fields"))
+        components
+            .map(Value::Vector)
+            .ok_or_else(|| self.error(s, "a state literal with missing fields"))
     }
 
     /// f(t, y) in state layout order, from the body's value.
@@ -521,14 +647,27 @@ impl Lowering<'_> {
             Value::Vector(v) => Some(v),
             Value::Tuple(_) => None,
         };
-        let mismatch = |l: &Self| l.error(&f.sig.output, "a return value whose shape does not match the state");
+        let mismatch = |l: &Self| {
+            l.error(
+                &f.sig.output,
+                "a return value whose shape does not match the state",
+            )
+        };
         match self.model.order {
             Order::First => {
                 let v = flat(value).ok_or_else(|| mismatch(self))?;
-                if v.len() == self.model.len() { Ok(v) } else { Err(mismatch(self)) }
+                if v.len() == self.model.len() {
+                    Ok(v)
+                } else {
+                    Err(mismatch(self))
+                }
             }
             Order::Second => {
-                let velocities: Vec<_> = self.model.with_role(Role::Velocity).map(|f| f.shape.len()).collect();
+                let velocities: Vec<_> = self
+                    .model
+                    .with_role(Role::Velocity)
+                    .map(|f| f.shape.len())
+                    .collect();
                 let parts = match (value, velocities.len()) {
                     (Value::Tuple(parts), n) if n > 1 => parts,
                     (single, 1) => vec![single],
@@ -553,7 +692,9 @@ impl Lowering<'_> {
 
     fn integer(&self, e: &Expr) -> Option<i32> {
         match e {
-            Expr::Lit(_) | Expr::Group(_) | Expr::Paren(_) => int_literal(e).and_then(|n| i32::try_from(n).ok()),
+            Expr::Lit(_) | Expr::Group(_) | Expr::Paren(_) => {
+                int_literal(e).and_then(|n| i32::try_from(n).ok())
+            }
             Expr::Unary(u) if matches!(u.op, UnOp::Neg(_)) => self.integer(&u.expr).map(|n| -n),
             _ => None,
         }
@@ -573,13 +714,23 @@ impl Lowering<'_> {
     fn state_value(&mut self, offset: usize, shape: Shape) -> Value {
         match shape {
             Shape::Scalar => Value::Scalar(self.graph.var(offset)),
-            _ => Value::Vector((0..shape.len()).map(|i| self.graph.var(offset + i)).collect()),
+            _ => Value::Vector(
+                (0..shape.len())
+                    .map(|i| self.graph.var(offset + i))
+                    .collect(),
+            ),
         }
     }
 
     fn parameter_shape(&self, name: &Ident) -> Option<Shape> {
-        let syn::Fields::Named(fields) = &self.model.item.fields else { return None };
-        fields.named.iter().find(|f| f.ident.as_ref() == Some(name)).and_then(|f| shape_of(&f.ty))
+        let syn::Fields::Named(fields) = &self.model.item.fields else {
+            return None;
+        };
+        fields
+            .named
+            .iter()
+            .find(|f| f.ident.as_ref() == Some(name))
+            .and_then(|f| shape_of(&f.ty))
     }
 }
 
@@ -653,7 +804,9 @@ fn pattern_name(pat: &Pat) -> Option<String> {
 
 fn int_literal(e: &Expr) -> Option<u64> {
     match e {
-        Expr::Lit(syn::ExprLit { lit: Lit::Int(i), .. }) => i.base10_parse().ok(),
+        Expr::Lit(syn::ExprLit {
+            lit: Lit::Int(i), ..
+        }) => i.base10_parse().ok(),
         Expr::Group(g) => int_literal(&g.expr),
         Expr::Paren(p) => int_literal(&p.expr),
         _ => None,
@@ -661,5 +814,7 @@ fn int_literal(e: &Expr) -> Option<u64> {
 }
 
 fn vector_len(ty: &str) -> Option<usize> {
-    ty.strip_prefix("Vector").and_then(|n| n.parse().ok()).filter(|n| (1..=6).contains(n))
+    ty.strip_prefix("Vector")
+        .and_then(|n| n.parse().ok())
+        .filter(|n| (1..=6).contains(n))
 }

@@ -31,7 +31,7 @@ pub enum Error {
     },
     /// The state became non-finite or left the divergence limit.
     #[error(
-        "{method} diverged at step {step} (t = {t}): component `{component}` = {value} \
+        "{method} diverged at step {step} (t = {t}): component `{component}` = {value:e} \
          (limit {limit:e}); reduce dt or choose a more stable method"
     )]
     Diverged {

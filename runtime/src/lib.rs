@@ -9,13 +9,14 @@ pub mod clock;
 mod error;
 pub mod integrators;
 mod method;
-mod newton;
 mod model;
+mod newton;
 pub mod output;
 #[cfg(feature = "plot")]
 pub mod plot;
 pub mod reference;
 mod simulation;
+pub mod stability;
 mod stepper;
 mod trajectory;
 
@@ -23,9 +24,9 @@ pub use clock::{FixedTimestep, Tick};
 pub use error::{Error, Result};
 pub use integrators::Integrator;
 pub use method::Method;
-pub use newton::NewtonOptions;
 pub use model::{DenseMatrix, Jacobian, Model, SecondOrder, State, Unavailable};
 pub use nalgebra;
+pub use newton::NewtonOptions;
 pub use simulation::{Length, RunOptions, Simulation};
 pub use stepper::Stepper;
 pub use trajectory::{Sample, Trajectory};

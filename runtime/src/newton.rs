@@ -16,6 +16,9 @@ pub struct NewtonOptions {
 
 impl Default for NewtonOptions {
     fn default() -> Self {
-        NewtonOptions { tol: 1e-10, max_iters: 20 }
+        NewtonOptions {
+            tol: 1e-10,
+            max_iters: 20,
+        }
     }
 }

@@ -60,51 +60,100 @@ pub fn energy_with<S: State>(
         })?;
         let scale = if look.relative { e0 } else { 1.0 };
         let points: Vec<(f64, f64)> = run.energies().map(|(t, e)| (t, e / scale)).collect();
-        series.push(Series {
-            label: (*label).to_owned(),
-            points,
-        });
+        series.push(Series::line(*label, points));
     }
-    let y_label = if look.relative {
-        "E(t) / E(0)"
-    } else {
-        "energy"
-    };
     let chart = Chart {
-        title: &look.title,
-        x_label: "t",
-        y_label,
+        title: look.title.clone(),
+        x_label: "t".to_owned(),
+        y_label: if look.relative {
+            "E(t) / E(0)"
+        } else {
+            "energy"
+        }
+        .to_owned(),
+        log_x: false,
         log_y: look.log_y,
         series,
+        legend: Legend::UpperLeft,
     };
     chart.write(path, look.size)
 }
 
-/// One labelled line.
-pub(crate) struct Series {
-    pub(crate) label: String,
-    pub(crate) points: Vec<(f64, f64)>,
+/// One labelled series of a [`Chart`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Series {
+    /// Legend text.
+    pub label: String,
+    /// (x, y) points; non-finite ones (and non-positive ones on a log axis) are skipped.
+    pub points: Vec<(f64, f64)>,
+    /// Draw markers at the points instead of a line through them.
+    pub markers: bool,
 }
 
-/// A line chart of several series, the shared drawing code of every odyn chart.
-pub(crate) struct Chart<'a> {
-    pub(crate) title: &'a str,
-    pub(crate) x_label: &'a str,
-    pub(crate) y_label: &'a str,
-    pub(crate) log_y: bool,
-    pub(crate) series: Vec<Series>,
+impl Series {
+    /// A line through `points`.
+    pub fn line(label: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        Series {
+            label: label.into(),
+            points,
+            markers: false,
+        }
+    }
+
+    /// Markers at `points`.
+    pub fn markers(label: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        Series {
+            label: label.into(),
+            points,
+            markers: true,
+        }
+    }
 }
 
-impl Chart<'_> {
-    pub(crate) fn write(&self, path: &Path, size: (u32, u32)) -> Result<()> {
+/// A chart of several series, linear or logarithmic on each axis, written as PNG or SVG.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct Chart {
+    /// Title above the plot.
+    pub title: String,
+    /// Label of the horizontal axis.
+    pub x_label: String,
+    /// Label of the vertical axis.
+    pub y_label: String,
+    /// Logarithmic horizontal axis.
+    pub log_x: bool,
+    /// Logarithmic vertical axis.
+    pub log_y: bool,
+    /// The series, drawn in order with the `tab10` colours.
+    pub series: Vec<Series>,
+    /// Where the legend goes (default upper left).
+    pub legend: Legend,
+}
+
+/// A corner for the legend of a [`Chart`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Legend {
+    /// Upper left.
+    #[default]
+    UpperLeft,
+    /// Upper right.
+    UpperRight,
+    /// Lower left.
+    LowerLeft,
+    /// Lower right.
+    LowerRight,
+}
+
+impl Chart {
+    /// Draws the chart at `size` pixels and writes it atomically to `path` (`.png` or `.svg`).
+    pub fn write(&self, path: impl AsRef<Path>, size: (u32, u32)) -> Result<()> {
+        let path = path.as_ref();
         register_bundled_font(path)?;
-        let finite =
-            |&(x, y): &(f64, f64)| x.is_finite() && y.is_finite() && (!self.log_y || y > 0.0);
-        let points = self
-            .series
-            .iter()
-            .flat_map(|s| s.points.iter().copied().filter(finite));
-        let (x, y) = bounds(points).ok_or_else(|| {
+        let (x, y) = bounds(
+            self.series
+                .iter()
+                .flat_map(|s| s.points.iter().copied().filter(|&p| self.drawable(p))),
+        )
+        .ok_or_else(|| {
             Error::invalid(
                 "plot",
                 "no finite points to draw (on a log axis, no positive ones)",
@@ -132,6 +181,19 @@ impl Chart<'_> {
         }
     }
 
+    fn drawable(&self, (x, y): (f64, f64)) -> bool {
+        x.is_finite() && y.is_finite() && (!self.log_x || x > 0.0) && (!self.log_y || y > 0.0)
+    }
+
+    /// A point as drawn: logarithmic axes are drawn linearly in log₁₀ of the data (plotters' own
+    /// log axis cannot span the hundreds of decades a diverging run covers).
+    fn project(&self, (x, y): (f64, f64)) -> (f64, f64) {
+        (
+            if self.log_x { x.log10() } else { x },
+            if self.log_y { y.log10() } else { y },
+        )
+    }
+
     fn draw<DB: DrawingBackend>(
         &self,
         root: &DrawingArea<DB, Shift>,
@@ -140,51 +202,27 @@ impl Chart<'_> {
     ) -> std::result::Result<(), String> {
         let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
         root.fill(&WHITE).map_err(e)?;
-        let mut builder = ChartBuilder::on(root);
-        builder
-            .caption(self.title, ("sans-serif", 24))
+        let (x0, y0) = self.project((x0, y0));
+        let (x1, y1) = self.project((x1, y1));
+        let (x0, x1) = pad(x0, x1);
+        let (y0, y1) = pad(y0, y1);
+        let mut chart = ChartBuilder::on(root)
+            .caption(&self.title, ("sans-serif", 24))
             .margin(16)
             .x_label_area_size(48)
-            .y_label_area_size(80);
-        if self.log_y {
-            let (lo, hi) = (y0 / 1.5, y1 * 1.5);
-            let mut chart = builder
-                .build_cartesian_2d(x0..x1, (lo..hi).log_scale())
-                .map_err(e)?;
-            chart
-                .configure_mesh()
-                .x_desc(self.x_label)
-                .y_desc(self.y_label)
-                .y_label_formatter(&|v| format!("{v:.0e}"))
-                .label_style(("sans-serif", 16))
-                .draw()
-                .map_err(e)?;
-            self.draw_series(&mut chart).map_err(e)?;
-        } else {
-            let pad = 0.05 * (y1 - y0).max(1e-12 * y1.abs().max(1.0));
-            let mut chart = builder
-                .build_cartesian_2d(x0..x1, (y0 - pad)..(y1 + pad))
-                .map_err(e)?;
-            chart
-                .configure_mesh()
-                .x_desc(self.x_label)
-                .y_desc(self.y_label)
-                .label_style(("sans-serif", 16))
-                .draw()
-                .map_err(e)?;
-            self.draw_series(&mut chart).map_err(e)?;
-        }
-        root.present().map_err(e)
-    }
-
-    fn draw_series<'c, DB, Y>(
-        &self,
-        chart: &mut ChartContext<'c, DB, Cartesian2d<plotters::coord::types::RangedCoordf64, Y>>,
-    ) -> std::result::Result<(), DrawingAreaErrorKind<DB::ErrorType>>
-    where
-        DB: DrawingBackend + 'c,
-        Y: Ranged<ValueType = f64>,
-    {
+            .y_label_area_size(90)
+            .build_cartesian_2d(x0..x1, y0..y1)
+            .map_err(e)?;
+        let (log_x, log_y) = (self.log_x, self.log_y);
+        chart
+            .configure_mesh()
+            .x_desc(&self.x_label)
+            .y_desc(&self.y_label)
+            .x_label_formatter(&|v| axis_label(*v, log_x))
+            .y_label_formatter(&|v| axis_label(*v, log_y))
+            .label_style(("sans-serif", 16))
+            .draw()
+            .map_err(e)?;
         for (i, s) in self.series.iter().enumerate() {
             let (r, g, b) = PALETTE[i % PALETTE.len()];
             let color = RGBColor(r, g, b).to_rgba();
@@ -193,9 +231,18 @@ impl Chart<'_> {
                 .points
                 .iter()
                 .copied()
-                .filter(|(x, y)| x.is_finite() && y.is_finite());
-            chart
-                .draw_series(LineSeries::new(points, style))?
+                .filter(|&p| self.drawable(p))
+                .map(|p| self.project(p));
+            let drawn = if s.markers {
+                chart
+                    .draw_series(points.map(|p| Circle::new(p, 5, style.filled())))
+                    .map_err(e)?
+            } else {
+                chart
+                    .draw_series(LineSeries::new(points, style))
+                    .map_err(e)?
+            };
+            drawn
                 .label(s.label.as_str())
                 .legend(move |(x, y)| PathElement::new([(x, y), (x + 24, y)], style));
         }
@@ -204,8 +251,38 @@ impl Chart<'_> {
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)
             .label_font(("sans-serif", 16))
-            .position(SeriesLabelPosition::UpperLeft)
+            .position(match self.legend {
+                Legend::UpperLeft => SeriesLabelPosition::UpperLeft,
+                Legend::UpperRight => SeriesLabelPosition::UpperRight,
+                Legend::LowerLeft => SeriesLabelPosition::LowerLeft,
+                Legend::LowerRight => SeriesLabelPosition::LowerRight,
+            })
             .draw()
+            .map_err(e)?;
+        root.present().map_err(e)
+    }
+}
+
+/// Widens a range a little (and a degenerate one to a unit) so lines do not sit on the frame.
+fn pad(lo: f64, hi: f64) -> (f64, f64) {
+    let span = if hi > lo { hi - lo } else { 1.0 };
+    (lo - 0.05 * span, hi + 0.05 * span)
+}
+
+/// A tick label: on a log axis `v` is log₁₀ of the value.
+fn axis_label(v: f64, log: bool) -> String {
+    if log {
+        if (v - v.round()).abs() < 1e-9 {
+            format!("1e{}", v.round())
+        } else {
+            format!("{:.1e}", 10f64.powf(v))
+        }
+    } else if v != 0.0 && (v.abs() >= 1e5 || v.abs() < 1e-3) {
+        format!("{v:.0e}")
+    } else {
+        // Six significant digits, so 0.6000000000000001 reads 0.6.
+        let scale = 10f64.powi(5 - v.abs().max(1e-300).log10().floor() as i32);
+        format!("{}", (v * scale).round() / scale)
     }
 }
 

@@ -5,7 +5,9 @@ use crate::integrators::{
     VelocityVerlet,
 };
 use crate::stepper::{DEFAULT_DIVERGENCE_LIMIT, check_dt};
-use crate::{Error, Method, Model, NewtonOptions, Result, Sample, SecondOrder, Stepper, Trajectory};
+use crate::{
+    Error, Method, Model, NewtonOptions, Result, Sample, SecondOrder, Stepper, Trajectory,
+};
 
 /// How long a run lasts.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -149,9 +151,8 @@ impl<'m, M: Model> Simulation<'m, M> {
         let method = self.options.method;
         if method.needs_jacobian() {
             let Some(jacobian) = self.model.as_jacobian() else {
-                return Err(self.unsupported(
-                    "it has no Jacobian (its `#[system]` says `jacobian = false`)",
-                ));
+                return Err(self
+                    .unsupported("it has no Jacobian (its `#[system]` says `jacobian = false`)"));
             };
             return plan.drive::<_, ImplicitEuler<_>>(jacobian);
         }
@@ -271,7 +272,7 @@ impl<S: crate::State> Plan<S> {
     {
         let mut stepper =
             Stepper::<N, I>::with_newton(model, self.initial, self.t0, self.dt, &self.newton)?
-            .with_divergence_limit(self.divergence_limit);
+                .with_divergence_limit(self.divergence_limit);
         let capacity = (self.steps / self.record_every + 2).min(1 << 20) as usize;
         let mut samples = Vec::with_capacity(capacity);
         let record = |stepper: &Stepper<'_, N, I>, samples: &mut Vec<Sample<S>>| {

@@ -174,7 +174,10 @@ pub struct VanDerPol {
 #[system]
 impl VanDerPol {
     fn derivative(&self) -> VanDerPolState {
-        VanDerPolState { y1: self.y2, y2: self.mu * (1.0 - self.y1.powi(2)) * self.y2 - self.y1 }
+        VanDerPolState {
+            y1: self.y2,
+            y2: self.mu * (1.0 - self.y1.powi(2)) * self.y2 - self.y1,
+        }
     }
 }
 
@@ -195,7 +198,11 @@ impl Robertson {
         let slow = 0.04 * self.a;
         let exchange = 1e4 * self.b * self.c;
         let fast = 3e7 * self.b * self.b;
-        RobertsonState { a: -slow + exchange, b: slow - exchange - fast, c: fast }
+        RobertsonState {
+            a: -slow + exchange,
+            b: slow - exchange - fast,
+            c: fast,
+        }
     }
 }
 

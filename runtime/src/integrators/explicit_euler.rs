@@ -1,7 +1,7 @@
 //! Explicit (forward) Euler.
 
 use super::{Integrator, axpy};
-use crate::{Method, NewtonOptions, Result, Model, State};
+use crate::{Method, Model, NewtonOptions, Result, State};
 
 /// Explicit (forward) Euler: yₙ₊₁ = yₙ + h·f(tₙ, yₙ).
 ///

@@ -61,7 +61,12 @@ impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
             self.evaluations.force += 1;
             let rhs = self.update.as_mut_slice();
             residual = 0.0;
-            let terms = self.start.as_slice().iter().zip(self.force.as_slice()).zip(y.as_slice());
+            let terms = self
+                .start
+                .as_slice()
+                .iter()
+                .zip(self.force.as_slice())
+                .zip(y.as_slice());
             for (bi, ((y0, f), yk)) in rhs.iter_mut().zip(terms) {
                 *bi = y0 + h * f - yk;
                 residual = residual.max(bi.abs());
@@ -70,7 +75,11 @@ impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
             self.evaluations.jacobian += 1;
             self.matrix.set_identity_minus(h, &self.jacobian);
             if !self.matrix.solve_in_place(rhs) {
-                return Err(Error::NewtonDidNotConverge { t: t1, iters: iter, residual });
+                return Err(Error::NewtonDidNotConverge {
+                    t: t1,
+                    iters: iter,
+                    residual,
+                });
             }
             let mut converged = true;
             for (yi, di) in y.as_mut_slice().iter_mut().zip(rhs.iter()) {
@@ -81,7 +90,11 @@ impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
                 return Ok(());
             }
         }
-        Err(Error::NewtonDidNotConverge { t: t1, iters: self.newton.max_iters, residual })
+        Err(Error::NewtonDidNotConverge {
+            t: t1,
+            iters: self.newton.max_iters,
+            residual,
+        })
     }
 
     fn evaluations(&self, _: u64) -> Evaluations {

@@ -1,7 +1,7 @@
 //! The classical fourth-order Runge–Kutta method.
 
 use super::{Integrator, set_axpy};
-use crate::{Method, NewtonOptions, Result, Model, State};
+use crate::{Method, Model, NewtonOptions, Result, State};
 
 /// Classical Runge–Kutta: k₁ = f(tₙ, yₙ), k₂ = f(tₙ + h/2, yₙ + h/2·k₁),
 /// k₃ = f(tₙ + h/2, yₙ + h/2·k₂), k₄ = f(tₙ + h, yₙ + h·k₃),

@@ -1,0 +1,85 @@
+//! The extremes suite: k ∈ {1, 10³, 10⁶, 10⁹} × dt ∈ {10⁻⁶, 10⁻³, 1/60, 0.1, 1} × every method on
+//! an undamped spring. Every cell either finishes finite or returns a typed divergence; nothing
+//! panics; implicit Euler finishes every cell; and each outcome is the one theory predicts.
+
+mod common;
+
+use common::Oscillator;
+use odyn::Error;
+use odyn::prelude::*;
+
+const STEPS: u64 = 1000;
+
+#[test]
+fn every_cell_is_finite_or_a_typed_divergence_as_theory_predicts() {
+    let mut diverged = 0;
+    for k in [1.0, 1e3, 1e6, 1e9] {
+        let omega: f64 = f64::sqrt(k);
+        let osc = Oscillator {
+            x: 1.0,
+            v: 0.0,
+            omega,
+        };
+        for dt in [1e-6, 1e-3, 1.0 / 60.0, 0.1, 1.0] {
+            let h = omega * dt;
+            for method in Method::ALL {
+                let result = osc
+                    .simulate()
+                    .integrator(method)
+                    .dt(dt)
+                    .steps(STEPS)
+                    .record_every(STEPS)
+                    .run();
+                let cell = format!("{method} k = {k:e} dt = {dt}");
+                match result {
+                    Ok(run) => {
+                        let ratio = run.energy_ratio().unwrap();
+                        assert!(ratio.is_finite(), "{cell}");
+                        match method {
+                            // Closed forms: ×(1 + h²) per step and ×1/(1 + h²) per step.
+                            Method::ExplicitEuler => assert!(
+                                (ratio / (1.0 + h * h).powi(STEPS as i32) - 1.0).abs() < 1e-9,
+                                "{cell}: {ratio}"
+                            ),
+                            Method::ImplicitEuler => {
+                                let expected = (1.0 + h * h).powi(-(STEPS as i32));
+                                assert!(
+                                    ratio <= expected * (1.0 + 1e-9) + 1e-300,
+                                    "{cell}: {ratio} vs {expected}"
+                                );
+                            }
+                            Method::Rk4 => assert!(
+                                h < 2.0 * 2f64.sqrt() && ratio <= 1.0 + 1e-12,
+                                "{cell}: {ratio}"
+                            ),
+                            _ => assert!(
+                                h < 2.0 && ratio <= 2.0 / (2.0 - h) + 1e-9,
+                                "{cell}: {ratio}"
+                            ),
+                        }
+                    }
+                    Err(Error::Diverged { step, .. }) => {
+                        diverged += 1;
+                        assert!(step <= STEPS, "{cell}");
+                        match method {
+                            Method::ImplicitEuler => panic!("{cell}: implicit Euler diverged"),
+                            // Amplitude (1 + h²)^{n/2}, and |v| ≈ ω·|x|, passes 1e100 within n steps.
+                            Method::ExplicitEuler => assert!(
+                                (STEPS as f64 / 2.0) * (h * h).ln_1p() + omega.max(1.0).ln()
+                                    > 100.0 * 10f64.ln() * 0.9,
+                                "{cell}"
+                            ),
+                            Method::Rk4 => assert!(h > 2.0 * 2f64.sqrt(), "{cell}"),
+                            _ => assert!(h > 2.0, "{cell}"),
+                        }
+                    }
+                    Err(other) => panic!("{cell}: unexpected {other}"),
+                }
+            }
+        }
+    }
+    assert!(
+        diverged > 30,
+        "the grid should reach past every explicit limit, diverged {diverged}"
+    );
+}
