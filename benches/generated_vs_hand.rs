@@ -7,6 +7,7 @@
 
 use std::hint::black_box;
 
+use odyn::NewtonOptions;
 use odyn::integrators::{
     ExplicitEuler, Integrator, Leapfrog, PositionVerlet, Rk4, SymplecticEuler, VelocityVerlet,
 };
@@ -108,9 +109,10 @@ fn lorenz() -> Lorenz {
 /// Steps a model with integrator `I` through the `Integrator` trait.
 fn generated<M: Model, I: Integrator<M>>(model: &M) -> M::State {
     let mut state = model.state();
-    let mut integrator = I::start(model, 0.0, DT, &state);
+    let mut integrator = I::start(model, 0.0, DT, &state, &NewtonOptions::default());
     for n in 0..STEPS {
-        integrator.step(model, n as f64 * DT, &mut state);
+        // Explicit steps cannot fail; the `Result` is for implicit ones.
+        let _ = integrator.step(model, n as f64 * DT, &mut state);
     }
     state
 }

@@ -51,6 +51,6 @@ def solve(name, f, jac, y0, times):
 
 if __name__ == "__main__":
     solve("van der Pol, mu = 1000, y(0) = (2, 0)", van_der_pol, van_der_pol_jac, [2.0, 0.0],
-          [1.0, 10.0, 100.0, 1000.0, 3000.0])
+          [1.0, 10.0, 100.0, 808.0, 1000.0, 3000.0])
     solve("Robertson, y(0) = (1, 0, 0)", robertson, robertson_jac, [1.0, 0.0, 0.0],
           [0.4, 4.0, 40.0, 400.0, 4e4])

@@ -202,23 +202,71 @@ fn newton_failure_is_a_typed_error() {
         y2: 0.0,
         mu: 1000.0,
     };
-    let one_iteration = NewtonOptions {
+    // One iteration can never confirm convergence; without halvings the first step fails.
+    let strict = NewtonOptions {
         max_iters: 1,
+        max_halvings: 0,
         ..NewtonOptions::default()
     };
-    match model
-        .simulate()
-        .dt(0.1)
-        .steps(10)
-        .newton(one_iteration)
-        .run()
-    {
+    match model.simulate().dt(0.1).steps(10).newton(strict).run() {
         Err(Error::NewtonDidNotConverge { t, iters, residual }) => {
             assert_eq!((t, iters), (0.1, 1));
             assert!(residual > 0.0 && residual.is_finite());
         }
         other => panic!("expected NewtonDidNotConverge, got {other:?}"),
     }
+    // With halvings it retries down to dt/2³ and reports the failing sub-step's end.
+    let halving = NewtonOptions {
+        max_iters: 1,
+        max_halvings: 3,
+        ..NewtonOptions::default()
+    };
+    match model.simulate().dt(0.1).steps(10).newton(halving).run() {
+        Err(Error::NewtonDidNotConverge { t, .. }) => assert!((t - 0.1 / 8.0).abs() < 1e-15, "{t}"),
+        other => panic!("expected NewtonDidNotConverge, got {other:?}"),
+    }
+}
+
+/// At the relaxation jump of van der Pol (t ≈ 807) plain Newton from the previous state cannot
+/// find the implicit Euler solution at dt = 0.05; halving the failing steps carries the run
+/// through, on the same recorded grid.
+#[test]
+fn halving_carries_newton_through_the_relaxation_jump() {
+    let model = VanDerPol {
+        y1: 2.0,
+        y2: 0.0,
+        mu: 1000.0,
+    };
+    let strict = NewtonOptions {
+        max_halvings: 0,
+        ..NewtonOptions::default()
+    };
+    let failure = model
+        .simulate()
+        .dt(0.05)
+        .duration(900.0)
+        .newton(strict)
+        .run()
+        .unwrap_err();
+    assert!(
+        matches!(failure, Error::NewtonDidNotConverge { t, .. } if (800.0..810.0).contains(&t)),
+        "{failure}"
+    );
+    let run = model
+        .simulate()
+        .dt(0.05)
+        .duration(900.0)
+        .record_every(100)
+        .run()
+        .unwrap();
+    assert_eq!(run.steps, 18_000);
+    assert!(
+        run.samples
+            .iter()
+            .all(|s| (s.t / 5.0 - (s.t / 5.0).round()).abs() < 1e-9)
+    );
+    // After the jump the state is on the lower branch of the slow manifold.
+    assert!(run.last().state.y1 < -1.0, "{:?}", run.last().state);
 }
 
 #[test]

@@ -137,8 +137,8 @@ impl Graph {
     pub(crate) fn add(&mut self, a: ExprId, b: ExprId) -> ExprId {
         match (self.constant(a), self.constant(b)) {
             (Some(x), Some(y)) => self.num(x + y),
-            (Some(x), _) if x == 0.0 => b,
-            (_, Some(y)) if y == 0.0 => a,
+            (Some(0.0), _) => b,
+            (_, Some(0.0)) => a,
             _ => {
                 // x + (−y) stays as written; order the operands so a + b and b + a share a node.
                 let (a, b) = if a <= b { (a, b) } else { (b, a) };
@@ -155,11 +155,11 @@ impl Graph {
     pub(crate) fn mul(&mut self, a: ExprId, b: ExprId) -> ExprId {
         match (self.constant(a), self.constant(b)) {
             (Some(x), Some(y)) => self.num(x * y),
-            (Some(x), _) | (_, Some(x)) if x == 0.0 => self.num(0.0),
-            (Some(x), _) if x == 1.0 => b,
-            (_, Some(y)) if y == 1.0 => a,
-            (Some(x), _) if x == -1.0 => self.neg(b),
-            (_, Some(y)) if y == -1.0 => self.neg(a),
+            (Some(0.0), _) | (_, Some(0.0)) => self.num(0.0),
+            (Some(1.0), _) => b,
+            (_, Some(1.0)) => a,
+            (Some(-1.0), _) => self.neg(b),
+            (_, Some(-1.0)) => self.neg(a),
             _ => {
                 let (a, b) = if a <= b { (a, b) } else { (b, a) };
                 self.intern(Node::Mul(a, b))
@@ -170,9 +170,9 @@ impl Graph {
     pub(crate) fn div(&mut self, a: ExprId, b: ExprId) -> ExprId {
         match (self.constant(a), self.constant(b)) {
             (Some(x), Some(y)) => self.num(x / y),
-            (Some(x), _) if x == 0.0 => self.num(0.0),
-            (_, Some(y)) if y == 1.0 => a,
-            (_, Some(y)) if y == -1.0 => self.neg(a),
+            (Some(0.0), _) => self.num(0.0),
+            (_, Some(1.0)) => a,
+            (_, Some(-1.0)) => self.neg(a),
             _ => self.intern(Node::Div(a, b)),
         }
     }
@@ -197,8 +197,8 @@ impl Graph {
     pub(crate) fn powf(&mut self, a: ExprId, b: ExprId) -> ExprId {
         match (self.constant(a), self.constant(b)) {
             (Some(x), Some(y)) => self.num(x.powf(y)),
-            (_, Some(y)) if y == 1.0 => a,
-            (_, Some(y)) if y == 0.0 => self.num(1.0),
+            (_, Some(1.0)) => a,
+            (_, Some(0.0)) => self.num(1.0),
             (_, Some(y)) if y.fract() == 0.0 && y.abs() <= 64.0 => self.powi(a, y as i32),
             _ => self.intern(Node::Powf(a, b)),
         }

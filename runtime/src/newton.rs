@@ -9,9 +9,13 @@
 pub struct NewtonOptions {
     /// Mixed relative/absolute tolerance on the Newton update (default 1e-10).
     pub tol: f64,
-    /// Iterations allowed per step before the step fails with
-    /// [`crate::Error::NewtonDidNotConverge`] (default 20).
+    /// Iterations allowed per solve (default 20).
     pub max_iters: u32,
+    /// When Newton fails, the step is retried as two half steps, recursively, up to this depth
+    /// (default 12, so down to dt/4096); the recorded grid is unchanged. Past it the step fails
+    /// with [`crate::Error::NewtonDidNotConverge`]. A fold in the implicit equations — van der
+    /// Pol's relaxation jump at dt ≫ 1/μ — needs this; 0 gives strict fixed-step behaviour.
+    pub max_halvings: u32,
 }
 
 impl Default for NewtonOptions {
@@ -19,6 +23,7 @@ impl Default for NewtonOptions {
         NewtonOptions {
             tol: 1e-10,
             max_iters: 20,
+            max_halvings: 12,
         }
     }
 }

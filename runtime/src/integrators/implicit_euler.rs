@@ -8,7 +8,10 @@ use crate::{DenseMatrix, Error, Jacobian, Method, NewtonOptions, Result, State};
 /// Each step solves G(y) = y − yₙ − h·f(tₙ₊₁, y) = 0 by Newton's method from y⁰ = yₙ:
 /// (I − h·J(yᵏ))·Δ = −G(yᵏ), yᵏ⁺¹ = yᵏ + Δ, with J = ∂f/∂y the Jacobian `#[system]` derived from
 /// the model's code, and a dense LU on the stack (`nalgebra`). It stops when
-/// |Δᵢ| ≤ tol·(1 + |yᵢ|) for every component, or fails with [`Error::NewtonDidNotConverge`].
+/// |Δᵢ| ≤ tol·(1 + |yᵢ|) for every component. When the iteration fails — too many iterations,
+/// a singular matrix, or updates that stop shrinking — the step is retried as two half steps,
+/// recursively up to [`NewtonOptions::max_halvings`] deep, and past that fails with
+/// [`Error::NewtonDidNotConverge`]. The recorded grid keeps the fixed dt.
 ///
 /// - **Order** 1.
 /// - **Energy**: on ẍ = −ω²x the step divides (x, v/ω) by 1 − iωh, so the energy is multiplied by
@@ -52,10 +55,37 @@ impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
     }
 
     fn step(&mut self, model: &M, t: f64, y: &mut M::State) -> Result<()> {
-        let h = self.dt;
-        let t1 = t + h;
+        self.advance(model, t, self.dt, y, 0)
+    }
+
+    fn evaluations(&self, _: u64) -> Evaluations {
+        self.evaluations
+    }
+}
+
+impl<M: Jacobian> ImplicitEuler<M> {
+    /// One step of size `h` from `t`, retried as two half steps when Newton fails.
+    fn advance(&mut self, model: &M, t: f64, h: f64, y: &mut M::State, depth: u32) -> Result<()> {
         self.start.clone_from(y);
+        match self.solve(model, t + h, h, y) {
+            Err(_) if depth < self.newton.max_halvings => {
+                // The failure path may allocate (a dynamic state's copy); success never does.
+                y.clone_from(&self.start);
+                let saved = y.clone();
+                if let Err(error) = self.advance(model, t, 0.5 * h, y, depth + 1) {
+                    y.clone_from(&saved);
+                    return Err(error);
+                }
+                self.advance(model, t + 0.5 * h, 0.5 * h, y, depth + 1)
+            }
+            result => result,
+        }
+    }
+
+    /// Newton's method for y = yₙ + h·f(t₁, y), from y = yₙ = `self.start`.
+    fn solve(&mut self, model: &M, t1: f64, h: f64, y: &mut M::State) -> Result<()> {
         let mut residual = f64::NAN;
+        let mut previous_update = f64::INFINITY;
         for iter in 1..=self.newton.max_iters {
             model.derivative(t1, y, &mut self.force);
             self.evaluations.force += 1;
@@ -81,6 +111,18 @@ impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
                     residual,
                 });
             }
+            // Newton that stops contracting (θ = ‖Δₖ‖/‖Δₖ₋₁‖ ≥ 1) is heading for another root
+            // of the implicit equations, or none: give up so the step can be halved (the test of
+            // Hairer & Wanner 1996, §IV.8).
+            let update = rhs.iter().fold(0.0, |m: f64, d| m.max(d.abs()));
+            if update.is_nan() || update >= previous_update {
+                return Err(Error::NewtonDidNotConverge {
+                    t: t1,
+                    iters: iter,
+                    residual,
+                });
+            }
+            previous_update = update;
             let mut converged = true;
             for (yi, di) in y.as_mut_slice().iter_mut().zip(rhs.iter()) {
                 *yi += di;
@@ -95,9 +137,5 @@ impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
             iters: self.newton.max_iters,
             residual,
         })
-    }
-
-    fn evaluations(&self, _: u64) -> Evaluations {
-        self.evaluations
     }
 }
