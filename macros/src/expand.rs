@@ -204,3 +204,36 @@ fn with_error(item: impl ToTokens, error: syn::Error) -> TokenStream {
     let error = error.to_compile_error();
     quote!(#item #error)
 }
+
+#[cfg(test)]
+mod tests {
+    use quote::quote;
+
+    /// The impl half of the expansion of the Lorenz model, as the compiler receives it.
+    fn lorenz() -> String {
+        let input = quote! {
+            []
+            pub struct Lorenz {
+                #[state] pub x: f64, #[state] pub y: f64, #[state] pub z: f64,
+                pub sigma: f64, pub rho: f64, pub beta: f64,
+            }
+            impl Lorenz {
+                fn derivative(&self) -> LorenzState {
+                    LorenzState {
+                        x: self.sigma * (self.y - self.x),
+                        y: self.x * (self.rho - self.z) - self.y,
+                        z: self.x * self.y - self.beta * self.z,
+                    }
+                }
+            }
+        };
+        super::system_impl(input).to_string()
+    }
+
+    #[test]
+    fn lorenz_expansion_snapshot() {
+        let expanded = lorenz();
+        eprintln!("{expanded}");
+        assert!(!expanded.contains("compile_error"), "{expanded}");
+    }
+}

@@ -331,10 +331,21 @@ pub(crate) fn jacobian(
         })
         .collect::<Vec<_>>();
     let jac = format_ident!("__odyn_jac", span = Span::mixed_site());
-    let stores = entries.iter().map(|&(r, c, d)| {
-        let value = operand(d, &graph);
-        quote!(#jac[(#r, #c)] = #value;)
+    // The whole matrix in one expression, column by column, structural zeros as literals: the
+    // optimiser keeps it in registers, as it would a hand-written `Matrix3::new(..)`.
+    let n_usize = model.len();
+    let columns = (0..n_usize).map(|c| {
+        let rows = (0..n_usize).map(|r| match entries.iter().find(|e| e.0 == r && e.1 == c) {
+            Some(&(_, _, d)) => operand(d, &graph),
+            None => quote!(0.0f64),
+        });
+        quote!([#(#rows),*])
     });
+    let store = quote! {
+        *#jac = ::odyn::__private::nalgebra::SMatrix::from_array_storage(
+            ::odyn::__private::nalgebra::ArrayStorage([#(#columns),*]),
+        );
+    };
     let nonzeros = entries.iter().map(|&(r, c, _)| quote!((#r, #c)));
     let prologue = prologue.iter().map(|p| match p {
         Prologue::Stmt(stmt) => stmt.to_token_stream(),
@@ -368,7 +379,7 @@ pub(crate) fn jacobian(
             fn __odyn_jacobian(#receiver, #time, #(#params,)* #jac: &mut #matrix) {
                 #(#prologue)*
                 #(#lets)*
-                #(#stores)*
+                #store
             }
         }
         #[automatically_derived]

@@ -82,8 +82,7 @@ pub trait Jacobian: Model {
     /// Jacobian is zero at every state.
     const NONZEROS: &'static [(usize, usize)];
 
-    /// Writes ∂f/∂y at (t, y) into `jacobian`. Only the [`Jacobian::NONZEROS`] are written: pass
-    /// a matrix whose other entries are zero (as [`DenseMatrix::zeros`] makes it).
+    /// Writes ∂f/∂y at (t, y) into `jacobian`, every entry.
     fn jacobian(&self, t: f64, y: &Self::State, jacobian: &mut Self::Matrix);
 }
 
@@ -106,12 +105,15 @@ pub trait DenseMatrix: Clone + Debug {
 macro_rules! dense_matrix {
     ($($n:literal)*) => {$(
         impl DenseMatrix for nalgebra::SMatrix<f64, $n, $n> {
+            #[inline]
             fn zeros() -> Self {
                 nalgebra::SMatrix::zeros()
             }
+            #[inline]
             fn entry(&self, row: usize, column: usize) -> f64 {
                 self[(row, column)]
             }
+            #[inline]
             fn dim(&self) -> usize {
                 $n
             }
