@@ -207,33 +207,82 @@ fn with_error(item: impl ToTokens, error: syn::Error) -> TokenStream {
 
 #[cfg(test)]
 mod tests {
+    use proc_macro2::TokenStream;
     use quote::quote;
 
-    /// The impl half of the expansion of the Lorenz model, as the compiler receives it.
-    fn lorenz() -> String {
-        let input = quote! {
-            []
-            pub struct Lorenz {
-                #[state] pub x: f64, #[state] pub y: f64, #[state] pub z: f64,
-                pub sigma: f64, pub rho: f64, pub beta: f64,
-            }
-            impl Lorenz {
-                fn derivative(&self) -> LorenzState {
-                    LorenzState {
-                        x: self.sigma * (self.y - self.x),
-                        y: self.x * (self.rho - self.z) - self.y,
-                        z: self.x * self.y - self.beta * self.z,
-                    }
-                }
-            }
-        };
-        super::system_impl(input).to_string()
+    /// Checks the pretty-printed expansion of `input` against `tests/snapshots/<name>.rs`;
+    /// `ODYN_BLESS=1 cargo test -p odyn-macros` rewrites the snapshots after a reviewed change.
+    fn snapshot(name: &str, input: TokenStream) {
+        let expanded = super::system_impl(input);
+        let file: syn::File = syn::parse2(expanded.clone()).unwrap_or_else(|e| panic!("{e}: {expanded}"));
+        let pretty = prettyplease::unparse(&file);
+        assert!(!pretty.contains("compile_error"), "{pretty}");
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/snapshots").join(format!("{name}.rs"));
+        if std::env::var_os("ODYN_BLESS").is_some() {
+            std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+            std::fs::write(&path, &pretty).unwrap();
+        }
+        let expected = std::fs::read_to_string(&path).unwrap_or_default();
+        assert_eq!(pretty, expected, "expansion of `{name}` changed; review, then bless with ODYN_BLESS=1");
     }
 
     #[test]
-    fn lorenz_expansion_snapshot() {
-        let expanded = lorenz();
-        eprintln!("{expanded}");
-        assert!(!expanded.contains("compile_error"), "{expanded}");
+    fn spring_expansion() {
+        snapshot(
+            "spring",
+            quote! {
+                [integrator = SymplecticEuler, dt = 0.016]
+                pub struct Spring {
+                    #[position] pub x: f64, #[velocity] pub v: f64,
+                    pub k: f64, pub b: f64, pub m: f64,
+                }
+                impl Spring {
+                    fn acceleration(&self) -> f64 { (-self.k * self.x - self.b * self.v) / self.m }
+                    fn energy(&self) -> f64 { 0.5 * self.m * self.v * self.v + 0.5 * self.k * self.x * self.x }
+                }
+            },
+        );
+    }
+
+    #[test]
+    fn lorenz_expansion() {
+        snapshot(
+            "lorenz",
+            quote! {
+                []
+                pub struct Lorenz {
+                    #[state] pub x: f64, #[state] pub y: f64, #[state] pub z: f64,
+                    pub sigma: f64, pub rho: f64, pub beta: f64,
+                }
+                impl Lorenz {
+                    fn derivative(&self) -> LorenzState {
+                        LorenzState {
+                            x: self.sigma * (self.y - self.x),
+                            y: self.x * (self.rho - self.z) - self.y,
+                            z: self.x * self.y - self.beta * self.z,
+                        }
+                    }
+                }
+            },
+        );
+    }
+
+    #[test]
+    fn kepler_expansion() {
+        snapshot(
+            "kepler",
+            quote! {
+                [integrator = Leapfrog]
+                pub struct Kepler {
+                    #[position] pub r: Vector2<f64>, #[velocity] pub v: Vector2<f64>, pub gm: f64,
+                }
+                impl Kepler {
+                    fn acceleration(&self) -> Vector2<f64> {
+                        let r = self.r;
+                        -self.gm * r / r.norm().powi(3)
+                    }
+                }
+            },
+        );
     }
 }
