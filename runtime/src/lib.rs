@@ -17,6 +17,7 @@ pub mod plot;
 pub mod reference;
 mod simulation;
 pub mod stability;
+pub mod work_precision;
 mod stepper;
 mod trajectory;
 
