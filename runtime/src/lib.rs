@@ -17,9 +17,9 @@ pub mod plot;
 pub mod reference;
 mod simulation;
 pub mod stability;
-pub mod work_precision;
 mod stepper;
 mod trajectory;
+pub mod work_precision;
 
 pub use clock::{FixedTimestep, Tick};
 pub use error::{Error, Result};

@@ -85,7 +85,10 @@ impl KeplerOrbit {
         let b = self.a * (1.0 - self.e * self.e).sqrt();
         let rate = n / (1.0 - self.e * ecc.cos());
         let (sin, cos) = ecc.sin_cos();
-        ([self.a * (cos - self.e), b * sin], [-self.a * sin * rate, b * cos * rate])
+        (
+            [self.a * (cos - self.e), b * sin],
+            [-self.a * sin * rate, b * cos * rate],
+        )
     }
 
     /// Specific energy −GM/(2a).
@@ -102,7 +105,11 @@ mod tests {
     /// t = 0 it starts at the pericentre a(1 − e) with the vis-viva speed.
     #[test]
     fn kepler_orbit_is_consistent() {
-        let orbit = KeplerOrbit { gm: 1.0, a: 1.0, e: 0.5 };
+        let orbit = KeplerOrbit {
+            gm: 1.0,
+            a: 1.0,
+            e: 0.5,
+        };
         let ([x, y], [vx, vy]) = orbit.state_at(0.0);
         assert_eq!((x, y), (0.5, 0.0));
         assert!(vx.abs() < 1e-15 && (vy - 3f64.sqrt()).abs() < 1e-14);

@@ -118,23 +118,35 @@ pub struct WorkPrecisionSet {
 /// measurement with an infinite error, not an error.
 pub fn measure<M: Model>(model: &M, study: &WorkPrecision<M::State>) -> Result<WorkPrecisionSet> {
     if study.methods.is_empty() {
-        return Err(Error::invalid("methods", "the study has no methods to compare"));
+        return Err(Error::invalid(
+            "methods",
+            "the study has no methods to compare",
+        ));
     }
     if study.dts.is_empty() {
         return Err(Error::invalid("dts", "the study has no steps to run"));
     }
     if let Some(dt) = study.dts.iter().find(|dt| !(dt.is_finite() && **dt > 0.0)) {
-        return Err(Error::invalid("dts", format!("every step must be finite and positive, got {dt}")));
+        return Err(Error::invalid(
+            "dts",
+            format!("every step must be finite and positive, got {dt}"),
+        ));
     }
     if !(study.horizon.is_finite() && study.horizon > 0.0) {
-        return Err(Error::invalid("horizon", format!("must be finite and positive, got {}", study.horizon)));
+        return Err(Error::invalid(
+            "horizon",
+            format!("must be finite and positive, got {}", study.horizon),
+        ));
     }
     let dimension = study.initial.as_slice().len();
     let (reference, reference_error) = reference_final(model, study)?;
     if reference.len() != dimension {
         return Err(Error::invalid(
             "reference",
-            format!("has {} components but the state has {dimension}", reference.len()),
+            format!(
+                "has {} components but the state has {dimension}",
+                reference.len()
+            ),
         ));
     }
     let mut measurements = Vec::with_capacity(study.methods.len() * study.dts.len());
@@ -143,7 +155,11 @@ pub fn measure<M: Model>(model: &M, study: &WorkPrecision<M::State>) -> Result<W
             measurements.push(measure_one(model, study, method, dt, &reference)?);
         }
     }
-    Ok(WorkPrecisionSet { scene: study.scene.clone(), reference_error, measurements })
+    Ok(WorkPrecisionSet {
+        scene: study.scene.clone(),
+        reference_error,
+        measurements,
+    })
 }
 
 fn simulation<'m, M: Model>(
@@ -161,7 +177,10 @@ fn simulation<'m, M: Model>(
         .newton(study.newton)
 }
 
-fn reference_final<M: Model>(model: &M, study: &WorkPrecision<M::State>) -> Result<(Vec<f64>, f64)> {
+fn reference_final<M: Model>(
+    model: &M,
+    study: &WorkPrecision<M::State>,
+) -> Result<(Vec<f64>, f64)> {
     match &study.reference {
         Reference::Exact(y) => Ok((y(study.horizon).as_slice().to_vec(), 0.0)),
         Reference::Final(values) => Ok((values.clone(), f64::NAN)),
@@ -185,13 +204,19 @@ fn measure_one<M: Model>(
 ) -> Result<Measurement> {
     let steps_estimate = (study.horizon / dt).ceil().max(1.0) as u64;
     let every = steps_estimate.div_ceil(study.samples.max(1));
-    let (recorded, failure) = simulation(model, study, method, dt).record_every(every).run_partial()?;
+    let (recorded, failure) = simulation(model, study, method, dt)
+        .record_every(every)
+        .run_partial()?;
     let diverged = match failure {
         None => false,
         Some(Error::Diverged { .. } | Error::NewtonDidNotConverge { .. }) => true,
         Some(other) => return Err(other),
     };
-    let energy_error = if diverged { None } else { energy_error(model, study, &recorded) };
+    let energy_error = if diverged {
+        None
+    } else {
+        energy_error(model, study, &recorded)
+    };
     let mut measurement = Measurement {
         method,
         dt,
@@ -213,7 +238,11 @@ fn measure_one<M: Model>(
         let run = timed.run()?;
         let seconds = clock.elapsed().as_secs_f64();
         std::hint::black_box(run);
-        measurement.seconds = if measurement.seconds.is_nan() { seconds } else { measurement.seconds.min(seconds) };
+        measurement.seconds = if measurement.seconds.is_nan() {
+            seconds
+        } else {
+            measurement.seconds.min(seconds)
+        };
     }
     Ok(measurement)
 }
@@ -240,7 +269,10 @@ fn energy_error<M: Model>(
 }
 
 fn max_difference(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max)
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
 }
 
 impl WorkPrecisionSet {
@@ -261,7 +293,10 @@ impl WorkPrecisionSet {
             return None;
         }
         let n = points.len() as f64;
-        let (mx, my) = (points.iter().map(|p| p.0).sum::<f64>() / n, points.iter().map(|p| p.1).sum::<f64>() / n);
+        let (mx, my) = (
+            points.iter().map(|p| p.0).sum::<f64>() / n,
+            points.iter().map(|p| p.1).sum::<f64>() / n,
+        );
         let cov: f64 = points.iter().map(|(x, y)| (x - mx) * (y - my)).sum();
         let var: f64 = points.iter().map(|(x, _)| (x - mx) * (x - mx)).sum();
         Some(cov / var)
@@ -287,14 +322,23 @@ impl WorkPrecisionSet {
                 ]
             })
             .collect();
-        let header = ["scene", "method", "dt", "steps", "error", "energy_error", "seconds", "evaluations"];
+        let header = [
+            "scene",
+            "method",
+            "dt",
+            "steps",
+            "error",
+            "energy_error",
+            "seconds",
+            "evaluations",
+        ];
         write_table(path, &header, &rows)
     }
 
-    /// Draws error against wall time (`cost = Cost::Seconds`) or against evaluations, log-log,
-    /// one line per method, as PNG or SVG.
+    /// Draws `accuracy` against `cost`, log-log, one line per method, as PNG or SVG. Diverged
+    /// runs, and runs without the chosen error, are left out.
     #[cfg(feature = "plot")]
-    pub fn plot(&self, path: impl AsRef<Path>, cost: Cost) -> Result<()> {
+    pub fn plot(&self, path: impl AsRef<Path>, accuracy: Accuracy, cost: Cost) -> Result<()> {
         use crate::plot::{Chart, Legend, Series};
         let mut methods: Vec<Method> = Vec::new();
         for m in &self.measurements {
@@ -308,9 +352,17 @@ impl WorkPrecisionSet {
                 let points = self
                     .of(method)
                     .filter(|m| !m.diverged)
-                    .map(|m| match cost {
-                        Cost::Seconds => (m.error, m.seconds),
-                        Cost::Evaluations => (m.error, (m.evaluations + m.jacobian_evaluations) as f64),
+                    .filter_map(|m| {
+                        let error = match accuracy {
+                            Accuracy::FinalState => m.error,
+                            Accuracy::Energy => m.energy_error?,
+                        };
+                        Some(match cost {
+                            Cost::Seconds => (error, m.seconds),
+                            Cost::Evaluations => {
+                                (error, (m.evaluations + m.jacobian_evaluations) as f64)
+                            }
+                        })
                     })
                     .collect();
                 Series::line(method.label(), points)
@@ -320,9 +372,13 @@ impl WorkPrecisionSet {
             Cost::Seconds => ("time", "wall time (s)"),
             Cost::Evaluations => ("evaluations", "force + Jacobian evaluations"),
         };
+        let error = match accuracy {
+            Accuracy::FinalState => "final-state error",
+            Accuracy::Energy => "max relative energy error",
+        };
         Chart {
-            title: format!("{}: error against {what}", self.scene),
-            x_label: "final-state error".to_owned(),
+            title: format!("{}: {error} against {what}", self.scene),
+            x_label: error.to_owned(),
             y_label: unit.to_owned(),
             log_x: true,
             log_y: true,
@@ -331,6 +387,16 @@ impl WorkPrecisionSet {
         }
         .write(path, (960, 640))
     }
+}
+
+/// The accuracy axis of a work-precision chart.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Accuracy {
+    /// Max-norm error of the final state.
+    FinalState,
+    /// Largest relative energy error along the run (for long conservative runs, where the final
+    /// state's phase error says little).
+    Energy,
 }
 
 /// The cost axis of a work-precision chart.
