@@ -124,7 +124,20 @@ macro_rules! dense_matrix {
             #[inline]
             fn solve_in_place(&self, b: &mut [f64]) -> bool {
                 let mut rhs = nalgebra::SVector::<f64, $n>::from_column_slice(b);
-                let solved = self.lu().solve_mut(&mut rhs);
+                // Up to 3×3 nalgebra inverts in closed form (cofactors), several times faster
+                // than a pivoted LU at these sizes; the Newton matrices I − h·J are far from
+                // singular unless h·J has an eigenvalue near 1, which the singular check reports.
+                let solved = if $n <= 3 {
+                    match self.try_inverse() {
+                        Some(inverse) => {
+                            rhs = inverse * rhs;
+                            true
+                        }
+                        None => false,
+                    }
+                } else {
+                    self.lu().solve_mut(&mut rhs)
+                };
                 b.copy_from_slice(rhs.as_slice());
                 solved
             }
