@@ -214,16 +214,22 @@ mod tests {
     /// `ODYN_BLESS=1 cargo test -p odyn-macros` rewrites the snapshots after a reviewed change.
     fn snapshot(name: &str, input: TokenStream) {
         let expanded = super::system_impl(input);
-        let file: syn::File = syn::parse2(expanded.clone()).unwrap_or_else(|e| panic!("{e}: {expanded}"));
+        let file: syn::File =
+            syn::parse2(expanded.clone()).unwrap_or_else(|e| panic!("{e}: {expanded}"));
         let pretty = prettyplease::unparse(&file);
         assert!(!pretty.contains("compile_error"), "{pretty}");
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/snapshots").join(format!("{name}.rs"));
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("tests/snapshots")
+            .join(format!("{name}.rs"));
         if std::env::var_os("ODYN_BLESS").is_some() {
             std::fs::create_dir_all(path.parent().unwrap()).unwrap();
             std::fs::write(&path, &pretty).unwrap();
         }
         let expected = std::fs::read_to_string(&path).unwrap_or_default();
-        assert_eq!(pretty, expected, "expansion of `{name}` changed; review, then bless with ODYN_BLESS=1");
+        assert_eq!(
+            pretty, expected,
+            "expansion of `{name}` changed; review, then bless with ODYN_BLESS=1"
+        );
     }
 
     #[test]
