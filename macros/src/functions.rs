@@ -13,7 +13,7 @@ use syn::visit_mut::{self, VisitMut};
 use syn::{Block, Expr, FnArg, Ident, ImplItem, ImplItemFn, ItemImpl, Member, ReturnType, Type};
 
 use crate::errors::Errors;
-use crate::model::{Model, Order, Role};
+use crate::model::{Model, Order, Role, is_f64};
 
 /// The functions the macro reads; everything else in the impl block passes through untouched.
 pub(crate) struct Functions {
@@ -206,10 +206,6 @@ fn read(
         body,
         reads,
     })
-}
-
-fn is_f64(ty: &Type) -> bool {
-    matches!(ty, Type::Path(p) if p.qself.is_none() && p.path.is_ident("f64"))
 }
 
 /// Replaces `self.<state field>` with the field's local and rejects every other use of `self`.

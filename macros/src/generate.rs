@@ -232,15 +232,8 @@ pub(crate) fn model_impls(
 /// A user function re-emitted as `fn __odyn_<name>(&self, t, <state fields>) -> Output`.
 fn hidden_fn(model: &Model<'_>, name: &syn::Ident, f: &Function, with_time: bool) -> TokenStream {
     let receiver = &f.receiver;
-    let time = match &f.time {
-        Some(t) => quote!(#t),
-        None => quote!(_: f64),
-    };
-    let params = model.states.iter().map(|s| {
-        let local = state_local(s.ident);
-        let ty = s.shape.to_type();
-        quote!(#local: #ty)
-    });
+    let time = time_param(f);
+    let params = state_params(model);
     let output = &f.output;
     let body = &f.body;
     let time = if with_time {
@@ -355,15 +348,8 @@ pub(crate) fn jacobian(
         }
     });
     let receiver = &force.receiver;
-    let time = match &force.time {
-        Some(t) => quote!(#t),
-        None => quote!(_: f64),
-    };
-    let params = model.states.iter().map(|s| {
-        let local = state_local(s.ident);
-        let ty = s.shape.to_type();
-        quote!(#local: #ty)
-    });
+    let time = time_param(force);
+    let params = state_params(model);
     let fields = model.states.iter().map(|f| f.ident);
     let matrix = quote!(::odyn::__private::nalgebra::SMatrix<f64, #n, #n>);
     let count = entries.len();
@@ -393,6 +379,23 @@ pub(crate) fn jacobian(
             }
         }
     }
+}
+
+/// The time parameter of a re-emitted function: the user's own (`t: f64`), or an unused one.
+fn time_param(f: &Function) -> TokenStream {
+    match &f.time {
+        Some(t) => quote!(#t),
+        None => quote!(_: f64),
+    }
+}
+
+/// The state fields as parameters of a re-emitted function, bound to hygienic locals.
+fn state_params<'a>(model: &'a Model<'_>) -> impl Iterator<Item = TokenStream> + 'a {
+    model.states.iter().map(|s| {
+        let local = state_local(s.ident);
+        let ty = s.shape.to_type();
+        quote!(#local: #ty)
+    })
 }
 
 /// How each state component is read inside the generated Jacobian function.

@@ -16,7 +16,7 @@ use syn::{
 };
 
 use crate::ir::{ExprId, Func, Graph};
-use crate::model::{Model, Order, Role, Shape, shape_of};
+use crate::model::{Model, Order, Role, Shape, int_literal, shape_of};
 
 /// What the supported operations are, for error messages.
 const SUPPORTED: &str = "supported on the state: `+ - * /`, unary `-`, `let`, `powi`, `powf`, \
@@ -303,7 +303,7 @@ impl Lowering<'_> {
                 let i = int_literal(&index.index).ok_or_else(|| {
                     self.error(&index.index, "an index that is not an integer literal")
                 })?;
-                self.component(&base, i as usize, &index.index)
+                self.component(&base, i, &index.index)
             }
             Expr::Unary(u) if matches!(u.op, UnOp::Neg(_)) => {
                 let value = self.expr(&u.expr)?;
@@ -798,17 +798,6 @@ fn pattern_name(pat: &Pat) -> Option<String> {
     match pat {
         Pat::Ident(p) if p.subpat.is_none() => Some(p.ident.to_string()),
         Pat::Type(t) => pattern_name(&t.pat),
-        _ => None,
-    }
-}
-
-fn int_literal(e: &Expr) -> Option<u64> {
-    match e {
-        Expr::Lit(syn::ExprLit {
-            lit: Lit::Int(i), ..
-        }) => i.base10_parse().ok(),
-        Expr::Group(g) => int_literal(&g.expr),
-        Expr::Paren(p) => int_literal(&p.expr),
         _ => None,
     }
 }

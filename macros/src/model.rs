@@ -306,11 +306,13 @@ pub(crate) fn shape_of(ty: &Type) -> Option<Shape> {
     }
 }
 
-fn is_f64(ty: &Type) -> bool {
+/// Whether `ty` is plain `f64`.
+pub(crate) fn is_f64(ty: &Type) -> bool {
     matches!(ty, Type::Path(p) if p.qself.is_none() && p.path.is_ident("f64"))
 }
 
-fn int_literal(expr: &Expr) -> Option<usize> {
+/// The value of an integer literal, looking through parentheses and invisible groups.
+pub(crate) fn int_literal(expr: &Expr) -> Option<usize> {
     match expr {
         Expr::Lit(syn::ExprLit {
             lit: Lit::Int(i), ..
