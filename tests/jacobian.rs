@@ -204,6 +204,15 @@ fn vector_models_match_finite_differences() {
             ),
         });
     }
+    // 34 components: the faer-backed Jacobian.
+    let bank = Bank {
+        x: [0.0; 17],
+        v: [0.0; 17],
+    };
+    check(&bank, 0.0, 10, |r| BankState {
+        x: std::array::from_fn(|_| r.uniform(-1.0, 1.0)),
+        v: std::array::from_fn(|_| r.uniform(-1.0, 1.0)),
+    });
     let pair = Pair {
         a: 0.0,
         b: [0.0; 2],

@@ -174,17 +174,6 @@ pub(crate) fn system_impl(input: TokenStream) -> TokenStream {
             "`ImplicitEuler` needs the Jacobian that `jacobian = false` turns off",
         );
     }
-    if lowered.is_some() && model.len() > 32 {
-        errors.at_span(
-            model.ident().span(),
-            format_args!(
-                "`{}` has {} state components; generated dense Jacobians go up to 32 (add \
-                 `jacobian = false` to `#[system]`)",
-                model.ident(),
-                model.len()
-            ),
-        );
-    }
     match errors.finish() {
         Ok(()) => {
             let generated =

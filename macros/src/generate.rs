@@ -249,6 +249,10 @@ fn hidden_fn(model: &Model<'_>, name: &syn::Ident, f: &Function, with_time: bool
     }
 }
 
+/// Models with at most this many state components get a stack `SMatrix` Jacobian; larger ones a
+/// heap `FaerDense`, solved with faer.
+const SMALL: usize = 32;
+
 /// The `Jacobian` impl: the derivatives of the lowered force, emitted as straight-line code.
 pub(crate) fn jacobian(
     model: &Model<'_>,
@@ -324,20 +328,35 @@ pub(crate) fn jacobian(
         })
         .collect::<Vec<_>>();
     let jac = format_ident!("__odyn_jac", span = Span::mixed_site());
-    // The whole matrix in one expression, column by column, structural zeros as literals: the
-    // optimiser keeps it in registers, as it would a hand-written `Matrix3::new(..)`.
     let n_usize = model.len();
-    let columns = (0..n_usize).map(|c| {
-        let rows = (0..n_usize).map(|r| match entries.iter().find(|e| e.0 == r && e.1 == c) {
-            Some(&(_, _, d)) => operand(d, &graph),
-            None => quote!(0.0f64),
+    let (matrix, store) = if n_usize <= SMALL {
+        // The whole matrix in one expression, column by column, structural zeros as literals:
+        // the optimiser keeps it in registers, as it would a hand-written `Matrix3::new(..)`.
+        let columns = (0..n_usize).map(|c| {
+            let rows = (0..n_usize).map(|r| match entries.iter().find(|e| e.0 == r && e.1 == c) {
+                Some(&(_, _, d)) => operand(d, &graph),
+                None => quote!(0.0f64),
+            });
+            quote!([#(#rows),*])
         });
-        quote!([#(#rows),*])
-    });
-    let store = quote! {
-        *#jac = ::odyn::__private::nalgebra::SMatrix::from_array_storage(
-            ::odyn::__private::nalgebra::ArrayStorage([#(#columns),*]),
-        );
+        let store = quote! {
+            *#jac = ::odyn::__private::nalgebra::SMatrix::from_array_storage(
+                ::odyn::__private::nalgebra::ArrayStorage([#(#columns),*]),
+            );
+        };
+        (
+            quote!(::odyn::__private::nalgebra::SMatrix<f64, #n, #n>),
+            store,
+        )
+    } else {
+        let sets = entries.iter().map(|&(r, c, d)| {
+            let value = operand(d, &graph);
+            quote!(#jac.set(#r, #c, #value);)
+        });
+        (
+            quote!(::odyn::FaerDense<#n>),
+            quote!(#jac.fill_zero(); #(#sets)*),
+        )
     };
     let nonzeros = entries.iter().map(|&(r, c, _)| quote!((#r, #c)));
     let prologue = prologue.iter().map(|p| match p {
@@ -351,7 +370,6 @@ pub(crate) fn jacobian(
     let time = time_param(force);
     let params = state_params(model);
     let fields = model.states.iter().map(|f| f.ident);
-    let matrix = quote!(::odyn::__private::nalgebra::SMatrix<f64, #n, #n>);
     let count = entries.len();
     let doc = format!(
         "The {count} structural non-zeros of ∂f/∂y, derived by `#[system]` from the model's code."

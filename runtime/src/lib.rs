@@ -6,6 +6,7 @@
 //! [`output`] and plots in `plot`; neither is touched by the numerics.
 
 pub mod clock;
+mod dense;
 mod error;
 pub mod integrators;
 mod method;
@@ -22,10 +23,11 @@ mod trajectory;
 pub mod work_precision;
 
 pub use clock::{FixedTimestep, Tick};
+pub use dense::{DenseMatrix, FaerDense};
 pub use error::{Error, Result};
 pub use integrators::Integrator;
 pub use method::Method;
-pub use model::{DenseMatrix, Jacobian, Model, SecondOrder, State, Unavailable};
+pub use model::{Jacobian, Model, SecondOrder, State, Unavailable};
 pub use nalgebra;
 pub use newton::NewtonOptions;
 pub use simulation::{Length, RunOptions, Simulation};

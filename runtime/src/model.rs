@@ -8,6 +8,7 @@ use std::convert::Infallible;
 use std::fmt::Debug;
 use std::marker::PhantomData;
 
+use crate::dense::DenseMatrix;
 use crate::{Method, Simulation};
 
 /// A model's state: a list of `f64` components with names.
@@ -84,85 +85,6 @@ pub trait Jacobian: Model {
 
     /// Writes ∂f/∂y at (t, y) into `jacobian`, every entry.
     fn jacobian(&self, t: f64, y: &Self::State, jacobian: &mut Self::Matrix);
-}
-
-/// The dense square matrices implicit methods solve with: fixed-size `nalgebra` matrices, whose
-/// LU lives on the stack.
-pub trait DenseMatrix: Clone + Debug {
-    /// The all-zero matrix.
-    fn zeros() -> Self;
-    /// Entry (row, column).
-    fn entry(&self, row: usize, column: usize) -> f64;
-    /// Number of rows (= columns).
-    fn dim(&self) -> usize;
-    /// Sets `self` to I − h·`jacobian`.
-    fn set_identity_minus(&mut self, h: f64, jacobian: &Self);
-    /// Solves `self`·x = b in place by LU with partial pivoting; false when `self` is singular.
-    fn solve_in_place(&self, b: &mut [f64]) -> bool;
-}
-
-/// `DenseMatrix` for `SMatrix<f64, N, N>`: nalgebra's fixed-size LU needs each size spelled out.
-macro_rules! dense_matrix {
-    ($($n:literal)*) => {$(
-        impl DenseMatrix for nalgebra::SMatrix<f64, $n, $n> {
-            #[inline]
-            fn zeros() -> Self {
-                nalgebra::SMatrix::zeros()
-            }
-            #[inline]
-            fn entry(&self, row: usize, column: usize) -> f64 {
-                self[(row, column)]
-            }
-            #[inline]
-            fn dim(&self) -> usize {
-                $n
-            }
-            #[inline]
-            fn set_identity_minus(&mut self, h: f64, jacobian: &Self) {
-                *self = nalgebra::SMatrix::identity() - jacobian * h;
-            }
-            #[inline]
-            fn solve_in_place(&self, b: &mut [f64]) -> bool {
-                let mut rhs = nalgebra::SVector::<f64, $n>::from_column_slice(b);
-                // Up to 3×3 nalgebra inverts in closed form (cofactors), several times faster
-                // than a pivoted LU at these sizes; the Newton matrices I − h·J are far from
-                // singular unless h·J has an eigenvalue near 1, which the singular check reports.
-                let solved = if $n <= 3 {
-                    match self.try_inverse() {
-                        Some(inverse) => {
-                            rhs = inverse * rhs;
-                            true
-                        }
-                        None => false,
-                    }
-                } else {
-                    self.lu().solve_mut(&mut rhs)
-                };
-                b.copy_from_slice(rhs.as_slice());
-                solved
-            }
-        }
-    )*};
-}
-
-// Up to 32 state components: beyond that a stack LU stops paying off (a faer-backed dense
-// matrix is the planned next step).
-dense_matrix!(1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23 24 25 26 27 28 29 30 31 32);
-
-impl DenseMatrix for nalgebra::SMatrix<f64, 0, 0> {
-    fn zeros() -> Self {
-        nalgebra::SMatrix::zeros()
-    }
-    fn entry(&self, _: usize, _: usize) -> f64 {
-        0.0
-    }
-    fn dim(&self) -> usize {
-        0
-    }
-    fn set_identity_minus(&mut self, _: f64, _: &Self) {}
-    fn solve_in_place(&self, _: &mut [f64]) -> bool {
-        true
-    }
 }
 
 /// The capability type of a model that lacks it (see [`Model`]): it has no values, so a method

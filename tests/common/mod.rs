@@ -243,3 +243,39 @@ impl NoJacobian {
         if self.x > 0.0 { -1.0 } else { 1.0 }
     }
 }
+
+/// Seventeen independent oscillators ẍᵢ = −ωᵢ²xᵢ with ωᵢ = i + 1: 34 state components, past the
+/// 32 at which generated Jacobians move from the stack to faer.
+#[system]
+pub struct Bank {
+    #[position]
+    pub x: [f64; 17],
+    #[velocity]
+    pub v: [f64; 17],
+}
+
+#[system]
+impl Bank {
+    fn acceleration(&self) -> [f64; 17] {
+        let x = self.x;
+        [
+            -x[0],
+            -4.0 * x[1],
+            -9.0 * x[2],
+            -16.0 * x[3],
+            -25.0 * x[4],
+            -36.0 * x[5],
+            -49.0 * x[6],
+            -64.0 * x[7],
+            -81.0 * x[8],
+            -100.0 * x[9],
+            -121.0 * x[10],
+            -144.0 * x[11],
+            -169.0 * x[12],
+            -196.0 * x[13],
+            -225.0 * x[14],
+            -256.0 * x[15],
+            -289.0 * x[16],
+        ]
+    }
+}

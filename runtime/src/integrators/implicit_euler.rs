@@ -7,7 +7,8 @@ use crate::{DenseMatrix, Error, Jacobian, Method, NewtonOptions, Result, State};
 ///
 /// Each step solves G(y) = y − yₙ − h·f(tₙ₊₁, y) = 0 by Newton's method from y⁰ = yₙ:
 /// (I − h·J(yᵏ))·Δ = −G(yᵏ), yᵏ⁺¹ = yᵏ + Δ, with J = ∂f/∂y the Jacobian `#[system]` derived from
-/// the model's code, and a dense LU on the stack (`nalgebra`). It stops when
+/// the model's code, solved densely: on the stack with `nalgebra` up to 32 components, with faer's
+/// LU above that (see [`crate::DenseMatrix`]). It stops when
 /// |Δᵢ| ≤ tol·(1 + |yᵢ|) for every component. When the iteration fails — too many iterations,
 /// a singular matrix, or updates that stop shrinking — the step is retried as two half steps,
 /// recursively up to [`NewtonOptions::max_halvings`] deep, and past that fails with
