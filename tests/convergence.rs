@@ -2,19 +2,9 @@
 
 mod common;
 
-use common::{Oscillator, Spring};
+use common::{Oscillator, Spring, slope};
 use odyn::prelude::*;
 use odyn::reference::DampedOscillator;
-
-/// Least-squares slope of log(error) against log(dt).
-fn slope(points: &[(f64, f64)]) -> f64 {
-    let n = points.len() as f64;
-    let (lx, ly): (Vec<f64>, Vec<f64>) = points.iter().map(|(h, e)| (h.ln(), e.ln())).unzip();
-    let (mx, my) = (lx.iter().sum::<f64>() / n, ly.iter().sum::<f64>() / n);
-    let cov: f64 = lx.iter().zip(&ly).map(|(x, y)| (x - mx) * (y - my)).sum();
-    let var: f64 = lx.iter().map(|x| (x - mx) * (x - mx)).sum();
-    cov / var
-}
 
 const T_END: f64 = 2.0;
 const DTS: [f64; 4] = [0.02, 0.01, 0.005, 0.0025];

@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{Lorenz, Oscillator, Robertson, Spring, VanDerPol};
+use common::{Lorenz, Oscillator, Robertson, Spring, VanDerPol, slope};
 use odyn::prelude::*;
 use odyn::{DenseMatrix, Error, NewtonOptions};
 
@@ -108,15 +108,6 @@ fn implicit_euler_is_first_order_and_counts_its_work() {
         .run()
         .unwrap();
     assert!(lorenz.last().state.x.is_finite());
-}
-
-/// Least-squares slope of log(error) against log(dt).
-fn slope(points: &[(f64, f64)]) -> f64 {
-    let n = points.len() as f64;
-    let (lx, ly): (Vec<f64>, Vec<f64>) = points.iter().map(|(h, e)| (h.ln(), e.ln())).unzip();
-    let (mx, my) = (lx.iter().sum::<f64>() / n, ly.iter().sum::<f64>() / n);
-    let cov: f64 = lx.iter().zip(&ly).map(|(x, y)| (x - mx) * (y - my)).sum();
-    cov / lx.iter().map(|x| (x - mx) * (x - mx)).sum::<f64>()
 }
 
 /// Robertson kinetics at t = 40. Reference: SciPy 1.17 Radau (rtol 1e-12, atol 1e-14), which BDF

@@ -96,17 +96,10 @@ fn the_user_functions_stay_callable_on_the_struct() {
     assert_eq!(spring.acceleration(), -6.5);
     // The trait evaluates at any state.
     let mut a = SpringState::zeros();
-    spring.acceleration_at(&SpringState { x: 1.0, v: 0.0 }, &mut a);
+    SecondOrder::acceleration(&spring, 0.0, &SpringState { x: 1.0, v: 0.0 }, &mut a);
     assert_eq!(a.v, -3.0);
     assert_eq!(
         Model::energy(&spring, &SpringState { x: 0.0, v: 2.0 }),
         Some(2.0)
     );
 }
-
-trait AccelerationAt: SecondOrder {
-    fn acceleration_at(&self, s: &Self::State, a: &mut Self::State) {
-        SecondOrder::acceleration(self, 0.0, s, a);
-    }
-}
-impl<M: SecondOrder> AccelerationAt for M {}

@@ -1,4 +1,4 @@
-//! Stage 4b: exact differentiation of the expression graph, ∂e/∂yₖ, by the chain rule.
+//! Stage 5b: exact differentiation of the expression graph, ∂e/∂yₖ, by the chain rule.
 //!
 //! Every rule builds its result with the graph's smart constructors, so derivatives simplify as
 //! they are made and reuse the nodes of the function itself (∂ sin u = cos u · ∂u shares u;

@@ -1,4 +1,4 @@
-//! Stage 4: code generation — the typed state, the forwarding macro, and the runtime trait impls.
+//! Stage 6: code generation — the typed state, the forwarding macro, and the runtime trait impls.
 //!
 //! Generated code names everything by absolute path (`::odyn::…`), binds the state to hygienic
 //! locals, and documents every public item so `cargo doc` of a user's crate explains it.

@@ -1,4 +1,4 @@
-//! Stage 4a: the expression graph the force function is lowered to and differentiated in.
+//! Stage 5a: the expression graph the force function is lowered to and differentiated in.
 //!
 //! A flat arena: an [`ExprId`] indexes a [`Node`] whose children were created before it, so the
 //! arena order is a valid evaluation order. Nodes are hash-consed — building the same node twice

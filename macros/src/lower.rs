@@ -1,4 +1,4 @@
-//! Stage 4c: lowering a force function's body from syn into the expression graph.
+//! Stage 4: lowering a force function's body from syn into the expression graph.
 //!
 //! Only what depends on the state must be understood: any sub-expression that does not (a
 //! parameter, the time, a call on parameters, a constant) becomes an opaque leaf, evaluated by the

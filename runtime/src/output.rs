@@ -14,22 +14,26 @@ use crate::{Error, Result, State, Trajectory};
 pub fn write_atomic(path: impl AsRef<Path>, bytes: &[u8]) -> Result<()> {
     let path = path.as_ref();
     with_temporary(path, "", |temp| {
-        let mut file = fs::File::create(temp)?;
-        file.write_all(bytes)?;
-        file.sync_all()
+        let write = || -> std::io::Result<()> {
+            let mut file = fs::File::create(temp)?;
+            file.write_all(bytes)?;
+            file.sync_all()
+        };
+        write().map_err(|source| Error::Io {
+            path: path.to_path_buf(),
+            source,
+        })
     })
 }
 
 /// Runs `write` on a fresh temporary path beside `path` (ending in `suffix`, for writers that
-/// choose a format from the extension), then renames the result onto `path`.
-pub(crate) fn with_temporary<E>(
+/// choose a format from the extension), then renames the result onto `path`. On any failure the
+/// temporary is removed and an older file at `path` is left untouched.
+pub(crate) fn with_temporary(
     path: &Path,
     suffix: &str,
-    write: impl FnOnce(&Path) -> std::result::Result<(), E>,
-) -> Result<()>
-where
-    E: Into<TempError>,
-{
+    write: impl FnOnce(&Path) -> Result<()>,
+) -> Result<()> {
     static COUNTER: AtomicU64 = AtomicU64::new(0);
     let io = |source| Error::Io {
         path: path.to_path_buf(),
@@ -51,34 +55,11 @@ where
     temp_name.push(name);
     temp_name.push(format!(".{}.{unique}.tmp{suffix}", std::process::id()));
     let temp: PathBuf = parent.join(temp_name);
-    let result = match write(&temp).map_err(Into::into) {
-        Ok(()) => fs::rename(&temp, path).map_err(io),
-        Err(TempError::Io(source)) => Err(io(source)),
-        Err(TempError::Other(error)) => Err(error),
-    };
+    let result = write(&temp).and_then(|()| fs::rename(&temp, path).map_err(io));
     if result.is_err() {
         let _ = fs::remove_file(&temp);
     }
     result
-}
-
-/// The error of a temporary-file writer: plain I/O, or an odyn error already carrying its path.
-#[doc(hidden)]
-pub enum TempError {
-    Io(std::io::Error),
-    Other(Error),
-}
-
-impl From<std::io::Error> for TempError {
-    fn from(e: std::io::Error) -> Self {
-        TempError::Io(e)
-    }
-}
-
-impl From<Error> for TempError {
-    fn from(e: Error) -> Self {
-        TempError::Other(e)
-    }
 }
 
 /// Writes trajectories as one CSV table, atomically: `method,step,t,<components>[,energy]`,
