@@ -16,73 +16,12 @@ use odyn::prelude::*;
 const STEPS: u64 = 1_000_000;
 const DT: f64 = 1e-3;
 
+mod models;
+
+use models::*;
+
 fn main() {
     divan::main();
-}
-
-/// The tutorial's damped spring.
-#[system(dt = 0.001)]
-#[derive(Clone, Copy)]
-pub struct Spring {
-    #[position]
-    x: f64,
-    #[velocity]
-    v: f64,
-    k: f64,
-    b: f64,
-    m: f64,
-}
-
-#[system]
-impl Spring {
-    fn acceleration(&self) -> f64 {
-        (-self.k * self.x - self.b * self.v) / self.m
-    }
-}
-
-/// Undamped spring, for position Verlet (its force must not read v).
-#[system(dt = 0.001)]
-#[derive(Clone, Copy)]
-pub struct Undamped {
-    #[position]
-    x: f64,
-    #[velocity]
-    v: f64,
-    k: f64,
-    m: f64,
-}
-
-#[system]
-impl Undamped {
-    fn acceleration(&self) -> f64 {
-        -self.k * self.x / self.m
-    }
-}
-
-/// The Lorenz system.
-#[system(dt = 0.001)]
-#[derive(Clone, Copy)]
-pub struct Lorenz {
-    #[state]
-    x: f64,
-    #[state]
-    y: f64,
-    #[state]
-    z: f64,
-    sigma: f64,
-    rho: f64,
-    beta: f64,
-}
-
-#[system]
-impl Lorenz {
-    fn derivative(&self) -> LorenzState {
-        LorenzState {
-            x: self.sigma * (self.y - self.x),
-            y: self.x * (self.rho - self.z) - self.y,
-            z: self.x * self.y - self.beta * self.z,
-        }
-    }
 }
 
 fn spring() -> Spring {
@@ -122,6 +61,7 @@ fn runner<M: Model>(model: &M, method: Method) -> M::State {
     let run = model
         .simulate()
         .integrator(method)
+        .dt(DT)
         .steps(STEPS)
         .record_every(u64::MAX)
         .run()

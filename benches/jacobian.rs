@@ -13,72 +13,12 @@ use odyn::integrators::{ImplicitEuler, Integrator, Rk4};
 use odyn::prelude::*;
 use odyn::{DenseMatrix, Jacobian, NewtonOptions, nalgebra};
 
+mod models;
+
+use models::*;
+
 fn main() {
     divan::main();
-}
-
-/// Damped spring.
-#[system]
-#[derive(Clone, Copy)]
-pub struct Spring {
-    #[position]
-    x: f64,
-    #[velocity]
-    v: f64,
-    k: f64,
-    b: f64,
-    m: f64,
-}
-
-#[system]
-impl Spring {
-    fn acceleration(&self) -> f64 {
-        (-self.k * self.x - self.b * self.v) / self.m
-    }
-}
-
-/// Planar Kepler problem.
-#[system]
-#[derive(Clone, Copy)]
-pub struct Kepler {
-    #[position]
-    r: Vector2<f64>,
-    #[velocity]
-    v: Vector2<f64>,
-    gm: f64,
-}
-
-#[system]
-impl Kepler {
-    fn acceleration(&self) -> Vector2<f64> {
-        -self.gm * self.r / self.r.norm().powi(3)
-    }
-}
-
-/// The Lorenz system.
-#[system]
-#[derive(Clone, Copy)]
-pub struct Lorenz {
-    #[state]
-    x: f64,
-    #[state]
-    y: f64,
-    #[state]
-    z: f64,
-    sigma: f64,
-    rho: f64,
-    beta: f64,
-}
-
-#[system]
-impl Lorenz {
-    fn derivative(&self) -> LorenzState {
-        LorenzState {
-            x: self.sigma * (self.y - self.x),
-            y: self.x * (self.rho - self.z) - self.y,
-            z: self.x * self.y - self.beta * self.z,
-        }
-    }
 }
 
 fn spring() -> (Spring, SpringState) {

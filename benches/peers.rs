@@ -52,6 +52,10 @@ const RK4_STEPS: u64 = 1_000_000;
 const STIFF_DT: f64 = 1e-3;
 const STIFF_STEPS: u64 = 10_000;
 
+mod models;
+
+use models::*;
+
 fn main() {
     check_agreement();
     divan::main();
@@ -60,32 +64,6 @@ fn main() {
 // ---------------------------------------------------------------------------------------------
 // Models. Each also gets its right-hand side on plain arrays, with the arithmetic of its
 // `#[system]` function, for the hand-written loops, and implements the peers' traits through it.
-
-/// The Lorenz system.
-#[system(dt = 0.00001)]
-#[derive(Clone, Copy)]
-pub struct Lorenz {
-    #[state]
-    x: f64,
-    #[state]
-    y: f64,
-    #[state]
-    z: f64,
-    sigma: f64,
-    rho: f64,
-    beta: f64,
-}
-
-#[system]
-impl Lorenz {
-    fn derivative(&self) -> LorenzState {
-        LorenzState {
-            x: self.sigma * (self.y - self.x),
-            y: self.x * (self.rho - self.z) - self.y,
-            z: self.x * self.y - self.beta * self.z,
-        }
-    }
-}
 
 const LORENZ: Lorenz = Lorenz {
     x: 1.0,
@@ -122,26 +100,6 @@ impl ODE<f64, [f64; 3]> for Lorenz {
     }
 }
 
-/// The damped spring, m·ẍ = −k·x − b·ẋ.
-#[system(dt = 0.00001)]
-#[derive(Clone, Copy)]
-pub struct Spring {
-    #[position]
-    x: f64,
-    #[velocity]
-    v: f64,
-    k: f64,
-    b: f64,
-    m: f64,
-}
-
-#[system]
-impl Spring {
-    fn acceleration(&self) -> f64 {
-        (-self.k * self.x - self.b * self.v) / self.m
-    }
-}
-
 const SPRING: Spring = Spring {
     x: 1.0,
     v: 0.0,
@@ -169,27 +127,6 @@ impl ode_solvers::System<f64, ode_solvers::Vector2<f64>> for Spring {
 impl ODE<f64, [f64; 2]> for Spring {
     fn diff(&self, _: f64, y: &[f64; 2], dydt: &mut [f64; 2]) {
         *dydt = self.f(*y);
-    }
-}
-
-/// The van der Pol oscillator, stiff for large μ.
-#[system(dt = 0.001)]
-#[derive(Clone, Copy)]
-pub struct VanDerPol {
-    #[state]
-    y1: f64,
-    #[state]
-    y2: f64,
-    mu: f64,
-}
-
-#[system]
-impl VanDerPol {
-    fn derivative(&self) -> VanDerPolState {
-        VanDerPolState {
-            y1: self.y2,
-            y2: self.mu * (1.0 - self.y1 * self.y1) * self.y2 - self.y1,
-        }
     }
 }
 

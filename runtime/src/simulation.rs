@@ -265,6 +265,9 @@ struct Plan<S> {
 }
 
 impl<S: crate::State> Plan<S> {
+    // One function per integrator: inlined into `run_partial`'s dispatch, the seven run loops
+    // shared one body and the cheap ones ran up to 1.7× slower (measured on leapfrog).
+    #[inline(never)]
     fn drive<N, I>(self, model: &N) -> Result<(Trajectory<S>, Option<Error>)>
     where
         N: Model<State = S>,
@@ -275,15 +278,23 @@ impl<S: crate::State> Plan<S> {
                 .with_divergence_limit(self.divergence_limit);
         let capacity = (self.steps / self.record_every + 2).min(1 << 20) as usize;
         let mut samples = Vec::with_capacity(capacity);
-        let record = |stepper: &Stepper<'_, N, I>, samples: &mut Vec<Sample<S>>| {
+        // The recorder gets copies, never `&stepper`: a reference escaping into the (possibly
+        // out-of-line) push would pin the stepper's state in memory for the whole loop.
+        let record = |step: u64, t: f64, state: S, samples: &mut Vec<Sample<S>>| {
+            let energy = model.energy(&state);
             samples.push(Sample {
-                step: stepper.steps(),
-                t: stepper.t(),
-                state: stepper.state().clone(),
-                energy: model.energy(stepper.state()),
+                step,
+                t,
+                state,
+                energy,
             });
         };
-        record(&stepper, &mut samples);
+        record(
+            stepper.steps(),
+            stepper.t(),
+            stepper.state().clone(),
+            &mut samples,
+        );
         let mut failure = None;
         // A countdown, not `n % record_every`: a 64-bit division per step costs more than a
         // cheap model's whole step.
@@ -295,7 +306,12 @@ impl<S: crate::State> Plan<S> {
             }
             until_record -= 1;
             if until_record == 0 || n == self.steps {
-                record(&stepper, &mut samples);
+                record(
+                    stepper.steps(),
+                    stepper.t(),
+                    stepper.state().clone(),
+                    &mut samples,
+                );
                 until_record = self.record_every;
             }
         }
