@@ -224,6 +224,11 @@ impl Chart {
             .draw()
             .map_err(e)?;
         for (i, s) in self.series.iter().enumerate() {
+            // A series with nothing to draw (every run diverged) stays out of the legend too;
+            // its colour stays reserved so the others keep theirs.
+            if !s.points.iter().any(|&p| self.drawable(p)) {
+                continue;
+            }
             let (r, g, b) = PALETTE[i % PALETTE.len()];
             let color = RGBColor(r, g, b).to_rgba();
             let style = ShapeStyle::from(color).stroke_width(2);
