@@ -47,8 +47,15 @@
 //! - Inside the functions, `self` is read only through its fields (`self.k`, `self.x`): odyn
 //!   evaluates them at states other than the struct's own.
 //!
+//! - The macro also derives the exact Jacobian ∂f/∂y from the function's body, for implicit
+//!   Euler and the stability explorer. A body it cannot differentiate is a compile error at the
+//!   offending sub-expression; `#[system(jacobian = false)]` opts out and keeps the explicit
+//!   methods.
+//!
 //! The macro generates `<Model>State` (named fields, arithmetic, a zero-copy `SVector` view) and
-//! implements [`Model`] (and [`SecondOrder`]), which [`Simulation`] runs with any [`Method`].
+//! implements [`Model`] (and [`SecondOrder`], [`Jacobian`]), which [`Simulation`] runs with any
+//! [`Method`]. [`work_precision`] measures the speed/accuracy trade on a model and [`stability`]
+//! finds each method's largest stable step.
 
 pub use odyn_macros::system;
 pub use odyn_runtime::*;

@@ -38,11 +38,17 @@ pub struct Trajectory<S> {
 
 impl<S: State> Trajectory<S> {
     /// The first sample (the initial state).
+    ///
+    /// # Panics
+    /// If `samples` was emptied by hand; every trajectory odyn returns holds step 0.
     pub fn first(&self) -> &Sample<S> {
         &self.samples[0]
     }
 
     /// The last sample.
+    ///
+    /// # Panics
+    /// If `samples` was emptied by hand, as [`Trajectory::first`].
     pub fn last(&self) -> &Sample<S> {
         self.samples
             .last()
