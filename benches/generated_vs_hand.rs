@@ -48,7 +48,8 @@ fn lorenz() -> Lorenz {
 /// Steps a model with integrator `I` through the `Integrator` trait.
 fn generated<M: Model, I: Integrator<M>>(model: &M) -> M::State {
     let mut state = model.state();
-    let mut integrator = I::start(model, 0.0, DT, &state, &NewtonOptions::default());
+    let mut integrator = I::start(model, 0.0, DT, &state, &NewtonOptions::default())
+        .expect("a fixed-size model always starts");
     for n in 0..STEPS {
         // Explicit steps cannot fail; the `Result` is for implicit ones.
         let _ = integrator.step(model, n as f64 * DT, &mut state);

@@ -11,7 +11,7 @@ use nalgebra::{Matrix2, Matrix3, Matrix4, SVector};
 use num_dual::{DualNum, DualSVec64, jacobian};
 use odyn::integrators::{ImplicitEuler, Integrator, Rk4};
 use odyn::prelude::*;
-use odyn::{DenseMatrix, Jacobian, NewtonOptions, nalgebra};
+use odyn::{Jacobian, NewtonOptions, nalgebra};
 
 mod models;
 
@@ -69,7 +69,7 @@ fn lorenz() -> (Lorenz, LorenzState) {
 }
 
 fn generated<M: Jacobian>((model, state): (M, M::State)) -> M::Matrix {
-    let mut j = M::Matrix::zeros();
+    let mut j = model.jacobian_matrix(&state);
     model.jacobian(0.0, &state, &mut j);
     j
 }
@@ -79,7 +79,7 @@ fn central<M: Jacobian>((model, y): (M, M::State)) -> M::Matrix
 where
     M::Matrix: std::ops::IndexMut<(usize, usize), Output = f64>,
 {
-    let mut j = M::Matrix::zeros();
+    let mut j = model.jacobian_matrix(&y);
     let n = y.as_slice().len();
     let (mut plus, mut minus, mut f_plus, mut f_minus) =
         (y.clone(), y.clone(), y.clone(), y.clone());
@@ -242,7 +242,8 @@ mod step {
 
     fn one<M: Model, I: Integrator<M>>((model, state): (M, M::State)) -> M::State {
         let mut y = state;
-        let mut integrator = I::start(&model, 0.0, 1e-3, &y, &NewtonOptions::default());
+        let mut integrator = I::start(&model, 0.0, 1e-3, &y, &NewtonOptions::default())
+            .expect("a fixed-size model always starts");
         integrator
             .step(&model, 0.0, &mut y)
             .expect("the step converges");

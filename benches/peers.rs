@@ -174,7 +174,8 @@ impl ODE<f64, [f64; 2]> for VanDerPol {
 /// Steps a model with odyn's integrator `I` through the [`Integrator`] trait.
 fn odyn_run<M: Model, I: Integrator<M>>(model: &M, dt: f64, steps: u64) -> M::State {
     let mut state = model.state();
-    let mut integrator = I::start(model, 0.0, dt, &state, &NewtonOptions::default());
+    let mut integrator = I::start(model, 0.0, dt, &state, &NewtonOptions::default())
+        .expect("a fixed-size model always starts");
     for n in 0..steps {
         integrator
             .step(model, n as f64 * dt, &mut state)

@@ -391,6 +391,9 @@ pub(crate) fn jacobian(
             type Matrix = #matrix;
             #[doc = #doc]
             const NONZEROS: &'static [(usize, usize)] = &[#(#nonzeros),*];
+            fn jacobian_matrix(&self, _: &#state) -> #matrix {
+                <#matrix as ::odyn::DenseMatrix>::zeros()
+            }
             #[inline]
             fn jacobian(&self, t: f64, y: &#state, jacobian: &mut #matrix) {
                 self.__odyn_jacobian(t, #(y.#fields,)* jacobian)

@@ -15,11 +15,30 @@ pub trait DenseMatrix: Clone + fmt::Debug {
     fn entry(&self, row: usize, column: usize) -> f64;
     /// Number of rows (= columns).
     fn dim(&self) -> usize;
-    /// Sets `self` to I − h·`jacobian`.
-    fn set_identity_minus(&mut self, h: f64, jacobian: &Self);
+    /// Replaces `self` (a Jacobian J) by I − h·J.
+    fn identity_minus(&mut self, h: f64);
     /// Solves `self`·x = b in place, overwriting `self` with its factors; false when `self` is
     /// singular (or so close that the solution is not finite).
     fn solve_in_place(&mut self, b: &mut [f64]) -> bool;
+}
+
+/// The linear algebra of a Newton iteration of implicit Euler: a Jacobian J, written by
+/// [`crate::Jacobian::jacobian`], and the solve of (I − h·J)·x = b.
+///
+/// Dense models use a [`DenseMatrix`]; particle models a [`crate::particles::ParticleJacobian`],
+/// which solves the same system through the sparse velocity form of Baraff & Witkin.
+pub trait NewtonMatrix: Clone + fmt::Debug {
+    /// Solves (I − h·J)·x = b in place, J being the Jacobian last written into `self`, which
+    /// this may overwrite; false when the matrix is singular or the solution is not finite.
+    fn solve_identity_minus(&mut self, h: f64, b: &mut [f64]) -> bool;
+}
+
+impl<T: DenseMatrix> NewtonMatrix for T {
+    #[inline]
+    fn solve_identity_minus(&mut self, h: f64, b: &mut [f64]) -> bool {
+        self.identity_minus(h);
+        self.solve_in_place(b)
+    }
 }
 
 /// `DenseMatrix` for `SMatrix<f64, N, N>`: nalgebra's fixed-size LU needs each size spelled out.
@@ -39,8 +58,8 @@ macro_rules! dense_matrix {
                 $n
             }
             #[inline]
-            fn set_identity_minus(&mut self, h: f64, jacobian: &Self) {
-                *self = nalgebra::SMatrix::identity() - jacobian * h;
+            fn identity_minus(&mut self, h: f64) {
+                *self = nalgebra::SMatrix::identity() - *self * h;
             }
             #[inline]
             fn solve_in_place(&mut self, b: &mut [f64]) -> bool {
@@ -79,7 +98,7 @@ impl DenseMatrix for nalgebra::SMatrix<f64, 0, 0> {
     fn dim(&self) -> usize {
         0
     }
-    fn set_identity_minus(&mut self, _: f64, _: &Self) {}
+    fn identity_minus(&mut self, _: f64) {}
     fn solve_in_place(&mut self, _: &mut [f64]) -> bool {
         true
     }
@@ -150,11 +169,11 @@ impl<const N: usize> DenseMatrix for FaerDense<N> {
         N
     }
 
-    fn set_identity_minus(&mut self, h: f64, jacobian: &Self) {
+    fn identity_minus(&mut self, h: f64) {
         for column in 0..N {
             for row in 0..N {
                 let identity = if row == column { 1.0 } else { 0.0 };
-                self.matrix[(row, column)] = identity - h * jacobian.matrix[(row, column)];
+                self.matrix[(row, column)] = identity - h * self.matrix[(row, column)];
             }
         }
     }

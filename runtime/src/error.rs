@@ -19,6 +19,17 @@ pub enum Error {
         /// Why it was rejected.
         reason: String,
     },
+    /// The model itself cannot be integrated: a particle model with a link to a particle that
+    /// does not exist, a spring of zero rest length, a particle without mass, ...
+    #[error("`{model}` cannot be simulated: {what} {reason}")]
+    BadModel {
+        /// The model's type name.
+        model: &'static str,
+        /// The offending part (`springs[12]`, `mass[3]`, `pinned[0]`).
+        what: String,
+        /// What is wrong with it.
+        reason: String,
+    },
     /// The chosen method cannot integrate this model.
     #[error("{method} cannot integrate `{model}`: {reason}")]
     Unsupported {

@@ -13,6 +13,7 @@ mod method;
 mod model;
 mod newton;
 pub mod output;
+pub mod particles;
 #[cfg(feature = "plot")]
 pub mod plot;
 pub mod reference;
@@ -23,7 +24,7 @@ mod trajectory;
 pub mod work_precision;
 
 pub use clock::{FixedTimestep, Tick};
-pub use dense::{DenseMatrix, FaerDense};
+pub use dense::{DenseMatrix, FaerDense, NewtonMatrix};
 pub use error::{Error, Result};
 pub use integrators::Integrator;
 pub use method::Method;

@@ -8,8 +8,8 @@ use std::convert::Infallible;
 use std::fmt::Debug;
 use std::marker::PhantomData;
 
-use crate::dense::DenseMatrix;
-use crate::{Method, Simulation};
+use crate::dense::NewtonMatrix;
+use crate::{Method, Result, Simulation};
 
 /// A model's state: a list of `f64` components with names.
 pub trait State: Clone + PartialEq + Debug {
@@ -56,6 +56,15 @@ pub trait Model {
     /// The model as one with a [`Jacobian`], if it has one.
     fn as_jacobian(&self) -> Option<&Self::Jacobian>;
 
+    /// Checks that the model and `state` can be integrated at all, before any step: particle
+    /// models check their topology and masses here. Fixed-size models have nothing to check.
+    ///
+    /// Errors: [`crate::Error::BadModel`] naming what is wrong.
+    fn check(&self, state: &Self::State) -> Result<()> {
+        let _ = state;
+        Ok(())
+    }
+
     /// Starts configuring a run from the model's own state, method and dt.
     fn simulate(&self) -> Simulation<'_, Self>
     where
@@ -77,11 +86,17 @@ pub trait SecondOrder: Model {
 
 /// A model whose Jacobian ∂f/∂y the macro derived exactly from the body of its force function.
 pub trait Jacobian: Model {
-    /// The dense Jacobian's type, `SMatrix<f64, N, N>` for a state of N components.
-    type Matrix: DenseMatrix;
+    /// The Jacobian's type: `SMatrix<f64, N, N>` for a state of N ≤ 32 components,
+    /// [`crate::FaerDense`] above that, [`crate::particles::ParticleJacobian`] (sparse, sized at
+    /// run time) for particle models.
+    type Matrix: NewtonMatrix;
     /// The structural non-zeros (row, column), known at compile time; every other entry of the
-    /// Jacobian is zero at every state.
+    /// Jacobian is zero at every state. Empty for particle models, whose pattern comes from
+    /// their topology at run time.
     const NONZEROS: &'static [(usize, usize)];
+
+    /// A Jacobian for states like `state`, every buffer allocated: called once per run.
+    fn jacobian_matrix(&self, state: &Self::State) -> Self::Matrix;
 
     /// Writes ∂f/∂y at (t, y) into `jacobian`, every entry.
     fn jacobian(&self, t: f64, y: &Self::State, jacobian: &mut Self::Matrix);
@@ -130,6 +145,9 @@ impl<M: Model> SecondOrder for Unavailable<M> {
 impl<M: Model> Jacobian for Unavailable<M> {
     type Matrix = nalgebra::SMatrix<f64, 0, 0>;
     const NONZEROS: &'static [(usize, usize)] = &[];
+    fn jacobian_matrix(&self, _: &Self::State) -> Self::Matrix {
+        self.never()
+    }
     fn jacobian(&self, _: f64, _: &Self::State, _: &mut Self::Matrix) {
         self.never()
     }

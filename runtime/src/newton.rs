@@ -16,6 +16,21 @@ pub struct NewtonOptions {
     /// with [`crate::Error::NewtonDidNotConverge`]. A fold in the implicit equations — van der
     /// Pol's relaxation jump at dt ≫ 1/μ — needs this; 0 gives strict fixed-step behaviour.
     pub max_halvings: u32,
+    /// Take exactly one Newton iteration per step, from yₙ, and accept it (default false): the
+    /// linearly implicit Euler of Baraff & Witkin, "Large Steps in Cloth Simulation" (1998),
+    /// §3. It is as stable as the full solve on linear forces and costs one factorization per
+    /// step; on nonlinear forces it is not implicit Euler any more and `tol` is ignored.
+    pub linearized: bool,
+}
+
+impl NewtonOptions {
+    /// The one-iteration (Baraff–Witkin) form, other options at their defaults.
+    pub fn linearized() -> Self {
+        NewtonOptions {
+            linearized: true,
+            ..NewtonOptions::default()
+        }
+    }
 }
 
 impl Default for NewtonOptions {
@@ -24,6 +39,7 @@ impl Default for NewtonOptions {
             tol: 1e-10,
             max_iters: 20,
             max_halvings: 12,
+            linearized: false,
         }
     }
 }

@@ -119,8 +119,11 @@ fn bounded<M: Model>(
 }
 
 /// The eigenvalues of ∂f/∂y at (t, `state`).
-pub fn eigenvalues<M: Jacobian>(model: &M, t: f64, state: &M::State) -> Vec<Complex<f64>> {
-    let mut jacobian = M::Matrix::zeros();
+pub fn eigenvalues<M: Jacobian>(model: &M, t: f64, state: &M::State) -> Vec<Complex<f64>>
+where
+    M::Matrix: DenseMatrix,
+{
+    let mut jacobian = model.jacobian_matrix(state);
     model.jacobian(t, state, &mut jacobian);
     let n = jacobian.dim();
     let dense = DMatrix::from_fn(n, n, |r, c| jacobian.entry(r, c));
@@ -137,7 +140,10 @@ pub fn eigenvalues<M: Jacobian>(model: &M, t: f64, state: &M::State) -> Vec<Comp
 /// - symplectic Euler, both Verlets, leapfrog: dt < 2/ω with ω = max |λ|, the oscillator limit
 ///   (these methods are for undamped mechanics; with damping the true limit differs slightly);
 /// - implicit Euler: unconditional (∞) when every Re λ ≤ 0.
-pub fn predicted_limit<M: Jacobian>(model: &M, t: f64, state: &M::State, method: Method) -> f64 {
+pub fn predicted_limit<M: Jacobian>(model: &M, t: f64, state: &M::State, method: Method) -> f64
+where
+    M::Matrix: DenseMatrix,
+{
     let lambdas: Vec<_> = eigenvalues(model, t, state)
         .into_iter()
         .filter(|l| l.norm() > 1e-300)

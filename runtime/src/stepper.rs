@@ -52,7 +52,8 @@ impl<'m, M: Model, I: Integrator<M>> Stepper<'m, M, I> {
                 format!("must be finite, got {value}"),
             ));
         }
-        let integrator = I::start(model, t0, dt, &state, newton);
+        model.check(&state)?;
+        let integrator = I::start(model, t0, dt, &state, newton)?;
         Ok(Stepper {
             model,
             integrator,
@@ -69,6 +70,11 @@ impl<'m, M: Model, I: Integrator<M>> Stepper<'m, M, I> {
     pub fn with_divergence_limit(mut self, limit: f64) -> Self {
         self.divergence_limit = limit;
         self
+    }
+
+    /// The integrator, with whatever it counts (an implicit method's factorizations).
+    pub fn integrator(&self) -> &I {
+        &self.integrator
     }
 
     /// Takes one step.

@@ -27,11 +27,11 @@ impl<M: Model> Integrator<M> for ExplicitEuler<M::State> {
     const STARTUP_EVALUATIONS: u64 = 0;
     const EVALUATIONS_PER_STEP: u64 = 1;
 
-    fn start(_: &M, _: f64, dt: f64, state: &M::State, _: &NewtonOptions) -> Self {
-        ExplicitEuler {
+    fn start(_: &M, _: f64, dt: f64, state: &M::State, _: &NewtonOptions) -> Result<Self> {
+        Ok(ExplicitEuler {
             dt,
             dydt: state.clone(),
-        }
+        })
     }
 
     #[inline]

@@ -1,15 +1,19 @@
 //! Implicit (backward) Euler, solved by Newton's method with the generated Jacobian.
 
 use super::{Evaluations, Integrator};
-use crate::{DenseMatrix, Error, Jacobian, Method, NewtonOptions, Result, State};
+use crate::{Error, Jacobian, Method, NewtonMatrix, NewtonOptions, Result, State};
 
 /// Implicit (backward) Euler: yₙ₊₁ = yₙ + h·f(tₙ₊₁, yₙ₊₁).
 ///
 /// Each step solves G(y) = y − yₙ − h·f(tₙ₊₁, y) = 0 by Newton's method from y⁰ = yₙ:
 /// (I − h·J(yᵏ))·Δ = −G(yᵏ), yᵏ⁺¹ = yᵏ + Δ, with J = ∂f/∂y the Jacobian `#[system]` derived from
 /// the model's code, solved densely: on the stack with `nalgebra` up to 32 components, with faer's
-/// LU above that (see [`crate::DenseMatrix`]). It stops when
-/// |Δᵢ| ≤ tol·(1 + |yᵢ|) for every component. When the iteration fails — too many iterations,
+/// LU above that (see [`crate::DenseMatrix`]); for particle models through the sparse velocity
+/// form (M − h·∂f/∂v − h²·∂f/∂x)·Δv = … with faer's sparse Cholesky or LU (see
+/// [`crate::particles::ParticleJacobian`]), which gives the same iterates. It stops when
+/// |Δᵢ| ≤ tol·(1 + |yᵢ|) for every component. With [`NewtonOptions::linearized`] it takes exactly
+/// one iteration and accepts it: the linearly implicit Euler of Baraff & Witkin (1998), one
+/// factorization per step. When the iteration fails — too many iterations,
 /// a singular matrix, or updates that stop shrinking — the step is retried as two half steps,
 /// recursively up to [`NewtonOptions::max_halvings`] deep, and past that fails with
 /// [`Error::NewtonDidNotConverge`]. The recorded grid keeps the fixed dt.
@@ -32,8 +36,8 @@ pub struct ImplicitEuler<M: Jacobian> {
     force: M::State,
     /// −G(yᵏ), then the Newton update Δ.
     update: M::State,
+    /// J(yᵏ), overwritten by the solve of (I − h·J)·Δ = −G.
     jacobian: M::Matrix,
-    matrix: M::Matrix,
     evaluations: Evaluations,
 }
 
@@ -42,17 +46,16 @@ impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
     const STARTUP_EVALUATIONS: u64 = 0;
     const EVALUATIONS_PER_STEP: u64 = 0;
 
-    fn start(_: &M, _: f64, dt: f64, state: &M::State, newton: &NewtonOptions) -> Self {
-        ImplicitEuler {
+    fn start(model: &M, _: f64, dt: f64, state: &M::State, newton: &NewtonOptions) -> Result<Self> {
+        Ok(ImplicitEuler {
             dt,
             newton: *newton,
             start: state.clone(),
             force: state.clone(),
             update: state.clone(),
-            jacobian: M::Matrix::zeros(),
-            matrix: M::Matrix::zeros(),
+            jacobian: model.jacobian_matrix(state),
             evaluations: Evaluations::default(),
-        }
+        })
     }
 
     fn step(&mut self, model: &M, t: f64, y: &mut M::State) -> Result<()> {
@@ -65,6 +68,12 @@ impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
 }
 
 impl<M: Jacobian> ImplicitEuler<M> {
+    /// The Newton matrix, holding the last Jacobian or its factors: particle models read their
+    /// factorization counts from it.
+    pub fn matrix(&self) -> &M::Matrix {
+        &self.jacobian
+    }
+
     /// One step of size `h` from `t`, retried as two half steps when Newton fails.
     fn advance(&mut self, model: &M, t: f64, h: f64, y: &mut M::State, depth: u32) -> Result<()> {
         self.start.clone_from(y);
@@ -104,8 +113,7 @@ impl<M: Jacobian> ImplicitEuler<M> {
             }
             model.jacobian(t1, y, &mut self.jacobian);
             self.evaluations.jacobian += 1;
-            self.matrix.set_identity_minus(h, &self.jacobian);
-            if !self.matrix.solve_in_place(rhs) {
+            if !self.jacobian.solve_identity_minus(h, rhs) {
                 return Err(Error::NewtonDidNotConverge {
                     t: t1,
                     iters: iter,
@@ -116,7 +124,7 @@ impl<M: Jacobian> ImplicitEuler<M> {
             // of the implicit equations, or none: give up so the step can be halved (the test of
             // Hairer & Wanner 1996, §IV.8).
             let update = rhs.iter().fold(0.0, |m: f64, d| m.max(d.abs()));
-            if update.is_nan() || update >= previous_update {
+            if update.is_nan() || (update >= previous_update && !self.newton.linearized) {
                 return Err(Error::NewtonDidNotConverge {
                     t: t1,
                     iters: iter,
@@ -129,7 +137,7 @@ impl<M: Jacobian> ImplicitEuler<M> {
                 *yi += di;
                 converged &= di.abs() <= self.newton.tol * (1.0 + yi.abs());
             }
-            if converged {
+            if converged || self.newton.linearized {
                 return Ok(());
             }
         }

@@ -33,15 +33,15 @@ impl<M: SecondOrder> Integrator<M> for Leapfrog<M::State> {
     const STARTUP_EVALUATIONS: u64 = 1;
     const EVALUATIONS_PER_STEP: u64 = 1;
 
-    fn start(model: &M, t0: f64, dt: f64, state: &M::State, _: &NewtonOptions) -> Self {
+    fn start(model: &M, t0: f64, dt: f64, state: &M::State, _: &NewtonOptions) -> Result<Self> {
         let mut accel = state.clone();
         model.acceleration(t0, state, &mut accel);
-        Leapfrog {
+        Ok(Leapfrog {
             dt,
             next: accel.clone(),
             probe: state.clone(),
             accel,
-        }
+        })
     }
 
     #[inline]

@@ -46,8 +46,12 @@ pub trait Integrator<M: Model> {
     const EVALUATIONS_PER_STEP: u64;
 
     /// Prepares to step `state` from time `t0` with the fixed step `dt`; `newton` configures the
-    /// nonlinear solve of implicit methods and is ignored by explicit ones.
-    fn start(model: &M, t0: f64, dt: f64, state: &M::State, newton: &NewtonOptions) -> Self;
+    /// nonlinear solve of implicit methods and is ignored by explicit ones. Fails only for an
+    /// implicit method whose linear solver cannot be set up (a sparse symbolic factorization).
+    fn start(model: &M, t0: f64, dt: f64, state: &M::State, newton: &NewtonOptions)
+    -> Result<Self>
+    where
+        Self: Sized;
 
     /// Advances `state` from time `t` to `t + dt`. Only implicit methods can fail here (their
     /// Newton solve); on failure the state is the last iterate.

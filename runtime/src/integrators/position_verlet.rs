@@ -38,16 +38,16 @@ impl<M: SecondOrder> Integrator<M> for PositionVerlet<M::State> {
     const STARTUP_EVALUATIONS: u64 = 1;
     const EVALUATIONS_PER_STEP: u64 = 1;
 
-    fn start(model: &M, t0: f64, dt: f64, state: &M::State, _: &NewtonOptions) -> Self {
+    fn start(model: &M, t0: f64, dt: f64, state: &M::State, _: &NewtonOptions) -> Result<Self> {
         let mut accel = state.clone();
         model.acceleration(t0, state, &mut accel);
-        PositionVerlet {
+        Ok(PositionVerlet {
             dt,
             started: false,
             previous: state.clone(),
             current: state.clone(),
             accel,
-        }
+        })
     }
 
     #[inline]

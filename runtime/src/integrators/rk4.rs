@@ -26,12 +26,12 @@ impl<M: Model> Integrator<M> for Rk4<M::State> {
     const STARTUP_EVALUATIONS: u64 = 0;
     const EVALUATIONS_PER_STEP: u64 = 4;
 
-    fn start(_: &M, _: f64, dt: f64, state: &M::State, _: &NewtonOptions) -> Self {
-        Rk4 {
+    fn start(_: &M, _: f64, dt: f64, state: &M::State, _: &NewtonOptions) -> Result<Self> {
+        Ok(Rk4 {
             dt,
             k: std::array::from_fn(|_| state.clone()),
             probe: state.clone(),
-        }
+        })
     }
 
     #[inline]

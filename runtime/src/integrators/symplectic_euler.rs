@@ -27,11 +27,11 @@ impl<M: SecondOrder> Integrator<M> for SymplecticEuler<M::State> {
     const STARTUP_EVALUATIONS: u64 = 0;
     const EVALUATIONS_PER_STEP: u64 = 1;
 
-    fn start(_: &M, _: f64, dt: f64, state: &M::State, _: &NewtonOptions) -> Self {
-        SymplecticEuler {
+    fn start(_: &M, _: f64, dt: f64, state: &M::State, _: &NewtonOptions) -> Result<Self> {
+        Ok(SymplecticEuler {
             dt,
             accel: state.clone(),
-        }
+        })
     }
 
     #[inline]

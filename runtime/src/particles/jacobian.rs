@@ -1,0 +1,519 @@
+//! The sparse Jacobian of a particle model and its Newton solve.
+
+use std::fmt;
+use std::sync::Arc;
+
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::sparse::linalg::cholesky::{
+    CholeskySymbolicParams, SymbolicCholesky, SymmetricOrdering,
+    factorize_symbolic_cholesky,
+};
+use faer::sparse::linalg::lu::{LuSymbolicParams, NumericLu, SymbolicLu, factorize_symbolic_lu};
+use faer::sparse::{Pair, SparseColMatRef, SymbolicSparseColMat};
+use faer::linalg::cholesky::llt::factor::LltRegularization;
+use faer::{Conj, MatMut, Par, Side};
+use nalgebra::{SMatrix, SVector};
+
+use super::ParticleSystem;
+use crate::NewtonMatrix;
+
+/// How often a [`ParticleJacobian`] has factorized: the symbolic analyses happen once per run,
+/// the numeric factorizations once per Newton iteration.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Factorizations {
+    /// Symbolic Cholesky analyses (fill-reducing ordering and elimination tree).
+    pub symbolic_cholesky: u64,
+    /// Symbolic LU analyses (made only if a Newton matrix is unsymmetric or indefinite).
+    pub symbolic_lu: u64,
+    /// Numeric Cholesky factorizations that succeeded.
+    pub cholesky: u64,
+    /// Numeric LU factorizations.
+    pub lu: u64,
+}
+
+/// The Jacobian of a particle model's forces, in D×D blocks, and the sparse Newton matrix of
+/// implicit Euler built from it.
+///
+/// The blocks are what the kernels' generated derivatives write: for every link of every pair
+/// kernel ∂fₐ/∂xₐ, ∂fₐ/∂x_b, ∂fₐ/∂vₐ, ∂fₐ/∂v_b (the force on b is −fₐ), and for every particle
+/// the sum of the per-particle kernels' ∂fᵢ/∂xᵢ, ∂fᵢ/∂vᵢ.
+///
+/// Implicit Euler's Newton system for y = (x, v), (I − h·J)·(Δx, Δv) = (bₓ, b_v) with
+/// J = [[0, I], [M⁻¹·∂f/∂x, M⁻¹·∂f/∂v]], is solved through its Schur complement, the system of
+/// Baraff & Witkin (1998, eq. 18):
+///
+/// (M − h·∂f/∂v − h²·∂f/∂x)·Δv = M·b_v + h·∂f/∂x·bₓ,  Δx = bₓ + h·Δv,
+///
+/// of dimension D·n instead of 2·D·n. Pinned particles' rows and columns are replaced by M (their
+/// Δv is zero). The sparsity pattern — a block per particle and two per link — is built once,
+/// in [`ParticleJacobian::new`], together with the symbolic Cholesky factorization (AMD
+/// ordering); each solve then only refills values, factorizes numerically and substitutes, with
+/// no allocation. Conservative spring forces make the matrix symmetric, and positive definite
+/// unless springs are compressed hard: then Cholesky (LLᵀ) is used. When the assembled matrix
+/// is not symmetric, or Cholesky meets a non-positive pivot, the solve falls back to sparse LU,
+/// whose symbolic analysis is made the first time it is needed and kept.
+pub struct ParticleJacobian<const D: usize> {
+    particles: usize,
+    mass: Vec<f64>,
+    pinned: Vec<bool>,
+    ends: Vec<[usize; 2]>,
+    /// Per link: ∂fₐ/∂xₐ, ∂fₐ/∂x_b, ∂fₐ/∂vₐ, ∂fₐ/∂v_b.
+    pairs: Vec<[SMatrix<f64, D, D>; 4]>,
+    /// Per particle: ∂fᵢ/∂xᵢ, ∂fᵢ/∂vᵢ of the per-particle kernels.
+    diagonal: Vec<[SMatrix<f64, D, D>; 2]>,
+    /// Links written so far in this evaluation.
+    cursor: usize,
+    solver: Solver,
+}
+
+/// The sparse Newton matrix and its factorizations.
+struct Solver {
+    pattern: SymbolicSparseColMat<usize>,
+    values: Vec<f64>,
+    /// Slot of entry (D·i + r, D·i + c) at i·D² + r·D + c.
+    diagonal_slots: Vec<usize>,
+    /// Per link, slots of block (a, b) then block (b, a), row-major; `usize::MAX` when either
+    /// particle is pinned.
+    pair_slots: Vec<usize>,
+    /// Slot of each entry's transpose.
+    transpose: Vec<usize>,
+    /// ∂f/∂x·bₓ, then the right-hand side of the velocity system.
+    rhs: Vec<f64>,
+    cholesky: Arc<SymbolicCholesky<usize>>,
+    cholesky_values: Vec<f64>,
+    lu: Option<(Arc<SymbolicLu<usize>>, NumericLu<usize, f64>)>,
+    scratch: MemBuffer,
+    counts: Factorizations,
+}
+
+impl<const D: usize> ParticleJacobian<D> {
+    /// The Jacobian of `model` with `particles` particles (its topology already checked by
+    /// [`crate::Model::check`]): the pattern and the symbolic Cholesky factorization are computed
+    /// here, once.
+    pub fn new<M: ParticleSystem<D>>(model: &M, particles: usize) -> Self {
+        let mut pinned = vec![false; particles];
+        for &p in model.pinned() {
+            if let Some(flag) = pinned.get_mut(p) {
+                *flag = true;
+            }
+        }
+        let ends: Vec<[usize; 2]> = model
+            .link_lists()
+            .into_iter()
+            .flat_map(|(_, links)| (0..links.len()).map(move |k| links.ends(k)))
+            .filter(|&[a, b]| a < particles && b < particles && a != b)
+            .collect();
+        let solver = Solver::new::<D>(particles, &pinned, &ends);
+        ParticleJacobian {
+            particles,
+            mass: model.masses().to_vec(),
+            pinned,
+            pairs: vec![[SMatrix::zeros(); 4]; ends.len()],
+            diagonal: vec![[SMatrix::zeros(); 2]; particles],
+            ends,
+            cursor: 0,
+            solver,
+        }
+    }
+
+    /// Number of particles.
+    pub fn particles(&self) -> usize {
+        self.particles
+    }
+
+    /// How often this Jacobian has factorized.
+    pub fn factorizations(&self) -> Factorizations {
+        self.solver.counts
+    }
+
+    /// Structural non-zeros of the D·n × D·n Newton matrix.
+    pub fn nonzeros(&self) -> usize {
+        self.solver.values.len()
+    }
+
+    /// Starts a new evaluation: per-particle blocks to zero, the link cursor to the first link.
+    pub(crate) fn begin(&mut self) {
+        self.cursor = 0;
+        self.diagonal.fill([SMatrix::zeros(); 2]);
+    }
+
+    /// Writes the blocks of a pair kernel over `links` (the next links in kernel order):
+    /// `kernel(link, xa, xb, va, vb)` returns ∂fₐ/∂xₐ, ∂fₐ/∂x_b, ∂fₐ/∂vₐ, ∂fₐ/∂v_b.
+    #[doc(hidden)]
+    #[inline]
+    #[allow(clippy::type_complexity)]
+    pub fn pair_blocks<L: super::Link>(
+        &mut self,
+        links: &[L],
+        x: &[SVector<f64, D>],
+        v: &[SVector<f64, D>],
+        kernel: impl Fn(
+            &L,
+            &SVector<f64, D>,
+            &SVector<f64, D>,
+            &SVector<f64, D>,
+            &SVector<f64, D>,
+        ) -> [SMatrix<f64, D, D>; 4],
+    ) {
+        let blocks = &mut self.pairs[self.cursor..self.cursor + links.len()];
+        for (link, out) in links.iter().zip(blocks) {
+            let [a, b] = link.ends();
+            *out = kernel(link, &x[a], &x[b], &v[a], &v[b]);
+        }
+        self.cursor += links.len();
+    }
+
+    /// Adds the blocks of a per-particle kernel: `kernel(i, x, v)` returns ∂fᵢ/∂xᵢ, ∂fᵢ/∂vᵢ.
+    #[doc(hidden)]
+    #[inline]
+    pub fn particle_blocks(
+        &mut self,
+        x: &[SVector<f64, D>],
+        v: &[SVector<f64, D>],
+        kernel: impl Fn(usize, &SVector<f64, D>, &SVector<f64, D>) -> [SMatrix<f64, D, D>; 2],
+    ) {
+        for (i, ((x, v), out)) in x.iter().zip(v).zip(&mut self.diagonal).enumerate() {
+            let [dx, dv] = kernel(i, x, v);
+            out[0] += dx;
+            out[1] += dv;
+        }
+    }
+
+    /// ∂f/∂x and ∂f/∂v as dense D·n × D·n matrices (row = force component), pinned rows
+    /// included: for tests and small models.
+    pub fn force_jacobians(&self) -> (faer::Mat<f64>, faer::Mat<f64>) {
+        let n = D * self.particles;
+        let mut dx = faer::Mat::zeros(n, n);
+        let mut dv = faer::Mat::zeros(n, n);
+        let add = |m: &mut faer::Mat<f64>, i: usize, j: usize, block: &SMatrix<f64, D, D>, s| {
+            for r in 0..D {
+                for c in 0..D {
+                    m[(D * i + r, D * j + c)] += s * block[(r, c)];
+                }
+            }
+        };
+        for (i, [bx, bv]) in self.diagonal.iter().enumerate() {
+            add(&mut dx, i, i, bx, 1.0);
+            add(&mut dv, i, i, bv, 1.0);
+        }
+        for (&[a, b], [xa, xb, va, vb]) in self.ends.iter().zip(&self.pairs) {
+            for (row, sign) in [(a, 1.0), (b, -1.0)] {
+                add(&mut dx, row, a, xa, sign);
+                add(&mut dx, row, b, xb, sign);
+                add(&mut dv, row, a, va, sign);
+                add(&mut dv, row, b, vb, sign);
+            }
+        }
+        (dx, dv)
+    }
+
+    /// Assembles M − h·∂f/∂v − h²·∂f/∂x into the sparse matrix and returns it.
+    pub fn newton_matrix(&mut self, h: f64) -> SparseColMatRef<'_, usize, f64> {
+        self.assemble(h);
+        SparseColMatRef::new(self.solver.pattern.as_ref(), &self.solver.values)
+    }
+
+    fn assemble(&mut self, h: f64) {
+        let s = &mut self.solver;
+        let h2 = h * h;
+        for (i, [bx, bv]) in self.diagonal.iter().enumerate() {
+            let slots = &s.diagonal_slots[i * D * D..(i + 1) * D * D];
+            for r in 0..D {
+                for c in 0..D {
+                    let mass = if r == c { self.mass[i] } else { 0.0 };
+                    s.values[slots[r * D + c]] = if self.pinned[i] {
+                        mass
+                    } else {
+                        mass - h * bv[(r, c)] - h2 * bx[(r, c)]
+                    };
+                }
+            }
+        }
+        for (k, (&[a, b], [xa, xb, va, vb])) in self.ends.iter().zip(&self.pairs).enumerate() {
+            // Row a gets +∂fₐ, row b gets −∂fₐ; the matrix holds −h·∂f/∂v − h²·∂f/∂x.
+            let block = |r: usize, c: usize, dx: &SMatrix<f64, D, D>, dv: &SMatrix<f64, D, D>| {
+                -h * dv[(r, c)] - h2 * dx[(r, c)]
+            };
+            let pinned_a = self.pinned[a];
+            let pinned_b = self.pinned[b];
+            let base = k * 2 * D * D;
+            for r in 0..D {
+                for c in 0..D {
+                    if !pinned_a {
+                        s.values[s.diagonal_slots[a * D * D + r * D + c]] += block(r, c, xa, va);
+                    }
+                    if !pinned_b {
+                        s.values[s.diagonal_slots[b * D * D + r * D + c]] -= block(r, c, xb, vb);
+                    }
+                    if !(pinned_a || pinned_b) {
+                        s.values[s.pair_slots[base + r * D + c]] += block(r, c, xb, vb);
+                        s.values[s.pair_slots[base + D * D + r * D + c]] -= block(r, c, xa, va);
+                    }
+                }
+            }
+        }
+    }
+
+    /// rhs ← M·b_v + h·∂f/∂x·bₓ on free particles, M·b_v on pinned ones.
+    fn velocity_rhs(&mut self, h: f64, bx: &[f64], bv: &[f64]) {
+        let rhs = &mut self.solver.rhs;
+        rhs.fill(0.0);
+        let part = |s: &[f64], i: usize| SVector::<f64, D>::from_column_slice(&s[D * i..D * i + D]);
+        let add = |rhs: &mut [f64], i: usize, w: SVector<f64, D>| {
+            for (r, wr) in rhs[D * i..D * i + D].iter_mut().zip(w.iter()) {
+                *r += wr;
+            }
+        };
+        for (i, [dx, _]) in self.diagonal.iter().enumerate() {
+            add(rhs, i, dx * part(bx, i));
+        }
+        for (&[a, b], [xa, xb, _, _]) in self.ends.iter().zip(&self.pairs) {
+            let w = xa * part(bx, a) + xb * part(bx, b);
+            add(rhs, a, w);
+            add(rhs, b, -w);
+        }
+        for i in 0..self.particles {
+            for r in 0..D {
+                let k = D * i + r;
+                let force = if self.pinned[i] { 0.0 } else { h * rhs[k] };
+                rhs[k] = self.mass[i] * bv[k] + force;
+            }
+        }
+    }
+}
+
+impl<const D: usize> NewtonMatrix for ParticleJacobian<D> {
+    fn solve_identity_minus(&mut self, h: f64, b: &mut [f64]) -> bool {
+        let n = D * self.particles;
+        if b.len() != 2 * n {
+            return false;
+        }
+        self.assemble(h);
+        let (bx, bv) = b.split_at_mut(n);
+        self.velocity_rhs(h, bx, bv);
+        if !self.solver.solve() {
+            return false;
+        }
+        for ((x, v), dv) in bx.iter_mut().zip(bv.iter_mut()).zip(&self.solver.rhs) {
+            *v = *dv;
+            *x += h * dv;
+        }
+        b.iter().all(|x| x.is_finite())
+    }
+}
+
+impl Solver {
+    fn new<const D: usize>(particles: usize, pinned: &[bool], ends: &[[usize; 2]]) -> Self {
+        let n = D * particles;
+        let mut entries = Vec::new();
+        let mut block = |i: usize, j: usize| {
+            for r in 0..D {
+                for c in 0..D {
+                    entries.push(Pair::new(D * i + r, D * j + c));
+                }
+            }
+        };
+        for i in 0..particles {
+            block(i, i);
+        }
+        for &[a, b] in ends {
+            if !(pinned[a] || pinned[b]) {
+                block(a, b);
+                block(b, a);
+            }
+        }
+        let (pattern, _) = SymbolicSparseColMat::try_new_from_indices(n, n, &entries)
+            .expect("indices are in range: the topology was checked");
+        let slot = |row: usize, col: usize| -> usize {
+            let start = pattern.col_ptr()[col];
+            let rows = pattern.row_idx_of_col_raw(col);
+            start + rows.binary_search(&row).expect("every block is in the pattern")
+        };
+        let mut diagonal_slots = Vec::with_capacity(particles * D * D);
+        for i in 0..particles {
+            for r in 0..D {
+                for c in 0..D {
+                    diagonal_slots.push(slot(D * i + r, D * i + c));
+                }
+            }
+        }
+        let mut pair_slots = Vec::with_capacity(ends.len() * 2 * D * D);
+        for &[a, b] in ends {
+            for (i, j) in [(a, b), (b, a)] {
+                for r in 0..D {
+                    for c in 0..D {
+                        pair_slots.push(if pinned[a] || pinned[b] {
+                            usize::MAX
+                        } else {
+                            slot(D * i + r, D * j + c)
+                        });
+                    }
+                }
+            }
+        }
+        let mut transpose = vec![0; pattern.compute_nnz()];
+        for col in 0..n {
+            let start = pattern.col_ptr()[col];
+            for (k, &row) in pattern.row_idx_of_col_raw(col).iter().enumerate() {
+                transpose[start + k] = slot(col, row);
+            }
+        }
+        let cholesky = factorize_symbolic_cholesky(
+            pattern.as_ref(),
+            Side::Lower,
+            SymmetricOrdering::Amd,
+            CholeskySymbolicParams::default(),
+        )
+        .expect("a symmetric pattern of checked size always has a symbolic Cholesky factor");
+        let scratch = MemBuffer::new(Self::cholesky_scratch(&cholesky));
+        Solver {
+            values: vec![0.0; pattern.compute_nnz()],
+            cholesky_values: vec![0.0; cholesky.len_val()],
+            cholesky: Arc::new(cholesky),
+            pattern,
+            diagonal_slots,
+            pair_slots,
+            transpose,
+            rhs: vec![0.0; n],
+            lu: None,
+            scratch,
+            counts: Factorizations {
+                symbolic_cholesky: 1,
+                ..Factorizations::default()
+            },
+        }
+    }
+
+    fn cholesky_scratch(symbolic: &SymbolicCholesky<usize>) -> StackReq {
+        symbolic
+            .factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default())
+            .or(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq))
+    }
+
+    /// Whether the assembled matrix is symmetric, to rounding.
+    fn is_symmetric(&self) -> bool {
+        self.values
+            .iter()
+            .zip(&self.transpose)
+            .all(|(&a, &t)| (a - self.values[t]).abs() <= 1e-12 * (a.abs() + self.values[t].abs()))
+    }
+
+    /// Solves the assembled system for `self.rhs`, in place.
+    fn solve(&mut self) -> bool {
+        let n = self.rhs.len();
+        if self.is_symmetric() {
+            let matrix = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
+            let factored = self.cholesky.factorize_numeric_llt(
+                &mut self.cholesky_values,
+                matrix,
+                Side::Lower,
+                LltRegularization::default(),
+                Par::Seq,
+                MemStack::new(&mut self.scratch),
+                Default::default(),
+            );
+            if let Ok(llt) = factored {
+                let rhs = MatMut::from_column_major_slice_mut(&mut self.rhs, n, 1);
+                llt.solve_in_place_with_conj(
+                    Conj::No,
+                    rhs,
+                    Par::Seq,
+                    MemStack::new(&mut self.scratch),
+                );
+                self.counts.cholesky += 1;
+                return true;
+            }
+        }
+        self.solve_lu()
+    }
+
+    fn solve_lu(&mut self) -> bool {
+        let n = self.rhs.len();
+        if self.lu.is_none() {
+            let Ok(symbolic) = factorize_symbolic_lu(self.pattern.as_ref(), LuSymbolicParams::default())
+            else {
+                return false;
+            };
+            let need = symbolic
+                .factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default())
+                .or(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq))
+                .or(Self::cholesky_scratch(&self.cholesky));
+            self.scratch = MemBuffer::new(need);
+            self.lu = Some((Arc::new(symbolic), NumericLu::new()));
+            self.counts.symbolic_lu += 1;
+        }
+        let Some((symbolic, numeric)) = &mut self.lu else {
+            return false;
+        };
+        let matrix = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
+        let Ok(lu) = symbolic.factorize_numeric_lu(
+            numeric,
+            matrix,
+            Par::Seq,
+            MemStack::new(&mut self.scratch),
+            Default::default(),
+        ) else {
+            return false;
+        };
+        let rhs = MatMut::from_column_major_slice_mut(&mut self.rhs, n, 1);
+        lu.solve_in_place_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(&mut self.scratch));
+        self.counts.lu += 1;
+        true
+    }
+}
+
+impl Clone for Solver {
+    fn clone(&self) -> Self {
+        Solver {
+            pattern: self.pattern.clone(),
+            values: self.values.clone(),
+            diagonal_slots: self.diagonal_slots.clone(),
+            pair_slots: self.pair_slots.clone(),
+            transpose: self.transpose.clone(),
+            rhs: self.rhs.clone(),
+            cholesky: Arc::clone(&self.cholesky),
+            cholesky_values: self.cholesky_values.clone(),
+            lu: self.lu.clone(),
+            scratch: MemBuffer::new(self.scratch_size()),
+            counts: self.counts,
+        }
+    }
+}
+
+impl Solver {
+    fn scratch_size(&self) -> StackReq {
+        let cholesky = Self::cholesky_scratch(&self.cholesky);
+        match &self.lu {
+            None => cholesky,
+            Some((lu, _)) => cholesky
+                .or(lu.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default()))
+                .or(lu.solve_in_place_scratch::<f64>(1, Par::Seq)),
+        }
+    }
+}
+
+impl<const D: usize> Clone for ParticleJacobian<D> {
+    fn clone(&self) -> Self {
+        ParticleJacobian {
+            particles: self.particles,
+            mass: self.mass.clone(),
+            pinned: self.pinned.clone(),
+            ends: self.ends.clone(),
+            pairs: self.pairs.clone(),
+            diagonal: self.diagonal.clone(),
+            cursor: self.cursor,
+            solver: self.solver.clone(),
+        }
+    }
+}
+
+impl<const D: usize> fmt::Debug for ParticleJacobian<D> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("ParticleJacobian")
+            .field("particles", &self.particles)
+            .field("links", &self.ends.len())
+            .field("nonzeros", &self.solver.values.len())
+            .field("factorizations", &self.solver.counts)
+            .finish_non_exhaustive()
+    }
+}

@@ -1,0 +1,514 @@
+//! Particle systems: state sized at run time, forces written as per-element kernels, and the
+//! sparse Jacobian assembled from the topology.
+//!
+//! A particle model has `#[position]` and `#[velocity]` fields of type `Vec<Vector3<f64>>` (or
+//! `Vec<Vector2<f64>>`), a `#[mass]` field `Vec<f64>`, optionally a `#[pinned]` field `Vec<usize>`,
+//! and forces written as kernels in its `#[system]` impl:
+//!
+//! - `#[pair(links)]` on `fn(&self, link: &L, xa, xb[, va, vb]) -> VectorD`: the force on particle
+//!   `a` of each link in the field `links: Vec<L>` (`L:` [`Link`]); particle `b` gets its opposite
+//!   (Newton's third law).
+//! - `#[particle]` on `fn(&self[, i: usize], x[, v]) -> VectorD`: a force on every particle.
+//!
+//! `#[system]` differentiates each kernel into D×D blocks (∂f/∂xa, ∂f/∂xb, ∂f/∂va, ∂f/∂vb) and
+//! implements [`ParticleSystem`]; the runtime sums the kernels into accelerations f/m for every
+//! integrator, and into the sparse Newton matrix of implicit Euler ([`ParticleJacobian`]).
+//!
+//! Pinned particles keep their initial velocity (zero: fixed in place): their acceleration is
+//! zero, whatever the forces on them.
+
+mod jacobian;
+
+use std::fmt;
+
+use nalgebra::SVector;
+
+use crate::{Error, Model, Result, State};
+
+pub use jacobian::{Factorizations, ParticleJacobian};
+
+/// The state of a particle model: every position, then every velocity, as one `Vec<f64>`.
+#[derive(Clone, PartialEq)]
+pub struct ParticleState<const D: usize> {
+    components: Vec<f64>,
+    /// The model's position and velocity field names, for CSV headers and errors.
+    names: [&'static str; 2],
+}
+
+impl<const D: usize> ParticleState<D> {
+    /// A state with these positions and velocities, named `x` and `v`.
+    ///
+    /// Errors: [`Error::InvalidInput`] when the two lists differ in length.
+    pub fn new(positions: &[SVector<f64, D>], velocities: &[SVector<f64, D>]) -> Result<Self> {
+        if positions.len() != velocities.len() {
+            return Err(Error::invalid(
+                "particle state",
+                format!(
+                    "{} positions but {} velocities",
+                    positions.len(),
+                    velocities.len()
+                ),
+            ));
+        }
+        Ok(Self::from_fields(positions, velocities, ["x", "v"]))
+    }
+
+    /// The state of a model's fields; lengths are checked by [`Model::check`].
+    #[doc(hidden)]
+    pub fn from_fields(
+        positions: &[SVector<f64, D>],
+        velocities: &[SVector<f64, D>],
+        names: [&'static str; 2],
+    ) -> Self {
+        let components = positions
+            .iter()
+            .chain(velocities)
+            .flat_map(|p| p.iter().copied())
+            .collect();
+        ParticleState { components, names }
+    }
+
+    /// Number of particles.
+    pub fn len(&self) -> usize {
+        self.components.len() / (2 * D)
+    }
+
+    /// Whether there are no particles.
+    pub fn is_empty(&self) -> bool {
+        self.components.is_empty()
+    }
+
+    /// The positions.
+    pub fn positions(&self) -> &[SVector<f64, D>] {
+        vectors(self.components.split_at(self.components.len() / 2).0)
+    }
+
+    /// The velocities.
+    pub fn velocities(&self) -> &[SVector<f64, D>] {
+        vectors(self.components.split_at(self.components.len() / 2).1)
+    }
+
+    /// The positions, mutably.
+    pub fn positions_mut(&mut self) -> &mut [SVector<f64, D>] {
+        let half = self.components.len() / 2;
+        vectors_mut(&mut self.components[..half])
+    }
+
+    /// The velocities, mutably.
+    pub fn velocities_mut(&mut self) -> &mut [SVector<f64, D>] {
+        let half = self.components.len() / 2;
+        vectors_mut(&mut self.components[half..])
+    }
+
+    /// Positions and velocities, for reading one and writing the other.
+    pub fn split_mut(&mut self) -> (&mut [SVector<f64, D>], &mut [SVector<f64, D>]) {
+        let half = self.components.len() / 2;
+        let (x, v) = self.components.split_at_mut(half);
+        (vectors_mut(x), vectors_mut(v))
+    }
+}
+
+impl<const D: usize> fmt::Debug for ParticleState<D> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("ParticleState")
+            .field(self.names[0], &self.positions())
+            .field(self.names[1], &self.velocities())
+            .finish()
+    }
+}
+
+impl<const D: usize> State for ParticleState<D> {
+    #[inline(always)]
+    fn as_slice(&self) -> &[f64] {
+        &self.components
+    }
+
+    #[inline(always)]
+    fn as_mut_slice(&mut self) -> &mut [f64] {
+        &mut self.components
+    }
+
+    fn component_name(&self, index: usize) -> String {
+        let half = self.components.len() / 2;
+        let (name, i) = if index < half {
+            (self.names[0], index)
+        } else {
+            (self.names[1], index - half)
+        };
+        const AXES: [&str; 4] = ["x", "y", "z", "w"];
+        let axis = AXES.get(i % D).copied().unwrap_or("?");
+        format!("{name}[{}].{axis}", i / D)
+    }
+}
+
+/// `components` (a multiple of D long) as D-vectors, without copying.
+#[inline(always)]
+fn vectors<const D: usize>(components: &[f64]) -> &[SVector<f64, D>] {
+    const { assert!(size_of::<SVector<f64, D>>() == D * size_of::<f64>()) };
+    const { assert!(align_of::<SVector<f64, D>>() == align_of::<f64>()) };
+    // SAFETY: `SVector<f64, D>` is `#[repr(C)]` over a `#[repr(transparent)]` `[[f64; D]; 1]`, so
+    // it has the layout of `[f64; D]` (size and alignment asserted above); the length rounds down.
+    unsafe {
+        core::slice::from_raw_parts(
+            components.as_ptr().cast::<SVector<f64, D>>(),
+            components.len() / D,
+        )
+    }
+}
+
+/// Mutable [`vectors`].
+#[inline(always)]
+fn vectors_mut<const D: usize>(components: &mut [f64]) -> &mut [SVector<f64, D>] {
+    const { assert!(size_of::<SVector<f64, D>>() == D * size_of::<f64>()) };
+    // SAFETY: as in `vectors`; the borrow is unique.
+    unsafe {
+        core::slice::from_raw_parts_mut(
+            components.as_mut_ptr().cast::<SVector<f64, D>>(),
+            components.len() / D,
+        )
+    }
+}
+
+/// An element a pair kernel runs over: it joins two particles.
+pub trait Link {
+    /// The two particles, `[a, b]`; the kernel's force acts on `a`, its opposite on `b`.
+    fn ends(&self) -> [usize; 2];
+
+    /// Checks the link's own parameters (a spring's rest length, ...); the message says what is
+    /// wrong.
+    fn check(&self) -> std::result::Result<(), String> {
+        Ok(())
+    }
+}
+
+impl Link for [usize; 2] {
+    fn ends(&self) -> [usize; 2] {
+        *self
+    }
+}
+
+/// A damped spring between particles `a` and `b`: the usual link of cloth and rope.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Spring {
+    /// First particle.
+    pub a: usize,
+    /// Second particle.
+    pub b: usize,
+    /// Rest length (> 0).
+    pub rest: f64,
+    /// Stiffness k (N/m, ≥ 0).
+    pub stiffness: f64,
+    /// Damping c along the spring (N·s/m, ≥ 0).
+    pub damping: f64,
+}
+
+impl Spring {
+    /// A spring between `a` and `b` at rest at their distance in `positions` (NaN rest length
+    /// when either index is out of range, which [`Model::check`] then reports).
+    pub fn at_rest<const D: usize>(
+        positions: &[SVector<f64, D>],
+        a: usize,
+        b: usize,
+        stiffness: f64,
+        damping: f64,
+    ) -> Spring {
+        let rest = match (positions.get(a), positions.get(b)) {
+            (Some(pa), Some(pb)) => (pb - pa).norm(),
+            _ => f64::NAN,
+        };
+        Spring {
+            a,
+            b,
+            rest,
+            stiffness,
+            damping,
+        }
+    }
+}
+
+impl Link for Spring {
+    fn ends(&self) -> [usize; 2] {
+        [self.a, self.b]
+    }
+
+    fn check(&self) -> std::result::Result<(), String> {
+        if !(self.rest.is_finite() && self.rest > 0.0) {
+            return Err(format!(
+                "has rest length {}; it must be finite and positive",
+                self.rest
+            ));
+        }
+        if !(self.stiffness.is_finite() && self.stiffness >= 0.0) {
+            return Err(format!(
+                "has stiffness {}; it must be finite and non-negative",
+                self.stiffness
+            ));
+        }
+        if !(self.damping.is_finite() && self.damping >= 0.0) {
+            return Err(format!(
+                "has damping {}; it must be finite and non-negative",
+                self.damping
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// A list of links, seen through its ends: the topology a pair kernel contributes.
+pub trait LinkList {
+    /// Number of links.
+    fn len(&self) -> usize;
+    /// Whether there are none.
+    fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+    /// The ends of link `index`.
+    fn ends(&self, index: usize) -> [usize; 2];
+    /// [`Link::check`] of link `index`.
+    fn check(&self, index: usize) -> std::result::Result<(), String>;
+}
+
+impl<L: Link> LinkList for [L] {
+    fn len(&self) -> usize {
+        <[L]>::len(self)
+    }
+    fn ends(&self, index: usize) -> [usize; 2] {
+        self[index].ends()
+    }
+    fn check(&self, index: usize) -> std::result::Result<(), String> {
+        self[index].check()
+    }
+}
+
+/// A particle model in D dimensions, implemented by `#[system]`: the kernels and the topology.
+pub trait ParticleSystem<const D: usize>: Model<State = ParticleState<D>> {
+    /// The mass of every particle.
+    fn masses(&self) -> &[f64];
+
+    /// The pinned particles.
+    fn pinned(&self) -> &[usize];
+
+    /// The fields that need one entry per particle and their lengths (positions, velocities,
+    /// masses).
+    fn per_particle(&self) -> [(&'static str, usize); 3];
+
+    /// Every pair kernel's links with the field they come from, in kernel order.
+    fn link_lists(&self) -> Vec<(&'static str, &dyn LinkList)>;
+
+    /// Adds every kernel's force at (x, v) into `force`.
+    fn add_forces(
+        &self,
+        t: f64,
+        x: &[SVector<f64, D>],
+        v: &[SVector<f64, D>],
+        force: &mut [SVector<f64, D>],
+    );
+
+    /// Writes every kernel's derivative blocks at (x, v) into `jacobian` (see
+    /// [`ParticleJacobian::pair_blocks`] and [`ParticleJacobian::particle_blocks`]).
+    fn add_force_jacobian(
+        &self,
+        t: f64,
+        x: &[SVector<f64, D>],
+        v: &[SVector<f64, D>],
+        jacobian: &mut ParticleJacobian<D>,
+    );
+
+    /// The potential energy at (x, v), if the model defines `fn potential`.
+    fn potential_energy(&self, x: &[SVector<f64, D>], v: &[SVector<f64, D>]) -> Option<f64>;
+
+    /// The kinetic energy ½·Σ mᵢ|vᵢ|² of `state`.
+    fn kinetic(&self, state: &ParticleState<D>) -> f64 {
+        let v = state.velocities();
+        self.masses()
+            .iter()
+            .zip(v)
+            .map(|(m, v)| 0.5 * m * v.norm_squared())
+            .sum()
+    }
+
+    /// The potential energy of `state`, if the model defines `fn potential`.
+    fn potential(&self, state: &ParticleState<D>) -> Option<f64> {
+        self.potential_energy(state.positions(), state.velocities())
+    }
+
+    /// The net force on every particle at `state` and time `t`, pinned ones included (a pinned
+    /// particle's is what holds it): for equilibrium checks.
+    fn net_forces(&self, t: f64, state: &ParticleState<D>) -> Vec<SVector<f64, D>> {
+        let mut force = vec![SVector::zeros(); state.len()];
+        self.add_forces(t, state.positions(), state.velocities(), &mut force);
+        force
+    }
+}
+
+/// Sums a pair kernel over `links`: the force on `a`, its opposite on `b`.
+#[doc(hidden)]
+#[inline]
+pub fn pair_forces<L: Link, const D: usize>(
+    links: &[L],
+    x: &[SVector<f64, D>],
+    v: &[SVector<f64, D>],
+    force: &mut [SVector<f64, D>],
+    kernel: impl Fn(&L, &SVector<f64, D>, &SVector<f64, D>, &SVector<f64, D>, &SVector<f64, D>) -> SVector<f64, D>,
+) {
+    for link in links {
+        let [a, b] = link.ends();
+        let f = kernel(link, &x[a], &x[b], &v[a], &v[b]);
+        force[a] += f;
+        force[b] -= f;
+    }
+}
+
+/// Sums a per-particle kernel over every particle.
+#[doc(hidden)]
+#[inline]
+pub fn particle_forces<const D: usize>(
+    x: &[SVector<f64, D>],
+    v: &[SVector<f64, D>],
+    force: &mut [SVector<f64, D>],
+    kernel: impl Fn(usize, &SVector<f64, D>, &SVector<f64, D>) -> SVector<f64, D>,
+) {
+    for (i, ((x, v), f)) in x.iter().zip(v).zip(force.iter_mut()).enumerate() {
+        *f += kernel(i, x, v);
+    }
+}
+
+/// Writes the accelerations f/m at `state` into `accel`, zero for pinned particles.
+#[inline]
+fn accelerations<M: ParticleSystem<D>, const D: usize>(
+    model: &M,
+    t: f64,
+    state: &ParticleState<D>,
+    accel: &mut [SVector<f64, D>],
+) {
+    accel.fill(SVector::zeros());
+    model.add_forces(t, state.positions(), state.velocities(), accel);
+    for (a, m) in accel.iter_mut().zip(model.masses()) {
+        *a /= *m;
+    }
+    for &p in model.pinned() {
+        accel[p] = SVector::zeros();
+    }
+}
+
+/// [`Model::derivative`] of a particle model: (ẋ, v̇) = (v, f/m).
+#[doc(hidden)]
+#[inline]
+pub fn derivative<M: ParticleSystem<D>, const D: usize>(
+    model: &M,
+    t: f64,
+    y: &ParticleState<D>,
+    dydt: &mut ParticleState<D>,
+) {
+    let (dx, dv) = dydt.split_mut();
+    dx.copy_from_slice(y.velocities());
+    accelerations(model, t, y, dv);
+}
+
+/// [`crate::SecondOrder::acceleration`] of a particle model.
+#[doc(hidden)]
+#[inline]
+pub fn acceleration<M: ParticleSystem<D>, const D: usize>(
+    model: &M,
+    t: f64,
+    state: &ParticleState<D>,
+    accel: &mut ParticleState<D>,
+) {
+    accelerations(model, t, state, accel.velocities_mut());
+}
+
+/// [`Model::energy`] of a particle model: kinetic plus potential, when it has a potential.
+#[doc(hidden)]
+pub fn energy<M: ParticleSystem<D>, const D: usize>(
+    model: &M,
+    state: &ParticleState<D>,
+) -> Option<f64> {
+    model
+        .potential(state)
+        .map(|potential| model.kinetic(state) + potential)
+}
+
+/// [`crate::Jacobian::jacobian`] of a particle model.
+#[doc(hidden)]
+#[inline]
+pub fn jacobian<M: ParticleSystem<D>, const D: usize>(
+    model: &M,
+    t: f64,
+    y: &ParticleState<D>,
+    jacobian: &mut ParticleJacobian<D>,
+) {
+    jacobian.begin();
+    model.add_force_jacobian(t, y.positions(), y.velocities(), jacobian);
+}
+
+/// [`crate::Jacobian::jacobian_matrix`] of a particle model.
+#[doc(hidden)]
+pub fn jacobian_matrix<M: ParticleSystem<D>, const D: usize>(
+    model: &M,
+    state: &ParticleState<D>,
+) -> ParticleJacobian<D> {
+    ParticleJacobian::new(model, state.len())
+}
+
+/// [`Model::check`] of a particle model: one entry per particle everywhere, positive finite
+/// masses, pinned particles and link ends in range, links between two different particles, and
+/// each link's own [`Link::check`].
+#[doc(hidden)]
+pub fn check<M: ParticleSystem<D>, const D: usize>(
+    model: &M,
+    state: &ParticleState<D>,
+) -> Result<()> {
+    let bad = |what: String, reason: String| Error::BadModel {
+        model: M::NAME,
+        what,
+        reason,
+    };
+    let n = state.len();
+    for (field, len) in model.per_particle() {
+        if len != n {
+            return Err(bad(
+                format!("`{field}`"),
+                format!("has {len} entries for {n} particles"),
+            ));
+        }
+    }
+    if state.as_slice().len() != 2 * D * n {
+        return Err(bad(
+            "the state".into(),
+            "has positions and velocities of different lengths".into(),
+        ));
+    }
+    for (i, &m) in model.masses().iter().enumerate() {
+        if !(m.is_finite() && m > 0.0) {
+            return Err(bad(
+                format!("mass[{i}]"),
+                format!("is {m}; every particle needs a finite positive mass"),
+            ));
+        }
+    }
+    for (k, &p) in model.pinned().iter().enumerate() {
+        if p >= n {
+            return Err(bad(
+                format!("pinned[{k}]"),
+                format!("is particle {p}, but there are only {n} particles"),
+            ));
+        }
+    }
+    for (field, links) in model.link_lists() {
+        for k in 0..links.len() {
+            let [a, b] = links.ends(k);
+            let what = || format!("{field}[{k}]");
+            if a >= n || b >= n {
+                return Err(bad(
+                    what(),
+                    format!("joins particles {a} and {b}, but there are only {n} particles"),
+                ));
+            }
+            if a == b {
+                return Err(bad(what(), format!("joins particle {a} to itself")));
+            }
+            links.check(k).map_err(|reason| bad(what(), reason))?;
+        }
+    }
+    Ok(())
+}
