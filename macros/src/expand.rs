@@ -12,7 +12,7 @@ use syn::{Item, ItemImpl, ItemStruct, Type};
 
 use crate::errors::Errors;
 use crate::model::Order;
-use crate::{args, functions, generate, lower, model};
+use crate::{args, functions, generate, lower, model, particles};
 
 /// `#[system(...)]` on an item.
 pub(crate) fn system(args: TokenStream, item: TokenStream) -> TokenStream {
@@ -36,6 +36,9 @@ pub(crate) fn system(args: TokenStream, item: TokenStream) -> TokenStream {
 
 /// The struct half: the stripped struct, its state type, and the forwarding macro.
 fn expand_struct(args_tokens: TokenStream, item: &ItemStruct) -> TokenStream {
+    if particles::is_particle_model(item) {
+        return expand_particle_struct(args_tokens, item);
+    }
     let mut errors = Errors::default();
     let args = args::parse(args_tokens.clone(), &mut errors);
     let model = model::parse(item, &mut errors);
@@ -56,6 +59,26 @@ fn expand_struct(args_tokens: TokenStream, item: &ItemStruct) -> TokenStream {
     match (errors.finish(), model) {
         (Ok(()), Some(model)) => {
             let state = generate::state(&model);
+            let forwarder = generate::forwarder(item, &args_tokens, true);
+            quote!(#stripped #state #forwarder)
+        }
+        (result, _) => {
+            let error = result.err().map(|e| e.to_compile_error());
+            let forwarder = generate::forwarder(item, &args_tokens, false);
+            quote!(#stripped #error #forwarder)
+        }
+    }
+}
+
+/// The struct half of a particle model.
+fn expand_particle_struct(args_tokens: TokenStream, item: &ItemStruct) -> TokenStream {
+    let mut errors = Errors::default();
+    args::parse(args_tokens.clone(), &mut errors);
+    let particles = particles::parse_struct(item, &mut errors);
+    let stripped = particles::strip(item);
+    match (errors.finish(), particles) {
+        (Ok(()), Some(particles)) => {
+            let state = particles::state(&particles);
             let forwarder = generate::forwarder(item, &args_tokens, true);
             quote!(#stripped #state #forwarder)
         }
@@ -134,6 +157,9 @@ pub(crate) fn system_impl(input: TokenStream) -> TokenStream {
     };
     let mut errors = Errors::default();
     let args = args::parse(args, &mut errors);
+    if particles::is_particle_model(&item) {
+        return particles::expand_impl(&args, &item, &imp);
+    }
     let Some(model) = model::parse(&item, &mut errors) else {
         return with_error(
             imp,
@@ -189,7 +215,7 @@ pub(crate) fn system_impl(input: TokenStream) -> TokenStream {
 }
 
 /// The user's item unchanged plus the error, so the rest of their crate still compiles.
-fn with_error(item: impl ToTokens, error: syn::Error) -> TokenStream {
+pub(crate) fn with_error(item: impl ToTokens, error: syn::Error) -> TokenStream {
     let error = error.to_compile_error();
     quote!(#item #error)
 }

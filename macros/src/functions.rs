@@ -185,15 +185,7 @@ fn read(
             None
         }
     };
-    let mut rewriter = Rewriter {
-        model,
-        function: name,
-        reads: BTreeMap::new(),
-        errors,
-    };
-    let mut body = f.block.clone();
-    rewriter.visit_block_mut(&mut body);
-    let reads = rewriter.reads;
+    let (body, reads) = rewrite(&f.block, model, name, errors);
     if errors.len() > before {
         return None;
     }
@@ -206,6 +198,25 @@ fn read(
         body,
         reads,
     })
+}
+
+/// `block` with every `self.<state field>` of `model` replaced by the field's local and every other
+/// use of `self` reported; also the state fields read, with the tokens of the first read.
+pub(crate) fn rewrite(
+    block: &Block,
+    model: &Model<'_>,
+    function: &Ident,
+    errors: &mut Errors,
+) -> (Block, BTreeMap<String, TokenStream>) {
+    let mut rewriter = Rewriter {
+        model,
+        function,
+        reads: BTreeMap::new(),
+        errors,
+    };
+    let mut body = block.clone();
+    rewriter.visit_block_mut(&mut body);
+    (body, rewriter.reads)
 }
 
 /// Replaces `self.<state field>` with the field's local and rejects every other use of `self`.

@@ -279,54 +279,9 @@ pub(crate) fn jacobian(
         }
     }
     let components = component_tokens(model);
-    let operand = |id: ExprId, graph: &crate::ir::Graph| -> TokenStream {
-        match graph.node(id) {
-            Node::Const(bits) => float_literal(f64::from_bits(bits)),
-            Node::Var(k) => components[k].clone(),
-            Node::Opaque(i) => opaque_ident(i).into_token_stream(),
-            _ => node_ident(id).into_token_stream(),
-        }
-    };
-    let lets = graph
-        .reachable(entries.iter().map(|e| e.2))
-        .into_iter()
-        .filter_map(|id| {
-            let value = match graph.node(id) {
-                Node::Const(_) | Node::Var(_) | Node::Opaque(_) => return None,
-                Node::Add(a, b) => {
-                    let (a, b) = (operand(a, &graph), operand(b, &graph));
-                    quote!(#a + #b)
-                }
-                Node::Mul(a, b) => {
-                    let (a, b) = (operand(a, &graph), operand(b, &graph));
-                    quote!(#a * #b)
-                }
-                Node::Div(a, b) => {
-                    let (a, b) = (operand(a, &graph), operand(b, &graph));
-                    quote!(#a / #b)
-                }
-                Node::Neg(a) => {
-                    let a = operand(a, &graph);
-                    quote!(-#a)
-                }
-                Node::Powi(a, k) => {
-                    let a = operand(a, &graph);
-                    quote!(#a.powi(#k))
-                }
-                Node::Powf(a, b) => {
-                    let (a, b) = (operand(a, &graph), operand(b, &graph));
-                    quote!(#a.powf(#b))
-                }
-                Node::Call(f, a) => {
-                    let a = operand(a, &graph);
-                    let method = format_ident!("{}", f.method());
-                    quote!(#a.#method())
-                }
-            };
-            let name = node_ident(id);
-            Some(quote!(let #name: f64 = #value;))
-        })
-        .collect::<Vec<_>>();
+    let roots: Vec<ExprId> = entries.iter().map(|e| e.2).collect();
+    let lets = straight_line(&graph, &roots, &components);
+    let operand = |id: ExprId, graph: &crate::ir::Graph| operand(graph, id, &components);
     let jac = format_ident!("__odyn_jac", span = Span::mixed_site());
     let n_usize = model.len();
     let (matrix, store) = if n_usize <= SMALL {
@@ -359,13 +314,7 @@ pub(crate) fn jacobian(
         )
     };
     let nonzeros = entries.iter().map(|&(r, c, _)| quote!((#r, #c)));
-    let prologue = prologue.iter().map(|p| match p {
-        Prologue::Stmt(stmt) => stmt.to_token_stream(),
-        Prologue::Opaque(i, tokens) => {
-            let name = opaque_ident(*i);
-            quote!(let #name: f64 = #tokens;)
-        }
-    });
+    let prologue = prologue_tokens(&prologue);
     let receiver = &force.receiver;
     let time = time_param(force);
     let params = state_params(model);
@@ -400,6 +349,80 @@ pub(crate) fn jacobian(
             }
         }
     }
+}
+
+/// How a graph node is read in generated code: a literal, a state component, an opaque value or
+/// the `let` of an earlier node.
+pub(crate) fn operand(graph: &crate::ir::Graph, id: ExprId, components: &[TokenStream]) -> TokenStream {
+    match graph.node(id) {
+        Node::Const(bits) => float_literal(f64::from_bits(bits)),
+        Node::Var(k) => components[k].clone(),
+        Node::Opaque(i) => opaque_ident(i).into_token_stream(),
+        _ => node_ident(id).into_token_stream(),
+    }
+}
+
+/// One `let` per operation node that `roots` need, in dependency order: straight-line code.
+pub(crate) fn straight_line(
+    graph: &crate::ir::Graph,
+    roots: &[ExprId],
+    components: &[TokenStream],
+) -> Vec<TokenStream> {
+    let operand = |id| operand(graph, id, components);
+    graph
+        .reachable(roots.iter().copied())
+        .into_iter()
+        .filter_map(|id| {
+            let value = match graph.node(id) {
+                Node::Const(_) | Node::Var(_) | Node::Opaque(_) => return None,
+                Node::Add(a, b) => {
+                    let (a, b) = (operand(a), operand(b));
+                    quote!(#a + #b)
+                }
+                Node::Mul(a, b) => {
+                    let (a, b) = (operand(a), operand(b));
+                    quote!(#a * #b)
+                }
+                Node::Div(a, b) => {
+                    let (a, b) = (operand(a), operand(b));
+                    quote!(#a / #b)
+                }
+                Node::Neg(a) => {
+                    let a = operand(a);
+                    quote!(-#a)
+                }
+                Node::Powi(a, k) => {
+                    let a = operand(a);
+                    quote!(#a.powi(#k))
+                }
+                Node::Powf(a, b) => {
+                    let (a, b) = (operand(a), operand(b));
+                    quote!(#a.powf(#b))
+                }
+                Node::Call(f, a) => {
+                    let a = operand(a);
+                    let method = format_ident!("{}", f.method());
+                    quote!(#a.#method())
+                }
+            };
+            let name = node_ident(id);
+            Some(quote!(let #name: f64 = #value;))
+        })
+        .collect()
+}
+
+/// The prologue as statements: the user's state-independent code and the opaque values.
+pub(crate) fn prologue_tokens(prologue: &[Prologue]) -> Vec<TokenStream> {
+    prologue
+        .iter()
+        .map(|p| match p {
+            Prologue::Stmt(stmt) => stmt.to_token_stream(),
+            Prologue::Opaque(i, tokens) => {
+                let name = opaque_ident(*i);
+                quote!(let #name: f64 = #tokens;)
+            }
+        })
+        .collect()
 }
 
 /// The time parameter of a re-emitted function: the user's own (`t: f64`), or an unused one.

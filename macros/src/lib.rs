@@ -16,6 +16,7 @@ mod generate;
 mod ir;
 mod lower;
 mod model;
+mod particles;
 
 use proc_macro::TokenStream;
 

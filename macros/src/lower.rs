@@ -92,6 +92,44 @@ pub(crate) fn lower(model: &Model<'_>, f: &syn::ImplItemFn) -> syn::Result<Lower
     })
 }
 
+/// Lowers a particle kernel. `vectors` are its D-vector arguments, bound in order to the graph
+/// variables D·k … D·k + D − 1; `model` supplies only parameter shapes (its `states` are empty).
+/// The body's value, a D-vector, is the output.
+pub(crate) fn lower_kernel(
+    model: &Model<'_>,
+    f: &syn::ImplItemFn,
+    vectors: &[Ident],
+    dim: usize,
+) -> syn::Result<Lowered> {
+    let mut l = Lowering {
+        model,
+        function: f.sig.ident.to_string(),
+        time: None,
+        graph: Graph::default(),
+        prologue: Vec::new(),
+        opaques: 0,
+        scopes: vec![HashMap::new()],
+    };
+    for (k, name) in vectors.iter().enumerate() {
+        let parts = (0..dim).map(|i| l.graph.var(dim * k + i)).collect();
+        l.bind(name.to_string(), Value::Vector(parts), true);
+    }
+    let outputs = match l.block(&f.block)? {
+        Value::Vector(v) if v.len() == dim => v,
+        _ => {
+            return Err(l.error(
+                &f.sig.output,
+                format_args!("a kernel value that is not a {dim}-vector force"),
+            ));
+        }
+    };
+    Ok(Lowered {
+        graph: l.graph,
+        outputs,
+        prologue: l.prologue,
+    })
+}
+
 impl Lowering<'_> {
     fn error(&self, tokens: impl ToTokens, what: impl std::fmt::Display) -> syn::Error {
         syn::Error::new_spanned(
@@ -255,9 +293,14 @@ impl Lowering<'_> {
 
     /// Lowers `e`; a state-independent expression the graph cannot express becomes opaque.
     fn expr(&mut self, e: &Expr) -> syn::Result<Value> {
+        let prologue = self.prologue.len();
         match self.structural(e) {
             Ok(value) => Ok(value),
-            Err(_) if !self.depends(e) => Ok(Value::Scalar(self.opaque(e.to_token_stream()))),
+            Err(_) if !self.depends(e) => {
+                // Whatever the failed attempt made opaque (`s` of `s.rest`) is part of `e` now.
+                self.prologue.truncate(prologue);
+                Ok(Value::Scalar(self.opaque(e.to_token_stream())))
+            }
             Err(error) => Err(error),
         }
     }

@@ -268,7 +268,7 @@ pub trait LinkList {
     fn check(&self, index: usize) -> std::result::Result<(), String>;
 }
 
-impl<L: Link> LinkList for [L] {
+impl<L: Link> LinkList for Vec<L> {
     fn len(&self) -> usize {
         <[L]>::len(self)
     }
