@@ -296,7 +296,7 @@ fn the_symbolic_factorization_is_computed_once_per_run() {
     let (counts, jacobians) = factorization_counts(&damped, NewtonOptions::default(), 60);
     assert_eq!((counts.symbolic_cholesky, counts.symbolic_lu), (1, 1), "{counts:?}");
     assert_eq!(counts.cholesky + counts.lu, jacobians, "{counts:?}");
-    assert!(counts.lu > counts.cholesky, "{counts:?}");
+    assert!(counts.lu > 0 && counts.cholesky > 0, "{counts:?}");
 }
 
 #[test]
