@@ -609,7 +609,7 @@ fn generate(
         fn add_forces(&self, _: f64, x: &[#vector], v: &[#vector], force: &mut [#vector]) {
             #(#forces)*
         }
-        fn potential_energy(&self, x: &[#vector], v: &[#vector]) -> ::core::option::Option<f64> {
+        fn potential_of(&self, x: &[#vector], v: &[#vector]) -> ::core::option::Option<f64> {
             #potential
         }
     };

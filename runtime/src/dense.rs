@@ -31,6 +31,12 @@ pub trait NewtonMatrix: Clone + fmt::Debug {
     /// Solves (I − h·J)·x = b in place, J being the Jacobian last written into `self`, which
     /// this may overwrite; false when the matrix is singular or the solution is not finite.
     fn solve_identity_minus(&mut self, h: f64, b: &mut [f64]) -> bool;
+
+    /// Takes the options of the run that will solve with this matrix (dense matrices have none
+    /// to take; particle Jacobians read [`crate::NewtonOptions::definite`]).
+    fn configure(&mut self, newton: &crate::NewtonOptions) {
+        let _ = newton;
+    }
 }
 
 impl<T: DenseMatrix> NewtonMatrix for T {

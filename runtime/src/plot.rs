@@ -342,3 +342,97 @@ fn register_bundled_font(path: &Path) -> Result<()> {
         ))
     }
 }
+
+/// One projection of a scene: line segments (a particle model's links) and highlighted points
+/// (its pinned particles) in a plane, drawn to scale.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct View {
+    /// Panel title (`front (x–y)`).
+    pub title: String,
+    /// Horizontal axis label.
+    pub x_label: String,
+    /// Vertical axis label.
+    pub y_label: String,
+    /// Segments to draw, end to end.
+    pub segments: Vec<[(f64, f64); 2]>,
+    /// Points drawn as red dots over the segments.
+    pub points: Vec<(f64, f64)>,
+    /// The region shown, ((x₀, x₁), (y₀, y₁)); keep it fixed across frames so motion shows.
+    pub bounds: ((f64, f64), (f64, f64)),
+}
+
+/// Draws `views` side by side under `title`, each panel to scale (equal units on both axes),
+/// and writes the image atomically to `path` (`.png` or `.svg`).
+pub fn views(path: impl AsRef<Path>, title: &str, views: &[View], size: (u32, u32)) -> Result<()> {
+    let path = path.as_ref();
+    register_bundled_font(path)?;
+    if views.is_empty() {
+        return Err(Error::invalid("views", "nothing to draw"));
+    }
+    match path.extension().and_then(|e| e.to_str()) {
+        Some("svg") => {
+            let mut text = String::new();
+            {
+                let root = SVGBackend::with_string(&mut text, size).into_drawing_area();
+                draw_views(&root, title, views).map_err(|reason| plot_error(path, reason))?;
+            }
+            write_atomic(path, text.as_bytes())
+        }
+        Some("png") => with_temporary(path, ".png", |temp| {
+            let root = BitMapBackend::new(temp, size).into_drawing_area();
+            draw_views(&root, title, views).map_err(|reason| plot_error(path, reason))
+        }),
+        _ => Err(Error::invalid(
+            "plot path",
+            format!("`{}` must end in .png or .svg", path.display()),
+        )),
+    }
+}
+
+fn draw_views<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    title: &str,
+    views: &[View],
+) -> std::result::Result<(), String> {
+    let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
+    root.fill(&WHITE).map_err(e)?;
+    let root = root.titled(title, ("sans-serif", 24)).map_err(e)?;
+    let panels = root.split_evenly((1, views.len()));
+    let (r, g, b) = PALETTE[0];
+    let line = ShapeStyle::from(RGBColor(r, g, b).to_rgba()).stroke_width(1);
+    for (panel, view) in panels.iter().zip(views) {
+        let ((x0, x1), (y0, y1)) = view.bounds;
+        // Equal scale: widen the shorter side of the region to the panel's aspect ratio.
+        let (w, h) = panel.dim_in_pixel();
+        let (w, h) = (f64::from(w.saturating_sub(80).max(1)), f64::from(h.saturating_sub(90).max(1)));
+        let (span_x, span_y) = ((x1 - x0).max(1e-12), (y1 - y0).max(1e-12));
+        let scale = (span_x / w).max(span_y / h);
+        let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
+        let (hx, hy) = (0.5 * scale * w, 0.5 * scale * h);
+        let mut chart = ChartBuilder::on(panel)
+            .caption(&view.title, ("sans-serif", 18))
+            .margin(10)
+            .x_label_area_size(40)
+            .y_label_area_size(50)
+            .build_cartesian_2d(cx - hx..cx + hx, cy - hy..cy + hy)
+            .map_err(e)?;
+        chart
+            .configure_mesh()
+            .x_desc(&view.x_label)
+            .y_desc(&view.y_label)
+            .label_style(("sans-serif", 14))
+            .draw()
+            .map_err(e)?;
+        chart
+            .draw_series(
+                view.segments
+                    .iter()
+                    .map(|&[a, b]| PathElement::new([a, b], line)),
+            )
+            .map_err(e)?;
+        chart
+            .draw_series(view.points.iter().map(|&p| Circle::new(p, 4, RED.filled())))
+            .map_err(e)?;
+    }
+    root.present().map_err(e)
+}

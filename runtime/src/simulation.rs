@@ -52,11 +52,22 @@ impl Default for RunOptions {
     }
 }
 
+/// A progress callback: called with (steps done, steps in the run) at every recorded step.
+#[derive(Clone, Copy)]
+struct Progress<'m>(&'m dyn Fn(u64, u64));
+
+impl std::fmt::Debug for Progress<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("Progress(..)")
+    }
+}
+
 /// A run being configured: created by [`Model::simulate`], finished by [`Simulation::run`].
 #[derive(Clone, Debug)]
 pub struct Simulation<'m, M: Model> {
     model: &'m M,
     initial: Option<M::State>,
+    progress: Option<Progress<'m>>,
     /// The options; the setters below are shorthands for assigning these fields.
     pub options: RunOptions,
 }
@@ -72,6 +83,7 @@ impl<'m, M: Model> Simulation<'m, M> {
         Simulation {
             model,
             initial: None,
+            progress: None,
             options,
         }
     }
@@ -121,6 +133,13 @@ impl<'m, M: Model> Simulation<'m, M> {
     /// Sets the divergence limit (see [`RunOptions::divergence_limit`]).
     pub fn divergence_limit(mut self, limit: f64) -> Self {
         self.options.divergence_limit = limit;
+        self
+    }
+
+    /// Calls `report(done, total)` at every recorded step (see [`Simulation::record_every`]) and
+    /// at the end: for a progress bar on long runs. The run's numbers do not depend on it.
+    pub fn progress(mut self, report: &'m dyn Fn(u64, u64)) -> Self {
+        self.progress = Some(Progress(report));
         self
     }
 
@@ -190,7 +209,7 @@ impl<'m, M: Model> Simulation<'m, M> {
         }
     }
 
-    fn plan(&self) -> Result<Plan<M::State>> {
+    fn plan(&self) -> Result<Plan<'m, M::State>> {
         let o = &self.options;
         let dt = o.dt.ok_or_else(|| {
             Error::invalid(
@@ -226,6 +245,7 @@ impl<'m, M: Model> Simulation<'m, M> {
             record_every: o.record_every,
             divergence_limit: o.divergence_limit,
             newton: o.newton,
+            progress: self.progress,
         })
     }
 }
@@ -254,7 +274,7 @@ fn steps_for(duration: f64, dt: f64) -> Result<u64> {
 }
 
 /// A validated run.
-struct Plan<S> {
+struct Plan<'m, S> {
     initial: S,
     dt: f64,
     steps: u64,
@@ -262,9 +282,10 @@ struct Plan<S> {
     record_every: u64,
     divergence_limit: f64,
     newton: NewtonOptions,
+    progress: Option<Progress<'m>>,
 }
 
-impl<S: crate::State> Plan<S> {
+impl<S: crate::State> Plan<'_, S> {
     // One function per integrator: inlined into `run_partial`'s dispatch, the seven run loops
     // shared one body and the cheap ones ran up to 1.7× slower (measured on leapfrog).
     #[inline(never)]
@@ -313,6 +334,9 @@ impl<S: crate::State> Plan<S> {
                     &mut samples,
                 );
                 until_record = self.record_every;
+                if let Some(Progress(report)) = self.progress {
+                    report(n, self.steps);
+                }
             }
         }
         let good_steps = stepper.steps() - u64::from(failure.is_some());

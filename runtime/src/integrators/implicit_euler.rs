@@ -47,13 +47,15 @@ impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
     const EVALUATIONS_PER_STEP: u64 = 0;
 
     fn start(model: &M, _: f64, dt: f64, state: &M::State, newton: &NewtonOptions) -> Result<Self> {
+        let mut jacobian = model.jacobian_matrix(state);
+        jacobian.configure(newton);
         Ok(ImplicitEuler {
             dt,
             newton: *newton,
             start: state.clone(),
             force: state.clone(),
             update: state.clone(),
-            jacobian: model.jacobian_matrix(state),
+            jacobian,
             evaluations: Evaluations::default(),
         })
     }

@@ -314,11 +314,12 @@ pub trait ParticleSystem<const D: usize>: Model<State = ParticleState<D>> {
         jacobian: &mut ParticleJacobian<D>,
     );
 
-    /// The potential energy at (x, v), if the model defines `fn potential`.
-    fn potential_energy(&self, x: &[SVector<f64, D>], v: &[SVector<f64, D>]) -> Option<f64>;
+    /// The model's `fn potential` at (x, v), if it defines one.
+    #[doc(hidden)]
+    fn potential_of(&self, x: &[SVector<f64, D>], v: &[SVector<f64, D>]) -> Option<f64>;
 
     /// The kinetic energy ½·Σ mᵢ|vᵢ|² of `state`.
-    fn kinetic(&self, state: &ParticleState<D>) -> f64 {
+    fn kinetic_energy(&self, state: &ParticleState<D>) -> f64 {
         let v = state.velocities();
         self.masses()
             .iter()
@@ -328,8 +329,8 @@ pub trait ParticleSystem<const D: usize>: Model<State = ParticleState<D>> {
     }
 
     /// The potential energy of `state`, if the model defines `fn potential`.
-    fn potential(&self, state: &ParticleState<D>) -> Option<f64> {
-        self.potential_energy(state.positions(), state.velocities())
+    fn potential_energy(&self, state: &ParticleState<D>) -> Option<f64> {
+        self.potential_of(state.positions(), state.velocities())
     }
 
     /// The net force on every particle at `state` and time `t`, pinned ones included (a pinned
@@ -424,8 +425,8 @@ pub fn energy<M: ParticleSystem<D>, const D: usize>(
     state: &ParticleState<D>,
 ) -> Option<f64> {
     model
-        .potential(state)
-        .map(|potential| model.kinetic(state) + potential)
+        .potential_energy(state)
+        .map(|potential| model.kinetic_energy(state) + potential)
 }
 
 /// [`crate::Jacobian::jacobian`] of a particle model.
