@@ -5,10 +5,12 @@ use std::sync::Arc;
 
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::sparse::linalg::cholesky::{
-    CholeskySymbolicParams, SymbolicCholesky, SymmetricOrdering,
+    CholeskySymbolicParams, LltRef, SymbolicCholesky, SymmetricOrdering,
     factorize_symbolic_cholesky,
 };
-use faer::sparse::linalg::lu::{LuSymbolicParams, NumericLu, SymbolicLu, factorize_symbolic_lu};
+use faer::sparse::linalg::lu::{
+    LuRef, LuSymbolicParams, NumericLu, SymbolicLu, factorize_symbolic_lu,
+};
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{Pair, SparseColMatRef, SymbolicSparseColMat};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
@@ -87,6 +89,7 @@ struct Solver {
     lu: Option<(Arc<SymbolicLu<usize>>, NumericLu<usize, f64>)>,
     scratch: MemBuffer,
     counts: Factorizations,
+    factored: Option<Factored>,
 }
 
 impl<const D: usize> ParticleJacobian<D> {
@@ -183,6 +186,18 @@ impl<const D: usize> ParticleJacobian<D> {
         }
     }
 
+    /// Factorizes the assembled matrix numerically (Cholesky, else LU); false when singular.
+    pub fn factorize(&mut self) -> bool {
+        self.solver.factorize()
+    }
+
+    /// Solves the factorized matrix against `rhs` (D·n long) in place.
+    pub fn substitute(&mut self, rhs: &mut [f64]) {
+        self.solver.rhs.copy_from_slice(rhs);
+        self.solver.substitute();
+        rhs.copy_from_slice(&self.solver.rhs);
+    }
+
     /// ∂f/∂x and ∂f/∂v as dense D·n × D·n matrices (row = force component), pinned rows
     /// included: for tests and small models.
     pub fn force_jacobians(&self) -> (faer::Mat<f64>, faer::Mat<f64>) {
@@ -217,7 +232,12 @@ impl<const D: usize> ParticleJacobian<D> {
         SparseColMatRef::new(self.solver.pattern.as_ref(), &self.solver.values)
     }
 
-    fn assemble(&mut self, h: f64) {
+    /// Assembles M − h·∂f/∂v − h²·∂f/∂x from the blocks of the last evaluation (projected first
+    /// when [`crate::NewtonOptions::definite`] is set): the "assembly" of a step's cost.
+    pub fn assemble(&mut self, h: f64) {
+        if self.definite {
+            self.project();
+        }
         let s = &mut self.solver;
         let h2 = h * h;
         s.values.fill(0.0);
@@ -349,15 +369,13 @@ impl<const D: usize> NewtonMatrix for ParticleJacobian<D> {
         if b.len() != 2 * n {
             return false;
         }
-        if self.definite {
-            self.project();
-        }
         self.assemble(h);
         let (bx, bv) = b.split_at_mut(n);
         self.velocity_rhs(h, bx, bv);
-        if !self.solver.solve() {
+        if !self.solver.factorize() {
             return false;
         }
+        self.solver.substitute();
         for ((x, v), dv) in bx.iter_mut().zip(bv.iter_mut()).zip(&self.solver.rhs) {
             *v = *dv;
             *x += h * dv;
@@ -445,6 +463,7 @@ impl Solver {
                 symbolic_cholesky: 1,
                 ..Factorizations::default()
             },
+            factored: None,
         }
     }
 
@@ -467,9 +486,10 @@ impl Solver {
             .all(|(&a, &t)| (a - self.values[t]).abs() <= tolerance)
     }
 
-    /// Solves the assembled system for `self.rhs`, in place.
-    fn solve(&mut self) -> bool {
-        let n = self.rhs.len();
+    /// Factorizes the assembled matrix: Cholesky when it is symmetric and positive definite,
+    /// else LU (its symbolic analysis made the first time).
+    fn factorize(&mut self) -> bool {
+        self.factored = None;
         if self.is_symmetric() {
             let matrix = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
             let factored = self.cholesky.factorize_numeric_llt(
@@ -481,23 +501,16 @@ impl Solver {
                 MemStack::new(&mut self.scratch),
                 Default::default(),
             );
-            if let Ok(llt) = factored {
-                let rhs = MatMut::from_column_major_slice_mut(&mut self.rhs, n, 1);
-                llt.solve_in_place_with_conj(
-                    Conj::No,
-                    rhs,
-                    Par::Seq,
-                    MemStack::new(&mut self.scratch),
-                );
+            if factored.is_ok() {
                 self.counts.cholesky += 1;
+                self.factored = Some(Factored::Cholesky);
                 return true;
             }
         }
-        self.solve_lu()
+        self.factorize_lu()
     }
 
-    fn solve_lu(&mut self) -> bool {
-        let n = self.rhs.len();
+    fn factorize_lu(&mut self) -> bool {
         if self.lu.is_none() {
             // faer's simplicial LU spent 92 % of a 64-particle cloth run (measured with perf);
             // the supernodal one is the fast path for these block-structured matrices.
@@ -520,20 +533,43 @@ impl Solver {
             return false;
         };
         let matrix = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
-        let Ok(lu) = symbolic.factorize_numeric_lu(
+        let factored = symbolic.factorize_numeric_lu(
             numeric,
             matrix,
             Par::Seq,
             MemStack::new(&mut self.scratch),
             Default::default(),
-        ) else {
+        );
+        if factored.is_err() {
             return false;
-        };
-        let rhs = MatMut::from_column_major_slice_mut(&mut self.rhs, n, 1);
-        lu.solve_in_place_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(&mut self.scratch));
+        }
         self.counts.lu += 1;
+        self.factored = Some(Factored::Lu);
         true
     }
+
+    /// Solves the last factorization against `self.rhs`, in place.
+    fn substitute(&mut self) {
+        let n = self.rhs.len();
+        let rhs = MatMut::from_column_major_slice_mut(&mut self.rhs, n, 1);
+        let stack = MemStack::new(&mut self.scratch);
+        match (&self.factored, &self.lu) {
+            (Some(Factored::Cholesky), _) => LltRef::new(&self.cholesky, &self.cholesky_values)
+                .solve_in_place_with_conj(Conj::No, rhs, Par::Seq, stack),
+            (Some(Factored::Lu), Some((symbolic, numeric))) => {
+                LuRef::new_unchecked(symbolic, numeric)
+                    .solve_in_place_with_conj(Conj::No, rhs, Par::Seq, stack)
+            }
+            _ => {}
+        }
+    }
+}
+
+/// Which factorization [`Solver::factorize`] made last.
+#[derive(Clone, Copy, Debug)]
+enum Factored {
+    Cholesky,
+    Lu,
 }
 
 impl Clone for Solver {
@@ -550,6 +586,7 @@ impl Clone for Solver {
             lu: self.lu.clone(),
             scratch: MemBuffer::new(self.scratch_size()),
             counts: self.counts,
+            factored: self.factored,
         }
     }
 }

@@ -1,0 +1,157 @@
+//! One implicit Euler step of a stiff cloth at 32², 64² and 128² particles, and its parts:
+//! the kernels' derivative blocks, assembly of M − h·∂f/∂v − h²·∂f/∂x, numeric Cholesky
+//! factorization, and the triangular solves.
+//!
+//! The cloth is the `cloth` example's at rest (k = 10⁴, no spring damping, so the matrix is
+//! symmetric positive definite); the step is the one-Newton-iteration (Baraff–Witkin) form,
+//! which is one force evaluation, one Jacobian, one assembly, one factorization and one solve.
+//! `cargo bench --bench particles`.
+
+use odyn::integrators::ImplicitEuler;
+use odyn::nalgebra::Vector3;
+use odyn::particles::{ParticleJacobian, ParticleState, Spring};
+use odyn::prelude::*;
+use odyn::{Integrator, Jacobian, NewtonOptions};
+
+fn main() {
+    divan::main();
+}
+
+const SIZES: [usize; 3] = [32, 64, 128];
+const H: f64 = 1.0 / 60.0;
+
+/// The example's cloth (see `examples/cloth.rs`).
+#[system(integrator = ImplicitEuler, dt = 1.0 / 60.0)]
+struct Cloth {
+    #[position]
+    x: Vec<Vector3<f64>>,
+    #[velocity]
+    v: Vec<Vector3<f64>>,
+    #[mass]
+    mass: Vec<f64>,
+    #[pinned]
+    pinned: Vec<usize>,
+    springs: Vec<Spring>,
+    gravity: Vector3<f64>,
+    drag: f64,
+}
+
+#[system]
+impl Cloth {
+    #[pair(springs)]
+    fn spring(
+        &self,
+        s: &Spring,
+        xa: Vector3<f64>,
+        xb: Vector3<f64>,
+        va: Vector3<f64>,
+        vb: Vector3<f64>,
+    ) -> Vector3<f64> {
+        let d = xb - xa;
+        let length = d.norm();
+        let direction = d / length;
+        direction * (s.stiffness * (length - s.rest) + s.damping * (vb - va).dot(&direction))
+    }
+
+    #[particle]
+    fn weight(&self, i: usize, _x: Vector3<f64>, v: Vector3<f64>) -> Vector3<f64> {
+        self.gravity * self.mass[i] - v * self.drag
+    }
+}
+
+fn cloth(n: usize) -> Cloth {
+    let spacing = 1.0 / (n - 1) as f64;
+    let id = |i: usize, j: usize| i * n + j;
+    let x: Vec<_> = (0..n * n)
+        .map(|p| Vector3::new((p % n) as f64 * spacing, 0.0, (p / n) as f64 * spacing))
+        .collect();
+    let mut springs = Vec::new();
+    let mut link = |a, b| springs.push(Spring::at_rest(&x, a, b, 1e4, 0.0));
+    for i in 0..n {
+        for j in 0..n {
+            if j + 1 < n {
+                link(id(i, j), id(i, j + 1));
+            }
+            if i + 1 < n {
+                link(id(i, j), id(i + 1, j));
+            }
+            if i + 1 < n && j + 1 < n {
+                link(id(i, j), id(i + 1, j + 1));
+                link(id(i, j + 1), id(i + 1, j));
+            }
+            if j + 2 < n {
+                link(id(i, j), id(i, j + 2));
+            }
+            if i + 2 < n {
+                link(id(i, j), id(i + 2, j));
+            }
+        }
+    }
+    Cloth {
+        v: vec![Vector3::zeros(); n * n],
+        mass: vec![0.5 / (n * n) as f64; n * n],
+        pinned: vec![id(0, 0), id(0, n - 1)],
+        springs,
+        gravity: Vector3::new(0.0, -9.81, 0.0),
+        drag: 0.02 / (n * n) as f64,
+        x,
+    }
+}
+
+/// The cloth, its state and a Jacobian evaluated, assembled and factorized there.
+fn prepared(n: usize) -> (Cloth, ParticleState<3>, ParticleJacobian<3>) {
+    let model = cloth(n);
+    let state = model.state();
+    let mut jacobian = model.jacobian_matrix(&state);
+    model.jacobian(0.0, &state, &mut jacobian);
+    jacobian.assemble(H);
+    assert!(jacobian.factorize());
+    (model, state, jacobian)
+}
+
+/// The whole step: force, Jacobian, assembly, factorization, solve, update.
+#[divan::bench(args = SIZES, sample_count = 20)]
+fn step(bencher: divan::Bencher, n: usize) {
+    let model = cloth(n);
+    let state = model.state();
+    let mut integrator =
+        ImplicitEuler::start(&model, 0.0, H, &state, &NewtonOptions::linearized()).unwrap();
+    let mut y = state.clone();
+    bencher.bench_local(|| {
+        y.clone_from(&state);
+        integrator.step(&model, 0.0, &mut y).unwrap();
+    });
+}
+
+/// The kernels' derivative blocks.
+#[divan::bench(args = SIZES, sample_count = 20)]
+fn jacobian(bencher: divan::Bencher, n: usize) {
+    let (model, state, mut jacobian) = prepared(n);
+    bencher.bench_local(|| model.jacobian(0.0, &state, &mut jacobian));
+}
+
+/// Assembly of the sparse Newton matrix from the blocks.
+#[divan::bench(args = SIZES, sample_count = 20)]
+fn assembly(bencher: divan::Bencher, n: usize) {
+    let (_, _, mut jacobian) = prepared(n);
+    bencher.bench_local(|| jacobian.assemble(H));
+}
+
+/// Numeric Cholesky factorization (the symbolic one is reused).
+#[divan::bench(args = SIZES, sample_count = 20)]
+fn factorization(bencher: divan::Bencher, n: usize) {
+    let (_, _, mut jacobian) = prepared(n);
+    bencher.bench_local(|| jacobian.factorize());
+}
+
+/// Forward and back substitution.
+#[divan::bench(args = SIZES, sample_count = 20)]
+fn solve(bencher: divan::Bencher, n: usize) {
+    let (_, state, mut jacobian) = prepared(n);
+    let rhs: Vec<f64> = state.positions().iter().flat_map(|p| [p.x, 1.0, p.z]).collect();
+    let mut x = rhs.clone();
+    bencher.bench_local(|| {
+        x.copy_from_slice(&rhs);
+        jacobian.substitute(&mut x);
+    });
+}
