@@ -465,7 +465,7 @@ pub(crate) fn expand_impl(args: &Args, item: &ItemStruct, imp: &ItemImpl) -> Tok
     let mut errors = Errors::default();
     let Some(particles) = parse_struct(item, &mut errors) else {
         return crate::expand::with_error(
-            imp,
+            strip_kernel_attributes(imp),
             errors.finish().expect_err("a rejected model has errors"),
         );
     };
@@ -502,7 +502,8 @@ pub(crate) fn expand_impl(args: &Args, item: &ItemStruct, imp: &ItemImpl) -> Tok
         }
     }
     if let Err(error) = errors.finish() {
-        return crate::expand::with_error(imp, error);
+        // The kernel attributes are odyn's: left in, rustc would add "cannot find attribute".
+        return crate::expand::with_error(strip_kernel_attributes(imp), error);
     }
     let jacobian = (args.no_jacobian.is_none()).then_some(lowered);
     generate(&particles, args, &functions, imp, jacobian)

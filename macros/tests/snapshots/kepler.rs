@@ -132,6 +132,12 @@ impl ::odyn::Jacobian for Kepler {
         (3usize, 0usize),
         (3usize, 1usize),
     ];
+    fn jacobian_matrix(
+        &self,
+        _: &KeplerState,
+    ) -> ::odyn::__private::nalgebra::SMatrix<f64, 4, 4> {
+        <::odyn::__private::nalgebra::SMatrix<f64, 4, 4> as ::odyn::DenseMatrix>::zeros()
+    }
     #[inline]
     fn jacobian(
         &self,

@@ -106,6 +106,12 @@ impl ::odyn::Jacobian for Lorenz {
         (2usize, 1usize),
         (2usize, 2usize),
     ];
+    fn jacobian_matrix(
+        &self,
+        _: &LorenzState,
+    ) -> ::odyn::__private::nalgebra::SMatrix<f64, 3, 3> {
+        <::odyn::__private::nalgebra::SMatrix<f64, 3, 3> as ::odyn::DenseMatrix>::zeros()
+    }
     #[inline]
     fn jacobian(
         &self,

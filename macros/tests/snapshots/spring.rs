@@ -105,6 +105,12 @@ impl ::odyn::Jacobian for Spring {
         (1usize, 0usize),
         (1usize, 1usize),
     ];
+    fn jacobian_matrix(
+        &self,
+        _: &SpringState,
+    ) -> ::odyn::__private::nalgebra::SMatrix<f64, 2, 2> {
+        <::odyn::__private::nalgebra::SMatrix<f64, 2, 2> as ::odyn::DenseMatrix>::zeros()
+    }
     #[inline]
     fn jacobian(
         &self,
