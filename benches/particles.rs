@@ -148,7 +148,11 @@ fn factorization(bencher: divan::Bencher, n: usize) {
 #[divan::bench(args = SIZES, sample_count = 20)]
 fn solve(bencher: divan::Bencher, n: usize) {
     let (_, state, mut jacobian) = prepared(n);
-    let rhs: Vec<f64> = state.positions().iter().flat_map(|p| [p.x, 1.0, p.z]).collect();
+    let rhs: Vec<f64> = state
+        .positions()
+        .iter()
+        .flat_map(|p| [p.x, 1.0, p.z])
+        .collect();
     let mut x = rhs.clone();
     bencher.bench_local(|| {
         x.copy_from_slice(&rhs);

@@ -290,7 +290,10 @@ fn run(cli: Cli) -> odyn::Result<()> {
     if let Some(run) = implicit {
         write_frames(&cli.out, &cloth, &structural, run)?;
     }
-    println!("wrote {}/energy.{{csv,png}} and frame_*.png", cli.out.display());
+    println!(
+        "wrote {}/energy.{{csv,png}} and frame_*.png",
+        cli.out.display()
+    );
     Ok(())
 }
 
@@ -313,7 +316,9 @@ fn write_energy(dir: &Path, cloth: &Cloth, runs: &[Run]) -> odyn::Result<()> {
             points.push((s.t, kinetic));
         }
         let label = match &run.failure {
-            Some(Error::Diverged { step, .. }) => format!("{} (diverged at step {step})", run.label),
+            Some(Error::Diverged { step, .. }) => {
+                format!("{} (diverged at step {step})", run.label)
+            }
             Some(_) => format!("{} (failed)", run.label),
             None => run.label.clone(),
         };
@@ -339,7 +344,10 @@ fn write_energy(dir: &Path, cloth: &Cloth, runs: &[Run]) -> odyn::Result<()> {
 fn write_frames(dir: &Path, cloth: &Cloth, structural: &[usize], run: &Run) -> odyn::Result<()> {
     let samples = &run.trajectory.samples;
     // One region for every frame, so the motion shows.
-    let (mut lo, mut hi) = (Vector3::repeat(f64::INFINITY), Vector3::repeat(f64::NEG_INFINITY));
+    let (mut lo, mut hi) = (
+        Vector3::repeat(f64::INFINITY),
+        Vector3::repeat(f64::NEG_INFINITY),
+    );
     for s in samples {
         for p in s.state.positions() {
             lo = lo.inf(p);
@@ -372,7 +380,10 @@ fn write_frames(dir: &Path, cloth: &Cloth, structural: &[usize], run: &Run) -> o
         views(
             dir.join(format!("frame_{k}.png")),
             &format!("{}, t = {:.2} s", run.label, sample.t),
-            &[view("front (x–y)", 0, "x (m)"), view("side (z–y)", 2, "z (m)")],
+            &[
+                view("front (x–y)", 0, "x (m)"),
+                view("side (z–y)", 2, "z (m)"),
+            ],
             (1200, 620),
         )?;
     }

@@ -71,7 +71,12 @@ impl Rope {
             .iter()
             .map(|s| 0.5 * s.stiffness * ((self.x[s.b] - self.x[s.a]).norm() - s.rest).powi(2))
             .sum();
-        let gravity: f64 = self.x.iter().zip(&self.mass).map(|(x, m)| m * self.g * x.y).sum();
+        let gravity: f64 = self
+            .x
+            .iter()
+            .zip(&self.mass)
+            .map(|(x, m)| m * self.g * x.y)
+            .sum();
         springs + gravity
     }
 }
@@ -224,7 +229,10 @@ fn run(cli: Cli) -> odyn::Result<()> {
     println!(
         "  Verlet + {} constraint sweeps: max stretch {:.2e}, energy {:.4} -> {:.4} J",
         cli.iterations,
-        verlet.iter().map(|f| stretch(&f.x, rest)).fold(0.0, f64::max),
+        verlet
+            .iter()
+            .map(|f| stretch(&f.x, rest))
+            .fold(0.0, f64::max),
         verlet[0].energy,
         verlet[verlet.len() - 1].energy,
     );
@@ -233,7 +241,10 @@ fn run(cli: Cli) -> odyn::Result<()> {
          energy {:.4} -> {:.4} J",
         cli.k,
         omega * DT,
-        springs.iter().map(|f| stretch(&f.x, rest)).fold(0.0, f64::max),
+        springs
+            .iter()
+            .map(|f| stretch(&f.x, rest))
+            .fold(0.0, f64::max),
         springs[0].energy,
         springs[springs.len() - 1].energy,
     );
@@ -250,7 +261,10 @@ fn run(cli: Cli) -> odyn::Result<()> {
         path: cli.out.clone(),
         source,
     })?;
-    let ropes = [("verlet_constraints", &verlet), ("implicit_springs", &springs)];
+    let ropes = [
+        ("verlet_constraints", &verlet),
+        ("implicit_springs", &springs),
+    ];
     let mut rows = Vec::new();
     for (name, frames) in ropes {
         for f in frames.iter() {

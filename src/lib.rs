@@ -70,7 +70,7 @@ pub mod __private {
 /// The names a model file needs: `use odyn::prelude::*;`.
 pub mod prelude {
     pub use crate::nalgebra::{SVector, Vector2, Vector3};
-    pub use crate::particles::{ParticleSystem, Spring};
+    pub use crate::particles::ParticleSystem;
     pub use crate::{
         Error, Method, Model, Result, SecondOrder, Simulation, State, Trajectory, system,
     };

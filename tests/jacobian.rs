@@ -23,12 +23,8 @@ impl Rng {
 /// Compares ∂f/∂y with central differences of f at `samples` random states drawn by `draw`.
 /// The step h = 1e-6·(1 + |yⱼ|) leaves truncation and round-off errors near 1e-9 relative, so
 /// 1e-6 relative (to the Jacobian's largest entry in the row) is a strict but safe bound.
-fn check<M: Jacobian>(
-    model: &M,
-    t: f64,
-    samples: usize,
-    mut draw: impl FnMut(&mut Rng) -> M::State,
-) where
+fn check<M: Jacobian>(model: &M, t: f64, samples: usize, mut draw: impl FnMut(&mut Rng) -> M::State)
+where
     M::Matrix: DenseMatrix,
 {
     let mut rng = Rng(0x9E37_79B9_7F4A_7C15);

@@ -145,7 +145,10 @@ fn central_force_jacobians(model: &Cloth, state: &ParticleState<3>) -> [Vec<Vec<
         plus.as_mut_slice()[index] += h;
         minus.as_mut_slice()[index] -= h;
         let (fp, fm) = (forces(model, &plus), forces(model, &minus));
-        fp.iter().zip(&fm).map(|(a, b)| (a - b) / (2.0 * h)).collect::<Vec<_>>()
+        fp.iter()
+            .zip(&fm)
+            .map(|(a, b)| (a - b) / (2.0 * h))
+            .collect::<Vec<_>>()
     };
     [
         (0..n).map(column).collect(),
@@ -194,7 +197,11 @@ fn assembled_newton_matrix_of_a_4x4_cloth_equals_dense_finite_differences() {
     for row in 0..n {
         for column in 0..n {
             // M − h·∂f/∂v − h²·∂f/∂x, with the pinned particles' rows and columns replaced by M.
-            let mass = if row == column { model.mass[row / 3] } else { 0.0 };
+            let mass = if row == column {
+                model.mass[row / 3]
+            } else {
+                0.0
+            };
             let expected = if pinned(row) || pinned(column) {
                 mass
             } else {
@@ -245,14 +252,21 @@ fn damped_pinned_cloth_settles_to_static_equilibrium() {
             continue;
         }
         // Net force below 1e-6 of a particle's weight, velocity below 1e-6 m/s.
-        assert!(f.norm() < 1e-6 * weight, "particle {i}: |f| = {:e}", f.norm());
+        assert!(
+            f.norm() < 1e-6 * weight,
+            "particle {i}: |f| = {:e}",
+            f.norm()
+        );
         assert!(v.norm() < 1e-6, "particle {i}: |v| = {:e}", v.norm());
     }
     // The pinned corners carry the whole weight between them: the net force on them (what their
     // supports must cancel) is the cloth's total weight.
     let held: Vector3<f64> = model.pinned.iter().map(|&p| forces[p]).sum();
     let total = model.mass.iter().sum::<f64>() * 9.81;
-    assert!((held + Vector3::new(0.0, total, 0.0)).norm() < 1e-6 * total, "{held:?}");
+    assert!(
+        (held + Vector3::new(0.0, total, 0.0)).norm() < 1e-6 * total,
+        "{held:?}"
+    );
 }
 
 /// Runs `steps` implicit steps of `model` and returns its factorization counts and Jacobian
@@ -269,7 +283,10 @@ fn factorization_counts(model: &Cloth, newton: NewtonOptions, steps: u32) -> (Fa
     for _ in 0..steps {
         stepper.step().unwrap();
     }
-    (stepper.integrator().matrix().factorizations(), stepper.evaluations().jacobian)
+    (
+        stepper.integrator().matrix().factorizations(),
+        stepper.evaluations().jacobian,
+    )
 }
 
 #[test]
@@ -294,7 +311,11 @@ fn the_symbolic_factorization_is_computed_once_per_run() {
     // moves, its symbolic analysis made once and kept.
     let damped = cloth(5, 1e4, 2.0, 0.1);
     let (counts, jacobians) = factorization_counts(&damped, NewtonOptions::default(), 60);
-    assert_eq!((counts.symbolic_cholesky, counts.symbolic_lu), (1, 1), "{counts:?}");
+    assert_eq!(
+        (counts.symbolic_cholesky, counts.symbolic_lu),
+        (1, 1),
+        "{counts:?}"
+    );
     assert_eq!(counts.cholesky + counts.lu, jacobians, "{counts:?}");
     assert!(counts.lu > 0 && counts.cholesky > 0, "{counts:?}");
 }
@@ -365,7 +386,12 @@ impl Chain {
             .iter()
             .map(|s| 0.5 * s.stiffness * ((self.x[s.b] - self.x[s.a]).norm() - s.rest).powi(2))
             .sum();
-        let gravity: f64 = self.x.iter().zip(&self.m).map(|(x, m)| m * self.g * x.y).sum();
+        let gravity: f64 = self
+            .x
+            .iter()
+            .zip(&self.m)
+            .map(|(x, m)| m * self.g * x.y)
+            .sum();
         springs + gravity
     }
 }
@@ -373,7 +399,9 @@ impl Chain {
 fn chain(n: usize) -> Chain {
     let x: Vec<_> = (0..n).map(|i| Vector2::new(0.1 * i as f64, 0.0)).collect();
     Chain {
-        links: (0..n - 1).map(|i| Spring::at_rest(&x, i, i + 1, 100.0, 0.0)).collect(),
+        links: (0..n - 1)
+            .map(|i| Spring::at_rest(&x, i, i + 1, 100.0, 0.0))
+            .collect(),
         v: vec![Vector2::zeros(); n],
         m: vec![0.1; n],
         fixed: vec![0],
@@ -390,7 +418,12 @@ fn every_method_runs_a_particle_model_and_pinned_particles_stay_put() {
     // Euler's (none), which still grows only by (1 + ω²dt²)^(n/2) ≈ 1.2 over 100 steps.
     let mut finals = Vec::new();
     for method in Method::ALL {
-        let run = model.simulate().integrator(method).steps(100).run().unwrap();
+        let run = model
+            .simulate()
+            .integrator(method)
+            .steps(100)
+            .run()
+            .unwrap();
         let last = run.samples.last().unwrap().state.clone();
         assert_eq!(last.positions()[0], start.positions()[0], "{method}");
         assert_eq!(last.velocities()[0], SVector::<f64, 2>::zeros(), "{method}");
@@ -445,7 +478,11 @@ fn sparse_velocity_solve_equals_the_dense_first_order_newton_solve_every_time() 
     let b: Vec<f64> = (0..2 * n)
         .map(|k| {
             let value = noise(&mut seed);
-            if k >= n && model.pinned.contains(&((k - n) / 3)) { 0.0 } else { value }
+            if k >= n && model.pinned.contains(&((k - n) / 3)) {
+                0.0
+            } else {
+                value
+            }
         })
         .collect();
     // One matrix refactorized for alternating states must match a fresh dense solve each time.
@@ -457,10 +494,17 @@ fn sparse_velocity_solve_equals_the_dense_first_order_newton_solve_every_time() 
         let dense = dense_newton_solve(&model, state, h, &b);
         let scale = dense.iter().fold(0.0f64, |m, x| m.max(x.abs()));
         for (k, (s, d)) in sparse.iter().zip(&dense).enumerate() {
-            assert!((s - d).abs() <= 1e-10 * scale, "component {k}: sparse {s}, dense {d}");
+            assert!(
+                (s - d).abs() <= 1e-10 * scale,
+                "component {k}: sparse {s}, dense {d}"
+            );
         }
     }
     let counts = jacobian.factorizations();
     assert_eq!((counts.cholesky, counts.lu), (2, 3), "{counts:?}");
-    assert_eq!((counts.symbolic_cholesky, counts.symbolic_lu), (1, 1), "{counts:?}");
+    assert_eq!(
+        (counts.symbolic_cholesky, counts.symbolic_lu),
+        (1, 1),
+        "{counts:?}"
+    );
 }

@@ -353,7 +353,11 @@ pub(crate) fn jacobian(
 
 /// How a graph node is read in generated code: a literal, a state component, an opaque value or
 /// the `let` of an earlier node.
-pub(crate) fn operand(graph: &crate::ir::Graph, id: ExprId, components: &[TokenStream]) -> TokenStream {
+pub(crate) fn operand(
+    graph: &crate::ir::Graph,
+    id: ExprId,
+    components: &[TokenStream],
+) -> TokenStream {
     match graph.node(id) {
         Node::Const(bits) => float_literal(f64::from_bits(bits)),
         Node::Var(k) => components[k].clone(),

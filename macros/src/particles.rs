@@ -140,15 +140,24 @@ pub(crate) fn parse_struct<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Opt
             continue;
         };
         if let Err(e) = attr.meta.require_path_only() {
-            errors.push(syn::Error::new(e.span(), "this attribute takes no arguments"));
+            errors.push(syn::Error::new(
+                e.span(),
+                "this attribute takes no arguments",
+            ));
         }
-        let name = attr.path().get_ident().map(Ident::to_string).unwrap_or_default();
+        let name = attr
+            .path()
+            .get_ident()
+            .map(Ident::to_string)
+            .unwrap_or_default();
         let slot = match name.as_str() {
             "position" | "velocity" => {
-                let dim = vec_element(&field.ty).and_then(shape_of).and_then(|s| match s {
-                    Shape::Vector(d @ (2 | 3)) => Some(d),
-                    _ => None,
-                });
+                let dim = vec_element(&field.ty)
+                    .and_then(shape_of)
+                    .and_then(|s| match s {
+                        Shape::Vector(d @ (2 | 3)) => Some(d),
+                        _ => None,
+                    });
                 match dim {
                     Some(d) => dims.push((d, &field.ty)),
                     None => errors.at(
@@ -167,7 +176,10 @@ pub(crate) fn parse_struct<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Opt
             }
             "mass" => {
                 if !vec_element(&field.ty).is_some_and(|t| is_plain(t, "f64")) {
-                    errors.at(&field.ty, "`#[mass]` must be `Vec<f64>`, one mass per particle");
+                    errors.at(
+                        &field.ty,
+                        "`#[mass]` must be `Vec<f64>`, one mass per particle",
+                    );
                 }
                 &mut mass
             }
@@ -375,17 +387,26 @@ fn parse_kernel(
         }
     } else {
         if let Err(e) = attr.meta.require_path_only() {
-            errors.push(syn::Error::new(e.span(), "`#[particle]` takes no arguments"));
+            errors.push(syn::Error::new(
+                e.span(),
+                "`#[particle]` takes no arguments",
+            ));
         }
         Over::Particles
     };
     if !f.sig.generics.params.is_empty() {
-        errors.at(&f.sig.generics, format_args!("kernel `{name}` cannot be generic"));
+        errors.at(
+            &f.sig.generics,
+            format_args!("kernel `{name}` cannot be generic"),
+        );
     }
     let mut inputs = f.sig.inputs.iter().peekable();
     match inputs.next() {
         Some(FnArg::Receiver(r)) if r.reference.is_some() && r.mutability.is_none() => {}
-        _ => errors.at(&f.sig, format_args!("kernel `{name}` must take `&self` first")),
+        _ => errors.at(
+            &f.sig,
+            format_args!("kernel `{name}` must take `&self` first"),
+        ),
     }
     let mut index = false;
     match &over {
@@ -435,7 +456,11 @@ fn parse_kernel(
             &f.sig.inputs,
             format_args!(
                 "kernel `{name}` takes {} vectors: the position{s} and optionally the velocit{ies}",
-                allowed.iter().map(ToString::to_string).collect::<Vec<_>>().join(" or "),
+                allowed
+                    .iter()
+                    .map(ToString::to_string)
+                    .collect::<Vec<_>>()
+                    .join(" or "),
                 s = if allowed[0] == 2 { "s" } else { "" },
                 ies = if allowed[0] == 2 { "ies" } else { "y" },
             ),
@@ -734,7 +759,11 @@ fn generate(
 }
 
 /// A kernel's derivative blocks as a hidden method, and the call that hands them to the runtime.
-fn kernel_jacobian(particles: &Particles<'_>, kernel: &Kernel, lowered: Lowered) -> (TokenStream, TokenStream) {
+fn kernel_jacobian(
+    particles: &Particles<'_>,
+    kernel: &Kernel,
+    lowered: Lowered,
+) -> (TokenStream, TokenStream) {
     let dim = particles.dim;
     let d = proc_macro2::Literal::usize_unsuffixed(dim);
     let Lowered {

@@ -404,7 +404,10 @@ fn draw_views<DB: DrawingBackend>(
         let ((x0, x1), (y0, y1)) = view.bounds;
         // Equal scale: widen the shorter side of the region to the panel's aspect ratio.
         let (w, h) = panel.dim_in_pixel();
-        let (w, h) = (f64::from(w.saturating_sub(80).max(1)), f64::from(h.saturating_sub(90).max(1)));
+        let (w, h) = (
+            f64::from(w.saturating_sub(80).max(1)),
+            f64::from(h.saturating_sub(90).max(1)),
+        );
         let (span_x, span_y) = ((x1 - x0).max(1e-12), (y1 - y0).max(1e-12));
         let scale = (span_x / w).max(span_y / h);
         let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));

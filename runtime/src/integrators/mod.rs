@@ -48,8 +48,7 @@ pub trait Integrator<M: Model> {
     /// Prepares to step `state` from time `t0` with the fixed step `dt`; `newton` configures the
     /// nonlinear solve of implicit methods and is ignored by explicit ones. Fails only for an
     /// implicit method whose linear solver cannot be set up (a sparse symbolic factorization).
-    fn start(model: &M, t0: f64, dt: f64, state: &M::State, newton: &NewtonOptions)
-    -> Result<Self>
+    fn start(model: &M, t0: f64, dt: f64, state: &M::State, newton: &NewtonOptions) -> Result<Self>
     where
         Self: Sized;
 

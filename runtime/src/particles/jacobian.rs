@@ -4,6 +4,8 @@ use std::fmt;
 use std::sync::Arc;
 
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::linalg::cholesky::llt::factor::LltRegularization;
+use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::linalg::cholesky::{
     CholeskySymbolicParams, LltRef, SymbolicCholesky, SymmetricOrdering,
     factorize_symbolic_cholesky,
@@ -11,9 +13,7 @@ use faer::sparse::linalg::cholesky::{
 use faer::sparse::linalg::lu::{
     LuRef, LuSymbolicParams, NumericLu, SymbolicLu, factorize_symbolic_lu,
 };
-use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{Pair, SparseColMatRef, SymbolicSparseColMat};
-use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::{Conj, MatMut, Par, Side};
 use nalgebra::{SMatrix, SVector};
 
@@ -71,6 +71,9 @@ pub struct ParticleJacobian<const D: usize> {
     solver: Solver,
 }
 
+/// A sparse LU: the symbolic analysis (shared by clones) and the numeric factors.
+type SparseLu = (Arc<SymbolicLu<usize>>, NumericLu<usize, f64>);
+
 /// The sparse Newton matrix and its factorizations.
 struct Solver {
     pattern: SymbolicSparseColMat<usize>,
@@ -86,7 +89,7 @@ struct Solver {
     rhs: Vec<f64>,
     cholesky: Arc<SymbolicCholesky<usize>>,
     cholesky_values: Vec<f64>,
-    lu: Option<(Arc<SymbolicLu<usize>>, NumericLu<usize, f64>)>,
+    lu: Option<SparseLu>,
     scratch: MemBuffer,
     counts: Factorizations,
     factored: Option<Factored>,
@@ -299,14 +302,17 @@ impl<const D: usize> ParticleJacobian<D> {
             // Gershgorin: a symmetric matrix with non-negative diagonal dominance is already
             // semidefinite, the common case (a stretched spring), and needs no eigensolve.
             let dominant = (0..D).all(|r| {
-                let off: f64 = (0..D).filter(|&c| c != r).map(|c| symmetric[(r, c)].abs()).sum();
+                let off: f64 = (0..D)
+                    .filter(|&c| c != r)
+                    .map(|c| symmetric[(r, c)].abs())
+                    .sum();
                 symmetric[(r, r)] >= off
             });
             if dominant {
                 return symmetric;
             }
             // nalgebra's eigensolver needs the size as a type: particle models are 2-D or 3-D.
-            let copy = |m: &dyn Fn(usize, usize) -> f64| SMatrix::<f64, D, D>::from_fn(|r, c| m(r, c));
+            let copy = |m: &dyn Fn(usize, usize) -> f64| SMatrix::<f64, D, D>::from_fn(m);
             match D {
                 2 => {
                     let m = clamp2(nalgebra::Matrix2::from_fn(|r, c| symmetric[(r, c)]));
@@ -409,7 +415,10 @@ impl Solver {
         let slot = |row: usize, col: usize| -> usize {
             let start = pattern.col_ptr()[col];
             let rows = pattern.row_idx_of_col_raw(col);
-            start + rows.binary_search(&row).expect("every block is in the pattern")
+            start
+                + rows
+                    .binary_search(&row)
+                    .expect("every block is in the pattern")
         };
         let mut diagonal_slots = Vec::with_capacity(particles * D * D);
         for i in 0..particles {
@@ -556,10 +565,10 @@ impl Solver {
         match (&self.factored, &self.lu) {
             (Some(Factored::Cholesky), _) => LltRef::new(&self.cholesky, &self.cholesky_values)
                 .solve_in_place_with_conj(Conj::No, rhs, Par::Seq, stack),
-            (Some(Factored::Lu), Some((symbolic, numeric))) => {
-                LuRef::new_unchecked(symbolic, numeric)
-                    .solve_in_place_with_conj(Conj::No, rhs, Par::Seq, stack)
-            }
+            (Some(Factored::Lu), Some((symbolic, numeric))) => LuRef::new_unchecked(
+                symbolic, numeric,
+            )
+            .solve_in_place_with_conj(Conj::No, rhs, Par::Seq, stack),
             _ => {}
         }
     }

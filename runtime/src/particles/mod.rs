@@ -350,7 +350,13 @@ pub fn pair_forces<L: Link, const D: usize>(
     x: &[SVector<f64, D>],
     v: &[SVector<f64, D>],
     force: &mut [SVector<f64, D>],
-    kernel: impl Fn(&L, &SVector<f64, D>, &SVector<f64, D>, &SVector<f64, D>, &SVector<f64, D>) -> SVector<f64, D>,
+    kernel: impl Fn(
+        &L,
+        &SVector<f64, D>,
+        &SVector<f64, D>,
+        &SVector<f64, D>,
+        &SVector<f64, D>,
+    ) -> SVector<f64, D>,
 ) {
     for link in links {
         let [a, b] = link.ends();
