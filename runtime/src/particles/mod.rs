@@ -28,7 +28,7 @@ use crate::{Error, Model, Result, State};
 pub use jacobian::{Factorizations, ParticleJacobian};
 
 /// The state of a particle model: every position, then every velocity, as one `Vec<f64>`.
-#[derive(Clone, PartialEq)]
+#[derive(PartialEq)]
 pub struct ParticleState<const D: usize> {
     components: Vec<f64>,
     /// The model's position and velocity field names, for CSV headers and errors.
@@ -105,6 +105,21 @@ impl<const D: usize> ParticleState<D> {
         let half = self.components.len() / 2;
         let (x, v) = self.components.split_at_mut(half);
         (vectors_mut(x), vectors_mut(v))
+    }
+}
+
+impl<const D: usize> Clone for ParticleState<D> {
+    fn clone(&self) -> Self {
+        ParticleState {
+            components: self.components.clone(),
+            names: self.names,
+        }
+    }
+
+    /// Reuses the buffer: the integrators copy states every step and must not allocate.
+    fn clone_from(&mut self, source: &Self) {
+        self.components.clone_from(&source.components);
+        self.names = source.names;
     }
 }
 
