@@ -52,6 +52,15 @@
 //!   offending sub-expression; `#[system(jacobian = false)]` opts out and keeps the explicit
 //!   methods.
 //!
+//! - **Particle models** have `Vec<Vector3<f64>>` (or `Vec<Vector2<f64>>`) `#[position]` and
+//!   `#[velocity]` fields, a `#[mass]` field `Vec<f64>`, optionally `#[pinned]` particles
+//!   (`Vec<usize>`), and forces as kernels: `#[pair(links)]` on
+//!   `fn(&self, link: &L, xa, xb[, va, vb]) -> Vector3<f64>` (the force on `a` of each link in
+//!   `self.links`; `b` gets its opposite) and `#[particle]` on
+//!   `fn(&self[, i: usize], x[, v]) -> Vector3<f64>`; `fn potential(&self) -> f64` is optional.
+//!   The macro differentiates each kernel into 3×3 blocks and implicit Euler solves with a
+//!   sparse Newton matrix; see [`particles`].
+//!
 //! The macro generates `<Model>State` (named fields, arithmetic, a zero-copy `SVector` view) and
 //! implements [`Model`] (and [`SecondOrder`], [`Jacobian`]), which [`Simulation`] runs with any
 //! [`Method`]. [`work_precision`] measures the speed/accuracy trade on a model and [`stability`]

@@ -1,11 +1,13 @@
-//! The `#[system]` attribute of odyn: a shim that hands `proc_macro2` tokens to [`expand`].
+//! The `#[system]` attribute of odyn: a shim that hands `proc_macro2` tokens to `expand`.
 //!
-//! The pipeline, one file a stage: [`args`] (the attribute's arguments) → [`model`] (the struct:
-//! state fields, their roles and shapes) → [`functions`] (the impl block: the force, derivative
-//! and energy bodies, with state reads made explicit) → [`lower`] (the force body as an
-//! expression graph, [`ir`]) → [`derivative`] (its exact Jacobian, pure: no syn, no quote) →
-//! [`generate`] (the state type, the Jacobian as straight-line code, the runtime trait impls). [`expand`] wires them together; [`errors`] collects every problem so a
-//! user sees all of them at once, each at its own token.
+//! The pipeline, one file a stage: `args` (the attribute's arguments) → `model` (the struct:
+//! state fields, their roles and shapes) → `functions` (the impl block: the force, derivative
+//! and energy bodies, with state reads made explicit) → `lower` (the force body as an
+//! expression graph, `ir`) → `derivative` (its exact Jacobian, pure: no syn, no quote) →
+//! `generate` (the state type, the Jacobian as straight-line code, the runtime trait impls).
+//! `particles` runs the same stages per force kernel for particle models. `expand` wires them
+//! together; `errors` collects every problem so a user sees all of them at once, each at its own
+//! token.
 
 mod args;
 mod derivative;

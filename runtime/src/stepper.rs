@@ -26,7 +26,8 @@ impl<'m, M: Model, I: Integrator<M>> Stepper<'m, M, I> {
     /// Starts stepping `state` from `t0` with step `dt`.
     ///
     /// Errors with [`Error::InvalidInput`] when dt is not finite and positive, t0 is not finite,
-    /// or the state has a non-finite component.
+    /// or the state has a non-finite component, and with [`Error::BadModel`] when the model's
+    /// own check fails (a particle model's topology or masses, see [`crate::Model::check`]).
     pub fn new(model: &'m M, state: M::State, t0: f64, dt: f64) -> Result<Self> {
         Self::with_newton(model, state, t0, dt, &NewtonOptions::default())
     }
