@@ -189,7 +189,7 @@ impl<'m, M: Model> Simulation<'m, M> {
         };
         if method.needs_velocity_free_forces() && M::SecondOrder::READS_VELOCITY {
             return Err(self.unsupported(
-                "its forces read a velocity (in `acceleration` or a kernel's velocity arguments), \
+                "its force reads a velocity (in `acceleration`, or a kernel's velocity arguments), \
                  and position Verlet has no velocity to give it; use velocity Verlet or leapfrog",
             ));
         }
