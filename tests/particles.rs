@@ -299,6 +299,7 @@ fn the_symbolic_factorization_is_computed_once_per_run() {
         let (counts, jacobians) = factorization_counts(&undamped, newton, 60);
         assert_eq!(counts.symbolic_cholesky, 1, "{counts:?}");
         assert_eq!(counts.symbolic_lu, 0, "{counts:?}");
+        assert_eq!(counts.cholesky_failed, 0, "{counts:?}");
         assert_eq!(counts.cholesky, jacobians, "{counts:?}");
         if newton.linearized {
             assert_eq!(jacobians, 60);

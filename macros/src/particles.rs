@@ -376,7 +376,34 @@ fn parse_kernel(
     let before = errors.len();
     let over = if attr.path().is_ident("pair") {
         match attr.parse_args::<Ident>() {
-            Ok(field) => Over::Pairs(field),
+            Ok(field) => {
+                // The runtime reads the links as a `Vec`; say so here rather than in
+                // generated code.
+                let declared = particles
+                    .item
+                    .fields
+                    .iter()
+                    .find(|f| f.ident.as_ref() == Some(&field));
+                match declared {
+                    Some(f) if vec_element(&f.ty).is_some() => {}
+                    Some(f) => errors.at(
+                        &f.ty,
+                        format_args!(
+                            "`{field}` holds the links of `#[pair({field})]`, so it must be a \
+                             `Vec` of a type implementing `odyn::particles::Link` (such as \
+                             `Vec<Spring>`)"
+                        ),
+                    ),
+                    None => errors.at(
+                        &field,
+                        format_args!(
+                            "`{}` has no field `{field}` to take the links from",
+                            particles.item.ident
+                        ),
+                    ),
+                }
+                Over::Pairs(field)
+            }
             Err(_) => {
                 errors.at(
                     attr,
