@@ -7,11 +7,11 @@
 
 use std::hint::black_box;
 
-use odyn::NewtonOptions;
 use odyn::integrators::{
     ExplicitEuler, Integrator, Leapfrog, PositionVerlet, Rk4, SymplecticEuler, VelocityVerlet,
 };
 use odyn::prelude::*;
+use odyn::{NewtonOptions, Stats};
 
 const STEPS: u64 = 1_000_000;
 const DT: f64 = 1e-3;
@@ -48,11 +48,20 @@ fn lorenz() -> Lorenz {
 /// Steps a model with integrator `I` through the `Integrator` trait.
 fn generated<M: Model, I: Integrator<M>>(model: &M) -> M::State {
     let mut state = model.state();
-    let mut integrator = I::start(model, 0.0, DT, &state, &NewtonOptions::default())
+    let mut scratch = state.clone();
+    let mut stats = Stats::default();
+    let mut integrator = I::start(model, 0.0, &state, &NewtonOptions::default(), &mut stats)
         .expect("a fixed-size model always starts");
     for n in 0..STEPS {
         // Explicit steps cannot fail; the `Result` is for implicit ones.
-        let _ = integrator.step(model, n as f64 * DT, &mut state);
+        let _ = integrator.step(
+            model,
+            n as f64 * DT,
+            DT,
+            &mut state,
+            &mut scratch,
+            &mut stats,
+        );
     }
     state
 }

@@ -11,7 +11,7 @@ use nalgebra::{Matrix2, Matrix3, Matrix4, SVector};
 use num_dual::{DualNum, DualSVec64, jacobian};
 use odyn::integrators::{ImplicitEuler, Integrator, Rk4};
 use odyn::prelude::*;
-use odyn::{Jacobian, NewtonOptions, nalgebra};
+use odyn::{Jacobian, NewtonOptions, Stats, nalgebra};
 
 mod models;
 
@@ -242,10 +242,12 @@ mod step {
 
     fn one<M: Model, I: Integrator<M>>((model, state): (M, M::State)) -> M::State {
         let mut y = state;
-        let mut integrator = I::start(&model, 0.0, 1e-3, &y, &NewtonOptions::default())
+        let mut scratch = y.clone();
+        let mut stats = Stats::default();
+        let mut integrator = I::start(&model, 0.0, &y, &NewtonOptions::default(), &mut stats)
             .expect("a fixed-size model always starts");
         integrator
-            .step(&model, 0.0, &mut y)
+            .step(&model, 0.0, 1e-3, &mut y, &mut scratch, &mut stats)
             .expect("the step converges");
         y
     }

@@ -11,7 +11,7 @@ use odyn::integrators::ImplicitEuler;
 use odyn::nalgebra::Vector3;
 use odyn::particles::{ParticleJacobian, ParticleState, Spring};
 use odyn::prelude::*;
-use odyn::{Integrator, Jacobian, NewtonOptions};
+use odyn::{Integrator, Jacobian, NewtonOptions, Stats};
 
 fn main() {
     divan::main();
@@ -114,12 +114,21 @@ fn prepared(n: usize) -> (Cloth, ParticleState<3>, ParticleJacobian<3>) {
 fn step(bencher: divan::Bencher, n: usize) {
     let model = cloth(n);
     let state = model.state();
-    let mut integrator =
-        ImplicitEuler::start(&model, 0.0, H, &state, &NewtonOptions::linearized()).unwrap();
-    let mut y = state.clone();
+    let mut stats = Stats::default();
+    let mut integrator = ImplicitEuler::start(
+        &model,
+        0.0,
+        &state,
+        &NewtonOptions::linearized(),
+        &mut stats,
+    )
+    .unwrap();
+    let (mut y, mut scratch) = (state.clone(), state.clone());
     bencher.bench_local(|| {
         y.clone_from(&state);
-        integrator.step(&model, 0.0, &mut y).unwrap();
+        integrator
+            .step(&model, 0.0, H, &mut y, &mut scratch, &mut stats)
+            .unwrap();
     });
 }
 

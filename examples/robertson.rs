@@ -10,7 +10,7 @@
 use std::process::ExitCode;
 
 use odyn::output::{number, write_csv, write_table};
-use odyn::plot::{Chart, Legend, Series};
+use odyn::plot::{Chart, Series};
 use odyn::prelude::*;
 
 /// A → B (0.04), B + C → A + C (10⁴), 2B → B + C (3·10⁷).
@@ -88,10 +88,10 @@ fn run() -> odyn::Result<()> {
             .fold(0.0, f64::max);
         println!(
             "  {dt:>7} {:>7} {error:>12.3e} {:>12.1e}",
-            run.steps,
+            run.steps(),
             s.a + s.b + s.c - 1.0
         );
-        rows.push(vec![number(dt), run.steps.to_string(), number(error)]);
+        rows.push(vec![number(dt), run.steps().to_string(), number(error)]);
         points.push((dt, error));
     }
     let (first, last) = (points[0], points[points.len() - 1]);
@@ -111,7 +111,6 @@ fn run() -> odyn::Result<()> {
         log_x: true,
         log_y: true,
         series: vec![Series::markers("implicit Euler", points)],
-        legend: Legend::UpperLeft,
     }
     .write(dir.join("convergence.png"), (960, 600))?;
 
@@ -142,7 +141,6 @@ fn run() -> odyn::Result<()> {
             species("10⁴·b", |s| 1e4 * s.b),
             species("c", |s| s.c),
         ],
-        legend: Legend::UpperRight,
         ..Chart::default()
     }
     .write(dir.join("trajectory.png"), (960, 500))?;

@@ -16,7 +16,7 @@ use std::process::ExitCode;
 use clap::Parser;
 use odyn::output::{number, write_table};
 use odyn::particles::Spring;
-use odyn::plot::{Chart, Legend, Series, View, views};
+use odyn::plot::{Chart, Series, View, views};
 use odyn::prelude::*;
 
 /// A rope of stiff springs under gravity.
@@ -324,7 +324,6 @@ fn run(cli: Cli) -> odyn::Result<()> {
             series("Verlet + constraints", &verlet, &|f| f.energy),
             series("stiff springs, implicit Euler", &springs, &|f| f.energy),
         ],
-        legend: Legend::LowerLeft,
         ..Chart::default()
     }
     .write(cli.out.join("energy.png"), (1000, 600))?;

@@ -243,16 +243,24 @@ fn single(cli: &Cli, dir: &std::path::Path) -> odyn::Result<()> {
     let mut sim = spring.simulate().steps(cli.steps.unwrap_or(625));
     if let Some(method) = cli.integrator {
         sim = sim.integrator(method);
+        if method.is_adaptive() && cli.dt.is_none() {
+            // An adaptive method picks its own steps: run the same 10 s at its default tolerances.
+            sim = sim.duration(cli.steps.unwrap_or(625) as f64 * 0.016);
+        }
     }
     if let Some(dt) = cli.dt {
         sim = sim.dt(dt);
     }
     let run = sim.run()?;
-    let name = format!("{}_dt{}", run.method.name(), run.dt);
+    let step = match run.dt {
+        Some(dt) => format!("dt{dt}"),
+        None => "adaptive".to_owned(),
+    };
+    let name = format!("{}_{step}", run.method.name());
     run.write_csv(dir.join(format!("{name}.csv")))?;
     plot(
         dir.join(format!("{name}.png")),
-        &format!("Damped spring, {}, dt = {}", run.method.label(), run.dt),
+        &format!("Damped spring, {}, {step}", run.method.label()),
         std::slice::from_ref(&run),
         false,
     )?;
@@ -260,7 +268,7 @@ fn single(cli: &Cli, dir: &std::path::Path) -> odyn::Result<()> {
     println!(
         "{}: {} steps, t = {}, x = {:.6}, v = {:.6}, E/E0 = {:.6}; wrote {}/{name}.{{csv,png}}",
         run.method.name(),
-        run.steps,
+        run.steps(),
         last.t,
         last.state.x,
         last.state.v,

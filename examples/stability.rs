@@ -7,7 +7,7 @@
 use std::process::ExitCode;
 
 use odyn::output::{number, write_table};
-use odyn::plot::{Chart, Legend, Series};
+use odyn::plot::{Chart, Series};
 use odyn::prelude::*;
 use odyn::stability::{StabilityProbe, measured_limit, predicted_limit};
 
@@ -73,7 +73,7 @@ fn run() -> odyn::Result<()> {
                 m: 1.0,
             };
             let omega = (k / spring.m).sqrt();
-            let predicted = predicted_limit(&spring, 0.0, &spring.state(), method);
+            let predicted = predicted_limit(&spring, 0.0, &spring.state(), method)?;
             let measured = measured_limit(&spring, &spring.state(), method, 1.0 / omega, &probe)?;
             let diff = if predicted.is_finite() && predicted > 0.0 {
                 format!("{:.2e}", (measured / predicted - 1.0).abs())
@@ -117,7 +117,6 @@ fn run() -> odyn::Result<()> {
         log_x: true,
         log_y: true,
         series,
-        legend: Legend::UpperRight,
     };
     chart.write(dir.join("limits.png"), (960, 640))?;
     println!(

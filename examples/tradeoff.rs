@@ -15,7 +15,9 @@ use std::process::ExitCode;
 use odyn::output::{number, write_table};
 use odyn::prelude::*;
 use odyn::reference::{DampedOscillator, KeplerOrbit};
-use odyn::work_precision::{Accuracy, Cost, Reference, WorkPrecision, WorkPrecisionSet, measure};
+use odyn::work_precision::{
+    Accuracy, Cost, Reference, Setting, WorkPrecision, WorkPrecisionSet, measure,
+};
 
 /// Damped spring, m·ẍ = −k·x − b·ẋ.
 #[system]
@@ -164,20 +166,23 @@ fn run(quick: bool) -> odyn::Result<()> {
         "spring",
         spring.state(),
         10.0,
-        vec![
-            Method::ExplicitEuler,
-            Method::SymplecticEuler,
-            Method::VelocityVerlet,
-            Method::Leapfrog,
-            Method::Rk4,
-            Method::ImplicitEuler,
-        ],
-        halvings(0.016, if quick { 3 } else { 6 }),
         Reference::Exact(Box::new(move |t| {
             let (x, v) = exact.state_at(1.0, 0.0, t);
             SpringState { x, v }
         })),
     );
+    study.methods = vec![
+        Method::ExplicitEuler,
+        Method::SymplecticEuler,
+        Method::VelocityVerlet,
+        Method::Leapfrog,
+        Method::Rk4,
+        Method::ImplicitEuler,
+        Method::Tsit5,
+        Method::Dop853,
+    ];
+    study.dts = halvings(0.016, if quick { 3 } else { 6 });
+    study.tolerances = rtols(quick);
     study.repeats = repeats;
     report(&measure(&spring, &study)?, dir, Accuracy::FinalState)?;
 
@@ -204,17 +209,20 @@ fn run(quick: bool) -> odyn::Result<()> {
         "kepler",
         kepler.state(),
         orbits * orbit.period(),
-        vec![
-            Method::SymplecticEuler,
-            Method::PositionVerlet,
-            Method::VelocityVerlet,
-            Method::Leapfrog,
-            Method::Rk4,
-            Method::ImplicitEuler,
-        ],
-        halvings(0.02, if quick { 2 } else { 4 }),
         Reference::Exact(Box::new(exact_kepler)),
     );
+    study.methods = vec![
+        Method::SymplecticEuler,
+        Method::PositionVerlet,
+        Method::VelocityVerlet,
+        Method::Leapfrog,
+        Method::Rk4,
+        Method::ImplicitEuler,
+        Method::Tsit5,
+        Method::Dop853,
+    ];
+    study.dts = halvings(0.02, if quick { 2 } else { 4 });
+    study.tolerances = rtols(quick);
     study.repeats = repeats;
     report(&measure(&kepler, &study)?, dir, Accuracy::Energy)?;
     kepler_invariants(&kepler, orbit, orbits, dir)?;
@@ -232,13 +240,20 @@ fn run(quick: bool) -> odyn::Result<()> {
         "lorenz",
         lorenz.state(),
         1.0,
-        vec![Method::ExplicitEuler, Method::Rk4, Method::ImplicitEuler],
-        halvings(0.01, if quick { 3 } else { 6 }),
         Reference::Computed {
             method: Method::Rk4,
             dt: 1e-5,
         },
     );
+    study.methods = vec![
+        Method::ExplicitEuler,
+        Method::Rk4,
+        Method::ImplicitEuler,
+        Method::Tsit5,
+        Method::Dop853,
+    ];
+    study.dts = halvings(0.01, if quick { 3 } else { 6 });
+    study.tolerances = rtols(quick);
     study.repeats = repeats;
     report(&measure(&lorenz, &study)?, dir, Accuracy::FinalState)?;
 
@@ -252,16 +267,16 @@ fn run(quick: bool) -> odyn::Result<()> {
         "robertson",
         robertson.state(),
         40.0,
-        vec![Method::ImplicitEuler, Method::Rk4],
-        (0..if quick { 3 } else { 5 })
-            .map(|i| 0.04 / 4f64.powi(i))
-            .collect(),
         Reference::Final(vec![
             7.158270687199023e-01,
             9.185534764554085e-06,
             2.841637457453337e-01,
         ]),
     );
+    study.methods = vec![Method::ImplicitEuler, Method::Rk4];
+    study.dts = (0..if quick { 3 } else { 5 })
+        .map(|i| 0.04 / 4f64.powi(i))
+        .collect();
     study.repeats = repeats;
     report(&measure(&robertson, &study)?, dir, Accuracy::FinalState)?;
     println!(
@@ -269,6 +284,12 @@ fn run(quick: bool) -> odyn::Result<()> {
         dir.display()
     );
     Ok(())
+}
+
+/// The tolerances the adaptive methods sweep: rtol = 1e-3 … 1e-12 (1e-3 … 1e-8 with `--quick`),
+/// atol = rtol/1000.
+fn rtols(quick: bool) -> Vec<odyn::Tolerances> {
+    WorkPrecision::<SpringState>::rtols(3..=if quick { 8 } else { 12 }, 1e-3)
 }
 
 /// Prints a study, writes its CSV and draws `accuracy` against time and against evaluations.
@@ -282,8 +303,8 @@ fn report(set: &WorkPrecisionSet, dir: &Path, accuracy: Accuracy) -> odyn::Resul
     };
     println!("\n{} (reference: {reference})", set.scene);
     println!(
-        "  {:<17} {:>9} {:>9} {:>11} {:>11} {:>11} {:>11}",
-        "method", "dt", "steps", "error", "energy err", "seconds", "evaluations"
+        "  {:<17} {:>13} {:>9} {:>11} {:>11} {:>11} {:>11}",
+        "method", "dt / rtol", "steps", "error", "energy err", "seconds", "evaluations"
     );
     for m in &set.measurements {
         let energy = m
@@ -294,13 +315,16 @@ fn report(set: &WorkPrecisionSet, dir: &Path, accuracy: Accuracy) -> odyn::Resul
         } else {
             format!("{:.2e}", m.error)
         };
+        let setting = match &m.setting {
+            Setting::Dt(dt) => format!("dt {dt:.3e}"),
+            Setting::Tolerances(t) => format!("rtol {:.0e}", t.rtol),
+        };
         println!(
-            "  {:<17} {:>9.3e} {:>9} {error:>11} {energy:>11} {:>11.3e} {:>11}",
+            "  {:<17} {setting:>13} {:>9} {error:>11} {energy:>11} {:>11.3e} {:>11}",
             m.method.name(),
-            m.dt,
-            m.steps,
+            m.stats.steps,
             m.seconds,
-            m.evaluations + m.jacobian_evaluations
+            m.evaluations()
         );
     }
     let mut methods: Vec<Method> = set.measurements.iter().map(|m| m.method).collect();

@@ -10,7 +10,7 @@
 use std::process::ExitCode;
 
 use odyn::output::{number, write_csv, write_table};
-use odyn::plot::{Chart, Legend, Series};
+use odyn::plot::{Chart, Series};
 use odyn::prelude::*;
 
 /// Van der Pol's oscillator.
@@ -93,15 +93,15 @@ fn run() -> odyn::Result<()> {
             let seconds = clock.elapsed().as_secs_f64();
             let s = run.last().state;
             let error = (s.y1 - reference[0]).abs().max((s.y2 - reference[1]).abs());
-            let newton = run.jacobian_evaluations as f64 / run.steps as f64;
+            let newton = run.stats.jacobian_evaluations as f64 / run.steps() as f64;
             println!(
                 "  {dt:>8} {:>9} {error:>12.3e} {newton:>12.2} {seconds:>9.3}",
-                run.steps
+                run.steps()
             );
             rows.push(vec![
                 number(t_end),
                 number(dt),
-                run.steps.to_string(),
+                run.steps().to_string(),
                 number(error),
             ]);
             points.push((dt, error));
@@ -125,7 +125,6 @@ fn run() -> odyn::Result<()> {
         log_x: true,
         log_y: true,
         series,
-        legend: Legend::UpperLeft,
     }
     .write(dir.join("convergence.png"), (960, 600))?;
 
@@ -147,7 +146,6 @@ fn run() -> odyn::Result<()> {
         x_label: "t".to_owned(),
         y_label: "y1".to_owned(),
         series: vec![Series::line("y1(t)", y1)],
-        legend: Legend::LowerLeft,
         ..Chart::default()
     }
     .write(dir.join("trajectory.png"), (960, 500))?;

@@ -26,7 +26,7 @@
 //! let spring = Spring { x: 1.0, v: 0.0, k: 50.0, b: 0.5, m: 1.0 };
 //! let run = spring.simulate().duration(10.0).run()?; // the attribute's method and dt
 //! let rk4 = spring.simulate().integrator(Method::Rk4).dt(0.05).steps(400).run()?;
-//! assert_eq!(run.steps, 625);
+//! assert_eq!(run.steps(), 625);
 //! // Damping is a force, so the energy only falls.
 //! assert!(rk4.last().energy.unwrap() < rk4.first().energy.unwrap());
 //! let SpringState { x, v } = rk4.last().state; // the generated typed state
@@ -81,7 +81,8 @@ pub mod prelude {
     pub use crate::nalgebra::{SVector, Vector2, Vector3};
     pub use crate::particles::ParticleSystem;
     pub use crate::{
-        Error, Method, Model, Result, SecondOrder, Simulation, State, Trajectory, system,
+        Direction, Error, Event, Jacobian, Method, Model, Result, SecondOrder, Simulation, State,
+        Tolerances, Trajectory, system,
     };
 }
 

@@ -126,7 +126,7 @@ fn rk4_energy_never_increases_with_damping() {
         .duration(10.0)
         .run()
         .unwrap();
-    assert_eq!(run.steps, 625);
+    assert_eq!(run.steps(), 625);
     for pair in run.samples.windows(2) {
         assert!(
             pair[1].energy <= pair[0].energy,

@@ -1,14 +1,27 @@
 //! The extremes suite: k ∈ {1, 10³, 10⁶, 10⁹} × dt ∈ {10⁻⁶, 10⁻³, 1/60, 0.1, 1} × every method on
 //! an undamped spring. Every cell either finishes finite or returns a typed divergence; nothing
-//! panics; implicit Euler finishes every cell; and each outcome is the one theory predicts.
+//! panics; implicit Euler and the Rosenbrock methods finish every cell; and each outcome is the
+//! one theory predicts.
 
 mod common;
 
 use common::Oscillator;
 use odyn::Error;
 use odyn::prelude::*;
+use odyn::stability::stability_polynomial;
 
 const STEPS: u64 = 1000;
+
+/// |R(iy)| for an explicit Runge–Kutta method: the factor its step multiplies the amplitude by on
+/// an undamped oscillator at ω·dt = y.
+fn amplification(method: Method, y: f64) -> f64 {
+    let gamma = stability_polynomial(method).expect("an explicit Runge–Kutta method");
+    let (mut re, mut im) = (0.0, 0.0);
+    for &g in gamma.iter().rev() {
+        (re, im) = (re * 0.0 - im * y + g, re * y + im * 0.0);
+    }
+    re.hypot(im)
+}
 
 #[test]
 fn every_cell_is_finite_or_a_typed_divergence_as_theory_predicts() {
@@ -41,6 +54,10 @@ fn every_cell_is_finite_or_a_typed_divergence_as_theory_predicts() {
                                 (ratio / (1.0 + h * h).powi(STEPS as i32) - 1.0).abs() < 1e-9,
                                 "{cell}: {ratio}"
                             ),
+                            // L-stable: damped at every step size, never gaining energy.
+                            Method::Rosenbrock23 | Method::Rodas5P => {
+                                assert!(ratio <= 1.0 + 1e-9, "{cell}: {ratio}")
+                            }
                             Method::ImplicitEuler => {
                                 let expected = (1.0 + h * h).powi(-(STEPS as i32));
                                 assert!(
@@ -52,6 +69,14 @@ fn every_cell_is_finite_or_a_typed_divergence_as_theory_predicts() {
                                 h < 2.0 * 2f64.sqrt() && ratio <= 1.0 + 1e-12,
                                 "{cell}: {ratio}"
                             ),
+                            // The energy is multiplied by |R(ih)|² every step, exactly.
+                            Method::Tsit5 | Method::Dop853 => {
+                                let expected = amplification(method, h).powi(2 * STEPS as i32);
+                                assert!(
+                                    (ratio / expected - 1.0).abs() < 1e-6,
+                                    "{cell}: {ratio} vs {expected}"
+                                );
+                            }
                             _ => assert!(
                                 h < 2.0 && ratio <= 2.0 / (2.0 - h) + 1e-9,
                                 "{cell}: {ratio}"
@@ -62,14 +87,22 @@ fn every_cell_is_finite_or_a_typed_divergence_as_theory_predicts() {
                         diverged += 1;
                         assert!(step <= STEPS, "{cell}");
                         match method {
-                            Method::ImplicitEuler => panic!("{cell}: implicit Euler diverged"),
-                            // Amplitude (1 + h²)^{n/2}, and |v| ≈ ω·|x|, passes 1e100 within n steps.
+                            Method::ImplicitEuler | Method::Rosenbrock23 | Method::Rodas5P => {
+                                panic!("{cell}: an L-stable method diverged")
+                            }
+                            // Amplitude (1 + h²)^{n/2}, and |v| ≈ ω·|x|, passes the default limit
+                            // 1e10 (× the initial scale 1) within n steps.
                             Method::ExplicitEuler => assert!(
                                 (STEPS as f64 / 2.0) * (h * h).ln_1p() + omega.max(1.0).ln()
-                                    > 100.0 * 10f64.ln() * 0.9,
+                                    > 10.0 * 10f64.ln() * 0.9,
                                 "{cell}"
                             ),
                             Method::Rk4 => assert!(h > 2.0 * 2f64.sqrt(), "{cell}"),
+                            Method::Tsit5 | Method::Dop853 => assert!(
+                                STEPS as f64 * amplification(method, h).ln() + omega.max(1.0).ln()
+                                    > 10.0 * 10f64.ln() * 0.9,
+                                "{cell}"
+                            ),
                             _ => assert!(h > 2.0, "{cell}"),
                         }
                     }

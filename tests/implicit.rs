@@ -5,7 +5,7 @@ mod common;
 
 use common::{Lorenz, Oscillator, Robertson, Spring, VanDerPol, slope};
 use odyn::prelude::*;
-use odyn::{DenseMatrix, Error, NewtonOptions};
+use odyn::{DenseMatrix, Error, NewtonFailure, NewtonOptions};
 
 /// On ẍ = −ω²x a step divides (x, v/ω) by 1 − iωh: the energy is multiplied by exactly
 /// 1/(1 + ω²h²) (Hairer & Wanner, *Solving ODEs II*, §IV.3, R(z) = 1/(1 − z) at z = iωh).
@@ -99,7 +99,10 @@ fn implicit_euler_is_first_order_and_counts_its_work() {
         .steps(100)
         .run()
         .unwrap();
-    assert_eq!((run.evaluations, run.jacobian_evaluations), (200, 200));
+    assert_eq!(
+        (run.stats.evaluations, run.stats.jacobian_evaluations),
+        (200, 200)
+    );
     // First-order models take implicit Euler too.
     let lorenz = Lorenz::classic()
         .simulate()
@@ -200,9 +203,26 @@ fn newton_failure_is_a_typed_error() {
         ..NewtonOptions::default()
     };
     match model.simulate().dt(0.1).steps(10).newton(strict).run() {
-        Err(Error::NewtonDidNotConverge { t, iters, residual }) => {
-            assert_eq!((t, iters), (0.1, 1));
+        Err(
+            error @ Error::NewtonDidNotConverge {
+                t,
+                dt,
+                iters,
+                residual,
+                cause,
+                halvings,
+            },
+        ) => {
+            assert_eq!((t, dt, iters, halvings), (0.1, 0.1, 1, 0));
+            assert_eq!(cause, NewtonFailure::Iterations);
             assert!(residual > 0.0 && residual.is_finite());
+            // The advice names the option that addresses the cause.
+            assert!(
+                error
+                    .to_string()
+                    .contains("raise `NewtonOptions::max_iters`"),
+                "{error}"
+            );
         }
         other => panic!("expected NewtonDidNotConverge, got {other:?}"),
     }
@@ -213,7 +233,12 @@ fn newton_failure_is_a_typed_error() {
         ..NewtonOptions::default()
     };
     match model.simulate().dt(0.1).steps(10).newton(halving).run() {
-        Err(Error::NewtonDidNotConverge { t, .. }) => assert!((t - 0.1 / 8.0).abs() < 1e-15, "{t}"),
+        Err(Error::NewtonDidNotConverge {
+            t, dt, halvings, ..
+        }) => {
+            assert!((t - 0.1 / 8.0).abs() < 1e-15, "{t}");
+            assert_eq!((dt, halvings), (0.1 / 8.0, 3));
+        }
         other => panic!("expected NewtonDidNotConverge, got {other:?}"),
     }
 }
@@ -250,7 +275,11 @@ fn halving_carries_newton_through_the_relaxation_jump() {
         .record_every(100)
         .run()
         .unwrap();
-    assert_eq!(run.steps, 18_000);
+    // 18 000 grid steps; the halved ones add sub-steps, each failed attempt counted as rejected.
+    assert_eq!(run.last().step, 18_000);
+    let stats = run.stats;
+    assert!(stats.rejected > 0, "{stats}");
+    assert_eq!(stats.steps, 18_000 + stats.rejected, "{stats}");
     assert!(
         run.samples
             .iter()

@@ -5,69 +5,7 @@ mod common;
 
 use common::*;
 use odyn::prelude::*;
-use odyn::{DenseMatrix, Jacobian, nalgebra};
-
-/// A small deterministic generator (xorshift64*), so failures reproduce.
-struct Rng(u64);
-
-impl Rng {
-    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        let bits = self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11;
-        lo + (hi - lo) * (bits as f64 / (1u64 << 53) as f64)
-    }
-}
-
-/// Compares ∂f/∂y with central differences of f at `samples` random states drawn by `draw`.
-/// The step h = 1e-6·(1 + |yⱼ|) leaves truncation and round-off errors near 1e-9 relative, so
-/// 1e-6 relative (to the Jacobian's largest entry in the row) is a strict but safe bound.
-fn check<M: Jacobian>(model: &M, t: f64, samples: usize, mut draw: impl FnMut(&mut Rng) -> M::State)
-where
-    M::Matrix: DenseMatrix,
-{
-    let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
-    for _ in 0..samples {
-        let y = draw(&mut rng);
-        let n = y.as_slice().len();
-        let mut jacobian = model.jacobian_matrix(&y);
-        model.jacobian(t, &y, &mut jacobian);
-        for row in 0..n {
-            let numeric: Vec<f64> = (0..n)
-                .map(|column| central(model, t, &y, row, column))
-                .collect();
-            let scale = numeric.iter().map(|v| v.abs()).fold(1e-300, f64::max);
-            for (column, fd) in numeric.iter().enumerate() {
-                let exact = jacobian.entry(row, column);
-                assert!(
-                    (exact - fd).abs() <= 1e-6 * scale,
-                    "{} ∂f{row}/∂y{column} at {y:?}: generated {exact}, central difference {fd}",
-                    M::NAME
-                );
-                if !M::NONZEROS.contains(&(row, column)) {
-                    assert_eq!(
-                        exact,
-                        0.0,
-                        "{}: ({row}, {column}) is a structural zero",
-                        M::NAME
-                    );
-                }
-            }
-        }
-    }
-}
-
-fn central<M: Model>(model: &M, t: f64, y: &M::State, row: usize, column: usize) -> f64 {
-    let h = 1e-6 * (1.0 + y.as_slice()[column].abs());
-    let (mut plus, mut minus) = (y.clone(), y.clone());
-    plus.as_mut_slice()[column] += h;
-    minus.as_mut_slice()[column] -= h;
-    let (mut f_plus, mut f_minus) = (y.clone(), y.clone());
-    model.derivative(t, &plus, &mut f_plus);
-    model.derivative(t, &minus, &mut f_minus);
-    (f_plus.as_slice()[row] - f_minus.as_slice()[row]) / (2.0 * h)
-}
+use odyn::{Jacobian, nalgebra};
 
 #[test]
 fn spring_matches_finite_differences_and_the_hand_derived_jacobian() {

@@ -124,22 +124,37 @@ fn explorer_measures_what_the_spectrum_predicts() {
             omega,
         };
         for method in Method::ALL {
-            let predicted = predicted_limit(&osc, 0.0, &osc.state(), method);
+            let predicted = predicted_limit(&osc, 0.0, &osc.state(), method).unwrap();
             let measured = measured_limit(&osc, &osc.state(), method, 1.0 / omega, &probe).unwrap();
             let theory = match method {
                 Method::ExplicitEuler => 0.0,
+                // The first y with |R(iy)| = 1 for the tableaux' stability polynomials, found in
+                // 40-digit arithmetic by scripts/stability_boundaries.py.
+                Method::Tsit5 => 0.477_978_868_609_947_7 / omega,
+                Method::Dop853 => 5.960_359_811_702_807 / omega,
                 Method::Rk4 => 2.0 * 2f64.sqrt() / omega,
-                Method::ImplicitEuler => f64::INFINITY,
+                // A-stable: every step on an undamped oscillator.
+                Method::ImplicitEuler | Method::Rosenbrock23 | Method::Rodas5P => f64::INFINITY,
                 _ => 2.0 / omega,
             };
+            let tolerance = if method.is_adaptive() { 1e-5 } else { 1e-9 };
             assert!(
-                predicted == theory || (predicted / theory - 1.0).abs() < 1e-9,
+                predicted == theory || (predicted / theory - 1.0).abs() < tolerance,
                 "{method}: {predicted} vs {theory}"
             );
             match method {
                 // Growth under 0.1 % over 20 000 steps: (1 + ω²dt²)^10⁴ ≤ 1.001, ωdt ≤ 3.2e-4.
                 Method::ExplicitEuler => assert!(measured * omega < 3.2e-4, "{measured}"),
-                Method::ImplicitEuler => assert_eq!(measured, f64::INFINITY),
+                Method::ImplicitEuler | Method::Rosenbrock23 | Method::Rodas5P => {
+                    assert_eq!(measured, f64::INFINITY)
+                }
+                // Past y = 0.478 Tsit5's |R(iy)| exceeds 1 by only 1e-8 to 1e-6 a step: growth
+                // a 20 000-step probe sees only further out, so the measurement bounds the
+                // prediction from above.
+                Method::Tsit5 => assert!(
+                    measured >= predicted && measured * omega < 1.5,
+                    "{method} at ω = {omega}: {measured} vs {predicted}"
+                ),
                 _ => assert!(
                     (measured / predicted - 1.0).abs() < 0.01,
                     "{method} at ω = {omega}: {measured} vs {predicted}"

@@ -12,45 +12,46 @@ pub(crate) struct MethodInfo {
     pub(crate) name: &'static str,
     pub(crate) needs_second_order: bool,
     pub(crate) needs_velocity_free_forces: bool,
+    /// Whether it steps to tolerances (so `rtol`/`atol` apply to it).
+    pub(crate) adaptive: bool,
+    /// Whether it needs the generated Jacobian (which `jacobian = false` turns off).
+    pub(crate) needs_jacobian: bool,
 }
 
-/// The methods an attribute may name, mirroring `odyn::Method`.
-const METHODS: [MethodInfo; 7] = [
+/// What a method needs: nothing beyond f, a position/velocity split, forces free of velocities
+/// (and a split), or the Jacobian.
+#[derive(Clone, Copy)]
+enum Needs {
+    F,
+    Split,
+    VelocityFree,
+    Jacobian,
+}
+
+const fn method(name: &'static str, needs: Needs, adaptive: bool) -> MethodInfo {
     MethodInfo {
-        name: "ExplicitEuler",
-        needs_second_order: false,
-        needs_velocity_free_forces: false,
-    },
-    MethodInfo {
-        name: "SymplecticEuler",
-        needs_second_order: true,
-        needs_velocity_free_forces: false,
-    },
-    MethodInfo {
-        name: "PositionVerlet",
-        needs_second_order: true,
-        needs_velocity_free_forces: true,
-    },
-    MethodInfo {
-        name: "VelocityVerlet",
-        needs_second_order: true,
-        needs_velocity_free_forces: false,
-    },
-    MethodInfo {
-        name: "Leapfrog",
-        needs_second_order: true,
-        needs_velocity_free_forces: false,
-    },
-    MethodInfo {
-        name: "Rk4",
-        needs_second_order: false,
-        needs_velocity_free_forces: false,
-    },
-    MethodInfo {
-        name: "ImplicitEuler",
-        needs_second_order: false,
-        needs_velocity_free_forces: false,
-    },
+        name,
+        needs_second_order: matches!(needs, Needs::Split | Needs::VelocityFree),
+        needs_velocity_free_forces: matches!(needs, Needs::VelocityFree),
+        adaptive,
+        needs_jacobian: matches!(needs, Needs::Jacobian),
+    }
+}
+
+/// The methods an attribute may name, mirroring `odyn::Method::info` (the integration test
+/// `tests/methods.rs` checks that the two tables agree).
+const METHODS: [MethodInfo; 11] = [
+    method("ExplicitEuler", Needs::F, false),
+    method("SymplecticEuler", Needs::Split, false),
+    method("PositionVerlet", Needs::VelocityFree, false),
+    method("VelocityVerlet", Needs::Split, false),
+    method("Leapfrog", Needs::Split, false),
+    method("Rk4", Needs::F, false),
+    method("ImplicitEuler", Needs::Jacobian, false),
+    method("Tsit5", Needs::F, true),
+    method("Dop853", Needs::F, true),
+    method("Rosenbrock23", Needs::Jacobian, true),
+    method("Rodas5P", Needs::Jacobian, true),
 ];
 
 /// The parsed arguments.
@@ -58,49 +59,87 @@ const METHODS: [MethodInfo; 7] = [
 pub(crate) struct Args {
     /// `integrator = Name`, with the token for error spans.
     pub(crate) integrator: Option<(Ident, &'static MethodInfo)>,
-    /// `dt = <expr>`: a literal is checked here, any other constant expression at run time.
+    /// `dt = <expr>`: a literal expression is checked here, any other constant expression by a
+    /// `const` assertion in the generated code.
     pub(crate) dt: Option<Expr>,
+    /// `rtol = <expr>`, checked like `dt`.
+    pub(crate) rtol: Option<Expr>,
+    /// `atol = <expr>`, checked like `dt`.
+    pub(crate) atol: Option<Expr>,
     /// `jacobian = false` opts out of the generated Jacobian (and so of implicit methods).
     pub(crate) no_jacobian: Option<syn::LitBool>,
 }
 
+/// The arguments `#[system]` takes, for error messages.
+const SUPPORTED: &str = "`integrator = ...`, `dt = ...`, `rtol = ...`, `atol = ...`, \
+    `jacobian = false`";
+
 /// Parses the attribute's arguments, reporting problems to `errors`.
 pub(crate) fn parse(tokens: TokenStream, errors: &mut Errors) -> Args {
     let mut args = Args::default();
+    let mut seen: Vec<String> = Vec::new();
     let parser = syn::meta::parser(|meta| {
-        if meta.path.is_ident("integrator") {
-            let ident: Ident = meta.value()?.parse()?;
-            match METHODS.iter().find(|m| ident == m.name) {
-                Some(info) => args.integrator = Some((ident, info)),
-                None => errors.at(
-                    &ident,
-                    format_args!("unknown integrator `{ident}`; supported: {}", names()),
-                ),
-            }
-            Ok(())
-        } else if meta.path.is_ident("dt") {
-            let expr: Expr = meta.value()?.parse()?;
-            check_dt(&expr, errors);
-            args.dt = Some(expr);
-            Ok(())
-        } else if meta.path.is_ident("jacobian") {
-            let value: syn::LitBool = meta.value()?.parse()?;
-            if !value.value {
-                args.no_jacobian = Some(value);
-            }
-            Ok(())
-        } else {
-            Err(meta.error(format_args!(
-                "unknown `#[system]` argument `{}`; supported: `integrator = ...`, `dt = ...`, \
-                 `jacobian = false`",
-                meta.path
-                    .get_ident()
-                    .map_or_else(|| "?".to_owned(), Ident::to_string)
-            )))
+        let name = meta
+            .path
+            .get_ident()
+            .map_or_else(|| "?".to_owned(), Ident::to_string);
+        if seen.contains(&name) {
+            errors.at(
+                &meta.path,
+                format_args!("`{name}` is given twice; give each argument once"),
+            );
         }
+        seen.push(name.clone());
+        match name.as_str() {
+            "integrator" => {
+                let ident: Ident = meta.value()?.parse()?;
+                match METHODS.iter().find(|m| ident == m.name) {
+                    Some(info) => args.integrator = Some((ident, info)),
+                    None => errors.at(
+                        &ident,
+                        format_args!("unknown integrator `{ident}`; supported: {}", names()),
+                    ),
+                }
+            }
+            "dt" | "rtol" | "atol" => {
+                let expr: Expr = meta.value()?.parse()?;
+                check_number(&name, &expr, errors);
+                let slot = match name.as_str() {
+                    "dt" => &mut args.dt,
+                    "rtol" => &mut args.rtol,
+                    _ => &mut args.atol,
+                };
+                *slot = Some(expr);
+            }
+            "jacobian" => {
+                let value: syn::LitBool = meta.value()?.parse()?;
+                if !value.value {
+                    args.no_jacobian = Some(value);
+                }
+            }
+            _ => {
+                return Err(meta.error(format_args!(
+                    "unknown `#[system]` argument `{name}`; supported: {SUPPORTED}"
+                )));
+            }
+        }
+        Ok(())
     });
     if let Err(error) = parser.parse2(tokens) {
         errors.push(error);
+    }
+    if let (Some((ident, info)), Some(tolerance)) =
+        (&args.integrator, args.rtol.as_ref().or(args.atol.as_ref()))
+        && !info.adaptive
+    {
+        errors.at(
+            tolerance,
+            format_args!(
+                "`{ident}` steps with a fixed `dt` and has no error estimate to hold to a \
+                 tolerance; `rtol`/`atol` need an adaptive integrator ({})",
+                adaptive_names()
+            ),
+        );
     }
     args
 }
@@ -113,27 +152,111 @@ fn names() -> String {
         .join(", ")
 }
 
-/// A literal dt must be finite and positive; anything else is left to the run-time check.
-fn check_dt(expr: &Expr, errors: &mut Errors) {
-    if let Expr::Unary(syn::ExprUnary {
-        op: syn::UnOp::Neg(_),
-        ..
-    }) = expr
-    {
-        errors.at(expr, "`dt` must be finite and positive");
-        return;
-    }
-    let Expr::Lit(lit) = expr else { return };
-    let value = match &lit.lit {
-        Lit::Float(f) => f.base10_parse::<f64>().ok(),
-        Lit::Int(i) => i.base10_parse::<f64>().ok(),
-        _ => {
-            errors.at(lit, "`dt` must be a number of seconds, such as `dt = 0.01`");
-            return;
-        }
+fn adaptive_names() -> String {
+    METHODS
+        .iter()
+        .filter(|m| m.adaptive)
+        .map(|m| format!("`{}`", m.name))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// A `dt`, `rtol` or `atol` made of literals must be a positive number (`rtol` and `atol` may be
+/// zero); integer division, which Rust rounds towards zero, is refused outright. Anything else
+/// (a `const`, a path) is checked by a `const` assertion in the generated code.
+fn check_number(name: &str, expr: &Expr, errors: &mut Errors) {
+    let zero_allowed = name != "dt";
+    let requirement = if zero_allowed {
+        "finite and non-negative"
+    } else {
+        "finite and positive"
     };
-    match value {
-        Some(v) if v.is_finite() && v > 0.0 => {}
-        _ => errors.at(lit, "`dt` must be finite and positive"),
+    match evaluate(expr) {
+        Ok(Some(value)) => {
+            let ok = value.is_finite() && (value > 0.0 || (zero_allowed && value == 0.0));
+            if !ok {
+                errors.at(
+                    expr,
+                    format_args!("`{name}` must be {requirement}; this is {value:?}"),
+                );
+            }
+        }
+        Ok(None) => {}
+        Err((span, message)) => errors.at(span, format_args!("`{name}`: {message}")),
     }
+}
+
+/// The value of an expression made of number literals, `+ - * /`, unary minus and parentheses;
+/// `Ok(None)` for anything else. Integer arithmetic follows Rust's, so `1/60` is refused as the
+/// integer division it is.
+fn evaluate(expr: &Expr) -> Result<Option<f64>, (&Expr, String)> {
+    enum Number {
+        Int(i128),
+        Float(f64),
+    }
+    fn eval(expr: &Expr) -> Result<Option<Number>, (&Expr, String)> {
+        Ok(Some(match expr {
+            Expr::Lit(lit) => match &lit.lit {
+                Lit::Int(i) => match i.base10_parse::<i128>() {
+                    Ok(v) => Number::Int(v),
+                    Err(_) => return Ok(None),
+                },
+                Lit::Float(f) => match f.base10_parse::<f64>() {
+                    Ok(v) => Number::Float(v),
+                    Err(_) => return Ok(None),
+                },
+                _ => {
+                    return Err((expr, "must be a number, such as `0.01`".to_owned()));
+                }
+            },
+            Expr::Paren(p) => return eval(&p.expr),
+            Expr::Group(g) => return eval(&g.expr),
+            Expr::Unary(u) if matches!(u.op, syn::UnOp::Neg(_)) => match eval(&u.expr)? {
+                Some(Number::Int(v)) => return Ok(v.checked_neg().map(Number::Int)),
+                Some(Number::Float(v)) => Number::Float(-v),
+                None => return Ok(None),
+            },
+            Expr::Binary(b) => {
+                let (Some(l), Some(r)) = (eval(&b.left)?, eval(&b.right)?) else {
+                    return Ok(None);
+                };
+                match (l, r) {
+                    (Number::Int(l), Number::Int(r)) => match b.op {
+                        // An overflow is left to the compiler's own const evaluation.
+                        syn::BinOp::Add(_) => return Ok(l.checked_add(r).map(Number::Int)),
+                        syn::BinOp::Sub(_) => return Ok(l.checked_sub(r).map(Number::Int)),
+                        syn::BinOp::Mul(_) => return Ok(l.checked_mul(r).map(Number::Int)),
+                        syn::BinOp::Div(_) => {
+                            return Err((
+                                expr,
+                                "divides integers, which rounds towards zero in Rust (`1/60` \
+                                 is 0); write float literals, such as `1.0 / 60.0`"
+                                    .to_owned(),
+                            ));
+                        }
+                        _ => return Ok(None),
+                    },
+                    (l, r) => {
+                        let as_f64 = |n| match n {
+                            Number::Int(v) => v as f64,
+                            Number::Float(v) => v,
+                        };
+                        let (l, r) = (as_f64(l), as_f64(r));
+                        match b.op {
+                            syn::BinOp::Add(_) => Number::Float(l + r),
+                            syn::BinOp::Sub(_) => Number::Float(l - r),
+                            syn::BinOp::Mul(_) => Number::Float(l * r),
+                            syn::BinOp::Div(_) => Number::Float(l / r),
+                            _ => return Ok(None),
+                        }
+                    }
+                }
+            }
+            _ => return Ok(None),
+        }))
+    }
+    Ok(eval(expr)?.map(|n| match n {
+        Number::Int(v) => v as f64,
+        Number::Float(v) => v,
+    }))
 }

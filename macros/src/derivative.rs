@@ -1,4 +1,10 @@
-//! Stage 5b: exact differentiation of the expression graph, ∂e/∂yₖ, by the chain rule.
+//! Stage 5b: exact differentiation of the expression graph, ∂e/∂yₖ (and ∂e/∂t, the time being
+//! one more variable), by the chain rule.
+//!
+//! Functions with kinks are differentiated almost everywhere, and at the kink take the
+//! derivative of the side Rust's own definition falls on: |x|′ = signum(x), which is ±1 at ±0;
+//! min(a, b)′ = a′ where a ≤ b (so a′ at a tie), max(a, b)′ = a′ where a ≥ b; signum′ = 0. A branch
+//! on parameters differentiates the branch taken.
 //!
 //! Every rule builds its result with the graph's smart constructors, so derivatives simplify as
 //! they are made and reuse the nodes of the function itself (∂ sin u = cos u · ∂u shares u;
@@ -6,7 +12,7 @@
 
 use std::collections::HashMap;
 
-use crate::ir::{ExprId, Func, Graph, Node};
+use crate::ir::{ExprId, Func, Func2, Graph, Node};
 
 /// Differentiates expressions of one graph, remembering what it has done.
 #[derive(Default)]
@@ -71,6 +77,49 @@ impl Differentiator {
                     g.mul(outer, da)
                 }
             }
+            Node::Call2(f, a, b) => {
+                let (da, db) = (self.derivative(g, a, var), self.derivative(g, b, var));
+                match f {
+                    // atan2(a, b)′ = (b·a′ − a·b′)/(a² + b²)
+                    Func2::Atan2 => {
+                        let (p, q) = (g.mul(b, da), g.mul(a, db));
+                        let numerator = g.sub(p, q);
+                        let (a2, b2) = (g.powi(a, 2), g.powi(b, 2));
+                        let denominator = g.add(a2, b2);
+                        g.div(numerator, denominator)
+                    }
+                    // hypot(a, b)′ = (a·a′ + b·b′)/hypot(a, b), reusing the node e.
+                    Func2::Hypot => {
+                        let (p, q) = (g.mul(a, da), g.mul(b, db));
+                        let numerator = g.add(p, q);
+                        g.div(numerator, e)
+                    }
+                }
+            }
+            Node::Select {
+                selector,
+                arm,
+                then,
+                otherwise,
+            } => {
+                let (dt, de) = (
+                    self.derivative(g, then, var),
+                    self.derivative(g, otherwise, var),
+                );
+                g.select(selector, arm, dt, de)
+            }
+            Node::Pick {
+                a,
+                b,
+                then,
+                otherwise,
+            } => {
+                let (dt, de) = (
+                    self.derivative(g, then, var),
+                    self.derivative(g, otherwise, var),
+                );
+                g.pick(a, b, dt, de)
+            }
         };
         self.memo.insert((e, var), d);
         d
@@ -86,11 +135,63 @@ impl Differentiator {
                 let one = g.num(1.0);
                 g.div(one, denominator)
             }
+            Func::Cbrt => {
+                // 1 / (3·∛a²)
+                let three = g.num(3.0);
+                let square = g.powi(e, 2);
+                let denominator = g.mul(three, square);
+                let one = g.num(1.0);
+                g.div(one, denominator)
+            }
             Func::Exp => e,
+            Func::Exp2 => {
+                let ln2 = g.num(std::f64::consts::LN_2);
+                g.mul(ln2, e)
+            }
+            Func::ExpM1 => {
+                let one = g.num(1.0);
+                g.add(e, one)
+            }
             Func::Ln => {
                 let one = g.num(1.0);
                 g.div(one, a)
             }
+            Func::Ln1p => {
+                let one = g.num(1.0);
+                let denominator = g.add(one, a);
+                g.div(one, denominator)
+            }
+            Func::Log2 | Func::Log10 => {
+                let ln_base = g.num(if f == Func::Log2 {
+                    std::f64::consts::LN_2
+                } else {
+                    std::f64::consts::LN_10
+                });
+                let denominator = g.mul(ln_base, a);
+                let one = g.num(1.0);
+                g.div(one, denominator)
+            }
+            Func::Asin | Func::Acos => {
+                // ±1/√(1 − a²)
+                let one = g.num(1.0);
+                let square = g.powi(a, 2);
+                let rest = g.sub(one, square);
+                let root = g.call(Func::Sqrt, rest);
+                let inverse = g.div(one, root);
+                if f == Func::Asin {
+                    inverse
+                } else {
+                    g.neg(inverse)
+                }
+            }
+            Func::Atan => {
+                let one = g.num(1.0);
+                let square = g.powi(a, 2);
+                let denominator = g.add(one, square);
+                g.div(one, denominator)
+            }
+            Func::Sinh => g.call(Func::Cosh, a),
+            Func::Cosh => g.call(Func::Sinh, a),
             Func::Sin => g.call(Func::Cos, a),
             Func::Cos => {
                 let sin = g.call(Func::Sin, a);
@@ -108,7 +209,7 @@ impl Differentiator {
                 let square = g.powi(e, 2);
                 g.sub(one, square)
             }
-            // |a|′ = sign(a); the kink at 0 gets 0, the subgradient odyn picks.
+            // |a|′ = signum(a): ±1 at ±0, as Rust defines `signum`.
             Func::Abs => g.call(Func::Signum, a),
             Func::Signum => g.num(0.0),
         }
@@ -118,7 +219,7 @@ impl Differentiator {
 #[cfg(test)]
 mod tests {
     use super::Differentiator;
-    use crate::ir::{Func, Graph, Node};
+    use crate::ir::{Func, Func2, Graph, Node};
 
     /// Central difference of `f` in variable `k`, for checking the rules.
     fn central(g: &Graph, e: crate::ir::ExprId, vars: &[f64], k: usize) -> f64 {
@@ -140,19 +241,19 @@ mod tests {
         let sq = g.powi(x, 3);
         cases.push(g.sub(sq, y));
         cases.push(g.powf(y, p));
-        for f in [
-            Func::Sqrt,
-            Func::Exp,
-            Func::Ln,
-            Func::Sin,
-            Func::Cos,
-            Func::Tan,
-            Func::Tanh,
-            Func::Abs,
-        ] {
-            let inner = g.mul(x, y);
+        for f in Func::ALL {
+            // Scaled into (−1, 1) so asin and acos are defined at every test state.
+            let product = g.mul(x, y);
+            let quarter = g.num(0.25);
+            let inner = g.mul(product, quarter);
             cases.push(g.call(f, inner));
         }
+        for f in [Func2::Atan2, Func2::Hypot] {
+            cases.push(g.call2(f, x, y));
+        }
+        // min(x, y) and max(x, y) away from the tie.
+        cases.push(g.pick(x, y, x, y));
+        cases.push(g.pick(y, x, x, y));
         let r = {
             let (x2, y2) = (g.powi(x, 2), g.powi(y, 2));
             let s = g.add(x2, y2);

@@ -16,6 +16,9 @@ use crate::{args, functions, generate, lower, model, particles};
 
 /// `#[system(...)]` on an item.
 pub(crate) fn system(args: TokenStream, item: TokenStream) -> TokenStream {
+    if let Err(error) = crate::limits::check(&item) {
+        return too_deep(item, error);
+    }
     match syn::parse2::<Item>(item.clone()) {
         Ok(Item::Struct(s)) => expand_struct(args, &s),
         Ok(Item::Impl(i)) => forward_impl(args, &i),
@@ -151,6 +154,9 @@ impl Parse for Forwarded {
 
 /// Struct and impl together: the runtime trait impls.
 pub(crate) fn system_impl(input: TokenStream) -> TokenStream {
+    if let Err(error) = crate::limits::check(&input) {
+        return error.to_compile_error();
+    }
     let Forwarded { args, item, imp } = match syn::parse2(input) {
         Ok(forwarded) => forwarded,
         Err(error) => return error.to_compile_error(),
@@ -192,12 +198,12 @@ pub(crate) fn system_impl(input: TokenStream) -> TokenStream {
         },
         _ => None,
     };
-    if let (Some(no), Some((ident, _))) = (&args.no_jacobian, &args.integrator)
-        && ident == "ImplicitEuler"
+    if let (Some(no), Some((ident, info))) = (&args.no_jacobian, &args.integrator)
+        && info.needs_jacobian
     {
         errors.at(
             no,
-            "`ImplicitEuler` needs the Jacobian that `jacobian = false` turns off",
+            format_args!("`{ident}` needs the Jacobian that `jacobian = false` turns off"),
         );
     }
     match errors.finish() {
@@ -210,8 +216,32 @@ pub(crate) fn system_impl(input: TokenStream) -> TokenStream {
             };
             quote!(#imp #generated #jacobian)
         }
-        Err(error) => with_error(imp, error),
+        Err(error) => {
+            let stub = generate::stub_model(model.ident(), &model.state_ident());
+            let rejected = with_error(imp, error);
+            quote!(#rejected #stub)
+        }
     }
+}
+
+/// Input too deep to parse: the error, and the item unchanged (rustc parses it, on a stack that
+/// grows as it needs). For a model's impl block (`impl Name { … }`, read from its first tokens
+/// without parsing the rest) a stub `Model` impl too, so call sites draw no follow-on errors.
+fn too_deep(item: TokenStream, error: syn::Error) -> TokenStream {
+    let error = error.to_compile_error();
+    let mut tokens = item.clone().into_iter();
+    let stub = match (tokens.next(), tokens.next(), tokens.next()) {
+        (
+            Some(proc_macro2::TokenTree::Ident(keyword)),
+            Some(proc_macro2::TokenTree::Ident(model)),
+            Some(proc_macro2::TokenTree::Group(_)),
+        ) if keyword == "impl" => {
+            let state = quote::format_ident!("{}State", model);
+            generate::stub_model(&model, &state)
+        }
+        _ => TokenStream::new(),
+    };
+    quote!(#item #error #stub)
 }
 
 /// The user's item unchanged plus the error, so the rest of their crate still compiles.

@@ -5,17 +5,63 @@
 
 use proc_macro2::{Span, TokenStream};
 use quote::{ToTokens, format_ident, quote, quote_spanned};
+use syn::spanned::Spanned;
 use syn::{ItemImpl, ItemStruct};
 
 use crate::args::Args;
 use crate::functions::{Function, Functions, state_local};
 use crate::ir::{ExprId, Node};
-use crate::lower::{Lowered, Prologue};
+use crate::lower::{Branch, BranchKind, Lowered, Prologue};
 use crate::model::{Model, Order, Role, Shape};
 
 /// The name of the `macro_rules!` through which a struct's expansion reaches its impl block's.
+///
+/// rustc's own error when the impl's call finds no such macro — the struct lacks `#[system]`, or
+/// comes after its impl, or lives in another module — cannot be replaced, so the name itself says
+/// what is required: "cannot find macro `__odyn_requires_system_on_struct_Spring_above_this_impl`"
+/// (a name that stays true in the notes of other errors, where the struct does have it).
 pub(crate) fn forwarder_name(model: &syn::Ident) -> syn::Ident {
-    format_ident!("__odyn_system_{}", model, span = model.span())
+    format_ident!(
+        "__odyn_requires_system_on_struct_{}_above_this_impl",
+        model,
+        span = model.span()
+    )
+}
+
+/// A `Model` impl for a model whose impl block was rejected: it is never run (the crate does not
+/// compile), but with it the rest of the user's crate type-checks, so the user sees the real error
+/// and not "no method named `simulate`" at every call site.
+pub(crate) fn stub_model(model: &syn::Ident, state: &syn::Ident) -> TokenStream {
+    let name = model.to_string();
+    let never = quote!(::core::unreachable!(
+        "odyn rejected this model at compile time"
+    ));
+    quote! {
+        #[automatically_derived]
+        impl ::odyn::Model for #model {
+            type State = #state;
+            type SecondOrder = ::odyn::Unavailable<Self>;
+            type Jacobian = ::odyn::Unavailable<Self>;
+            const NAME: &'static str = #name;
+            const DEFAULT_METHOD: ::odyn::Method = ::odyn::Method::Rk4;
+            const DEFAULT_DT: ::core::option::Option<f64> = ::core::option::Option::None;
+            fn state(&self) -> #state {
+                #never
+            }
+            fn derivative(&self, _: f64, _: &#state, _: &mut #state) {
+                #never
+            }
+            fn energy(&self, _: &#state) -> ::core::option::Option<f64> {
+                #never
+            }
+            fn as_second_order(&self) -> ::core::option::Option<&Self::SecondOrder> {
+                ::core::option::Option::None
+            }
+            fn as_jacobian(&self) -> ::core::option::Option<&Self::Jacobian> {
+                ::core::option::Option::None
+            }
+        }
+    }
 }
 
 /// The typed state struct `<Model>State` and its runtime impls.
@@ -96,14 +142,7 @@ pub(crate) fn model_impls(
     let self_ty = &imp.self_ty;
     let state = model.state_ident();
     let name = ident.to_string();
-    let method = match &args.integrator {
-        Some((method, _)) => quote!(::odyn::Method::#method),
-        None => quote!(::odyn::Method::Rk4),
-    };
-    let dt = match &args.dt {
-        Some(dt) => quote!(::core::option::Option::Some((#dt) as f64)),
-        None => quote!(::core::option::Option::None),
-    };
+    let defaults = attribute_defaults(args);
     let fields: Vec<_> = model.states.iter().map(|f| f.ident).collect();
     let read = |from: &str| {
         let from = format_ident!("{}", from);
@@ -211,8 +250,7 @@ pub(crate) fn model_impls(
         impl ::odyn::Model for #self_ty {
             type State = #state;
             const NAME: &'static str = #name;
-            const DEFAULT_METHOD: ::odyn::Method = #method;
-            const DEFAULT_DT: ::core::option::Option<f64> = #dt;
+            #defaults
             #[inline]
             fn state(&self) -> #state {
                 #state_init
@@ -226,6 +264,57 @@ pub(crate) fn model_impls(
         }
         #second_order
         const _: () = { #(let _ = <#self_ty>::#originals;)* };
+        // Evaluates the attribute's constants here, so a bad `dt` is an error even in a crate
+        // that never runs the model.
+        const _: () = {
+            let _ = <#self_ty as ::odyn::Model>::DEFAULT_DT;
+            let _ = <#self_ty as ::odyn::Model>::DEFAULT_RTOL;
+            let _ = <#self_ty as ::odyn::Model>::DEFAULT_ATOL;
+        };
+    }
+}
+
+/// The `Model` constants the attribute sets: `DEFAULT_METHOD`, `DEFAULT_DT`, `DEFAULT_RTOL`,
+/// `DEFAULT_ATOL`. A value that is not a literal the macro could check (a `const`, an expression
+/// of consts) is checked by a `const` assertion instead, so a zero or negative one is a compile
+/// error at the user's tokens either way.
+pub(crate) fn attribute_defaults(args: &Args) -> TokenStream {
+    let method = match &args.integrator {
+        Some((method, _)) => quote!(::odyn::Method::#method),
+        None => quote!(::odyn::Method::Rk4),
+    };
+    let constant = |value: &Option<syn::Expr>, name: &str, zero_allowed: bool| match value {
+        Some(expr) => {
+            let message = if zero_allowed {
+                format!("`{name}` in `#[system]` must be finite and non-negative")
+            } else {
+                format!("`{name}` in `#[system]` must be finite and positive")
+            };
+            let check = if zero_allowed {
+                quote!(value >= 0.0)
+            } else {
+                quote!(value > 0.0)
+            };
+            quote_spanned! {expr.span()=>
+                ::core::option::Option::Some({
+                    let value = (#expr) as f64;
+                    ::core::assert!(value.is_finite() && #check, #message);
+                    value
+                })
+            }
+        }
+        None => quote!(::core::option::Option::None),
+    };
+    let (dt, rtol, atol) = (
+        constant(&args.dt, "dt", false),
+        constant(&args.rtol, "rtol", true),
+        constant(&args.atol, "atol", true),
+    );
+    quote! {
+        const DEFAULT_METHOD: ::odyn::Method = #method;
+        const DEFAULT_DT: ::core::option::Option<f64> = #dt;
+        const DEFAULT_RTOL: ::core::option::Option<f64> = #rtol;
+        const DEFAULT_ATOL: ::core::option::Option<f64> = #atol;
     }
 }
 
@@ -267,6 +356,8 @@ pub(crate) fn jacobian(
         mut graph,
         outputs,
         prologue,
+        time: time_var,
+        exact_time,
     } = lowered;
     let mut differentiator = crate::derivative::Differentiator::default();
     let mut entries = Vec::new();
@@ -278,7 +369,23 @@ pub(crate) fn jacobian(
             }
         }
     }
-    let components = component_tokens(model);
+    // ∂f/∂t: the time is one more variable of the graph.
+    let mut time_entries: Vec<(usize, ExprId)> = Vec::new();
+    if let Some(var) = time_var {
+        for (row, &f) in outputs.iter().enumerate() {
+            let d = differentiator.derivative(&mut graph, f, var);
+            if !graph.is_zero(d) {
+                time_entries.push((row, d));
+            }
+        }
+    }
+    let mut components = component_tokens(model);
+    if let Some(t) = force.time.as_ref().and_then(|t| match &*t.pat {
+        syn::Pat::Ident(p) => Some(&p.ident),
+        _ => None,
+    }) {
+        components.push(t.to_token_stream());
+    }
     let roots: Vec<ExprId> = entries.iter().map(|e| e.2).collect();
     let lets = straight_line(&graph, &roots, &components);
     let operand = |id: ExprId, graph: &crate::ir::Graph| operand(graph, id, &components);
@@ -314,6 +421,15 @@ pub(crate) fn jacobian(
         )
     };
     let nonzeros = entries.iter().map(|&(r, c, _)| quote!((#r, #c)));
+    let (time_derivative, time_derivative_impl) = time_derivative(
+        model,
+        &graph,
+        &time_entries,
+        exact_time,
+        &components,
+        &prologue,
+        force,
+    );
     let prologue = prologue_tokens(&prologue);
     let receiver = &force.receiver;
     let time = time_param(force);
@@ -328,12 +444,20 @@ pub(crate) fn jacobian(
         impl #self_ty {
             #[doc(hidden)]
             #[inline]
-            #[allow(unused_variables, unused_parens, non_snake_case, clippy::all)]
+            #[allow(
+                unused_variables,
+                unused_assignments,
+                unused_mut,
+                unused_parens,
+                non_snake_case,
+                clippy::all
+            )]
             fn __odyn_jacobian(#receiver, #time, #(#params,)* #jac: &mut #matrix) {
                 #(#prologue)*
                 #(#lets)*
                 #store
             }
+            #time_derivative
         }
         #[automatically_derived]
         impl ::odyn::Jacobian for #self_ty {
@@ -347,8 +471,86 @@ pub(crate) fn jacobian(
             fn jacobian(&self, t: f64, y: &#state, jacobian: &mut #matrix) {
                 self.__odyn_jacobian(t, #(y.#fields,)* jacobian)
             }
+            #time_derivative_impl
         }
     }
+}
+
+/// The hidden ∂f/∂t function and the `Jacobian` items that use it: exact straight-line code when
+/// every path from the time to f went through supported operations; a compile-time zero (and
+/// `TIME_DEPENDENT = false`) when f does not read the time; otherwise the runtime's default, a
+/// central difference (the time reached f through the user's own function of `t`).
+fn time_derivative(
+    model: &Model<'_>,
+    graph: &crate::ir::Graph,
+    entries: &[(usize, ExprId)],
+    exact: bool,
+    components: &[TokenStream],
+    prologue: &[Prologue],
+    force: &Function,
+) -> (Option<TokenStream>, TokenStream) {
+    let state = model.state_ident();
+    let fields: Vec<_> = model.states.iter().map(|f| f.ident).collect();
+    if !exact {
+        return (
+            None,
+            quote!(
+                const TIME_DEPENDENT: bool = true;
+            ),
+        );
+    }
+    if entries.is_empty() {
+        return (
+            None,
+            quote! {
+                const TIME_DEPENDENT: bool = false;
+                #[inline(always)]
+                fn time_derivative(&self, _: f64, _: &#state, dfdt: &mut #state) {
+                    ::odyn::State::as_mut_slice(dfdt).fill(0.0);
+                }
+            },
+        );
+    }
+    let roots: Vec<ExprId> = entries.iter().map(|e| e.1).collect();
+    let lets = straight_line(graph, &roots, components);
+    let stores = entries.iter().map(|&(row, d)| {
+        let value = operand(graph, d, components);
+        quote!(out[#row] = #value;)
+    });
+    let prologue = prologue_tokens(prologue);
+    let receiver = &force.receiver;
+    let time = time_param(force);
+    let params = state_params(model);
+    let out = format_ident!("__odyn_dfdt", span = Span::mixed_site());
+    let hidden = quote! {
+        #[doc(hidden)]
+        #[inline]
+        #[allow(
+            unused_variables,
+            unused_assignments,
+            unused_mut,
+            unused_parens,
+            non_snake_case,
+            clippy::all
+        )]
+        fn __odyn_time_derivative(#receiver, #time, #(#params,)* #out: &mut #state) {
+            #(#prologue)*
+            #(#lets)*
+            let out = ::odyn::State::as_mut_slice(#out);
+            out.fill(0.0);
+            #(#stores)*
+        }
+    };
+    (
+        Some(hidden),
+        quote! {
+            const TIME_DEPENDENT: bool = true;
+            #[inline]
+            fn time_derivative(&self, t: f64, y: &#state, dfdt: &mut #state) {
+                self.__odyn_time_derivative(t, #(y.#fields,)* dfdt)
+            }
+        },
+    )
 }
 
 /// How a graph node is read in generated code: a literal, a state component, an opaque value or
@@ -408,6 +610,32 @@ pub(crate) fn straight_line(
                     let method = format_ident!("{}", f.method());
                     quote!(#a.#method())
                 }
+                Node::Call2(f, a, b) => {
+                    let (a, b) = (operand(a), operand(b));
+                    let method = format_ident!("{}", f.method());
+                    quote!(#a.#method(#b))
+                }
+                Node::Select {
+                    selector,
+                    arm,
+                    then,
+                    otherwise,
+                } => {
+                    let (then, otherwise) = (operand(then), operand(otherwise));
+                    let selector = selector_ident(selector);
+                    let arm = arm as usize;
+                    quote!(if #selector == #arm { #then } else { #otherwise })
+                }
+                Node::Pick {
+                    a,
+                    b,
+                    then,
+                    otherwise,
+                } => {
+                    let (a, b) = (operand(a), operand(b));
+                    let (then, otherwise) = (operand(then), operand(otherwise));
+                    quote!(if #a <= #b { #then } else { #otherwise })
+                }
             };
             let name = node_ident(id);
             Some(quote!(let #name: f64 = #value;))
@@ -415,18 +643,83 @@ pub(crate) fn straight_line(
         .collect()
 }
 
-/// The prologue as statements: the user's state-independent code and the opaque values.
+/// The prologue as statements: the user's state-independent code, the opaque values, and the
+/// branches on parameters, each setting its selector to the arm it took. Opaque values and
+/// selectors set inside a branch are declared before it (NaN and `usize::MAX` until an arm sets
+/// them), since the straight-line code that follows reads every arm's values.
 pub(crate) fn prologue_tokens(prologue: &[Prologue]) -> Vec<TokenStream> {
-    prologue
-        .iter()
-        .map(|p| match p {
-            Prologue::Stmt(stmt) => stmt.to_token_stream(),
-            Prologue::Opaque(i, tokens) => {
+    let mut declared = Vec::new();
+    for item in prologue {
+        if let Prologue::Branch(branch) = item {
+            declare(branch, &mut declared);
+        }
+    }
+    declared.extend(prologue.iter().map(|p| prologue_item(p, true)));
+    declared
+}
+
+fn declare(branch: &Branch, out: &mut Vec<TokenStream>) {
+    let selector = selector_ident(branch.selector);
+    out.push(quote!(let mut #selector: usize = usize::MAX;));
+    for item in branch.arms.iter().flatten() {
+        match item {
+            Prologue::Opaque(i, _) => {
                 let name = opaque_ident(*i);
-                quote!(let #name: f64 = #tokens;)
+                out.push(quote!(let mut #name: f64 = f64::NAN;));
             }
-        })
-        .collect()
+            Prologue::Branch(inner) => declare(inner, out),
+            Prologue::Stmt(_) => {}
+        }
+    }
+}
+
+fn prologue_item(item: &Prologue, top: bool) -> TokenStream {
+    match item {
+        Prologue::Stmt(stmt) => stmt.to_token_stream(),
+        Prologue::Opaque(i, tokens) => {
+            let name = opaque_ident(*i);
+            if top {
+                quote!(let #name: f64 = #tokens;)
+            } else {
+                quote!(#name = #tokens;)
+            }
+        }
+        Prologue::Branch(branch) => {
+            let selector = selector_ident(branch.selector);
+            let arms: Vec<TokenStream> = branch
+                .arms
+                .iter()
+                .enumerate()
+                .map(|(k, arm)| {
+                    let items = arm.iter().map(|p| prologue_item(p, false));
+                    quote!({ #(#items)* #selector = #k; })
+                })
+                .collect();
+            match &branch.kind {
+                BranchKind::If(conditions) => {
+                    let mut tokens = TokenStream::new();
+                    for (k, (condition, arm)) in conditions.iter().zip(&arms).enumerate() {
+                        let keyword = if k == 0 { quote!(if) } else { quote!(else if) };
+                        tokens.extend(quote!(#keyword #condition #arm));
+                    }
+                    let last = &arms[arms.len() - 1];
+                    tokens.extend(quote!(else #last));
+                    tokens
+                }
+                BranchKind::Match(scrutinee, patterns) => {
+                    let cases = patterns.iter().zip(&arms).map(|((pat, guard), arm)| {
+                        let guard = guard.as_ref().map(|g| quote!(if #g));
+                        quote!(#pat #guard => #arm)
+                    });
+                    quote!(match #scrutinee { #(#cases)* })
+                }
+            }
+        }
+    }
+}
+
+fn selector_ident(index: u32) -> syn::Ident {
+    format_ident!("__odyn_s{}", index, span = Span::mixed_site())
 }
 
 /// The time parameter of a re-emitted function: the user's own (`t: f64`), or an unused one.

@@ -22,11 +22,22 @@ impl ExprId {
 #[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
 pub(crate) enum Func {
     Sqrt,
+    Cbrt,
     Exp,
+    Exp2,
+    ExpM1,
     Ln,
+    Ln1p,
+    Log2,
+    Log10,
     Sin,
     Cos,
     Tan,
+    Asin,
+    Acos,
+    Atan,
+    Sinh,
+    Cosh,
     Tanh,
     Abs,
     Signum,
@@ -37,28 +48,99 @@ impl Func {
     pub(crate) fn method(self) -> &'static str {
         match self {
             Func::Sqrt => "sqrt",
+            Func::Cbrt => "cbrt",
             Func::Exp => "exp",
+            Func::Exp2 => "exp2",
+            Func::ExpM1 => "exp_m1",
             Func::Ln => "ln",
+            Func::Ln1p => "ln_1p",
+            Func::Log2 => "log2",
+            Func::Log10 => "log10",
             Func::Sin => "sin",
             Func::Cos => "cos",
             Func::Tan => "tan",
+            Func::Asin => "asin",
+            Func::Acos => "acos",
+            Func::Atan => "atan",
+            Func::Sinh => "sinh",
+            Func::Cosh => "cosh",
             Func::Tanh => "tanh",
             Func::Abs => "abs",
             Func::Signum => "signum",
         }
     }
 
-    fn eval(self, x: f64) -> f64 {
+    /// Every function, for the method table.
+    pub(crate) const ALL: [Func; 20] = [
+        Func::Sqrt,
+        Func::Cbrt,
+        Func::Exp,
+        Func::Exp2,
+        Func::ExpM1,
+        Func::Ln,
+        Func::Ln1p,
+        Func::Log2,
+        Func::Log10,
+        Func::Sin,
+        Func::Cos,
+        Func::Tan,
+        Func::Asin,
+        Func::Acos,
+        Func::Atan,
+        Func::Sinh,
+        Func::Cosh,
+        Func::Tanh,
+        Func::Abs,
+        Func::Signum,
+    ];
+
+    pub(crate) fn eval(self, x: f64) -> f64 {
         match self {
             Func::Sqrt => x.sqrt(),
+            Func::Cbrt => x.cbrt(),
             Func::Exp => x.exp(),
+            Func::Exp2 => x.exp2(),
+            Func::ExpM1 => x.exp_m1(),
             Func::Ln => x.ln(),
+            Func::Ln1p => x.ln_1p(),
+            Func::Log2 => x.log2(),
+            Func::Log10 => x.log10(),
             Func::Sin => x.sin(),
             Func::Cos => x.cos(),
             Func::Tan => x.tan(),
+            Func::Asin => x.asin(),
+            Func::Acos => x.acos(),
+            Func::Atan => x.atan(),
+            Func::Sinh => x.sinh(),
+            Func::Cosh => x.cosh(),
             Func::Tanh => x.tanh(),
             Func::Abs => x.abs(),
             Func::Signum => x.signum(),
+        }
+    }
+}
+
+/// A two-argument function.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+pub(crate) enum Func2 {
+    /// `y.atan2(x)`, the angle of (x, y).
+    Atan2,
+    /// `a.hypot(b)` = √(a² + b²) without overflow.
+    Hypot,
+}
+
+impl Func2 {
+    pub(crate) fn method(self) -> &'static str {
+        match self {
+            Func2::Atan2 => "atan2",
+            Func2::Hypot => "hypot",
+        }
+    }
+
+    pub(crate) fn eval(self, a: f64, b: f64) -> f64 {
+        match self {
+            Func2::Atan2 => a.atan2(b),
+            Func2::Hypot => a.hypot(b),
         }
     }
 }
@@ -68,9 +150,9 @@ impl Func {
 pub(crate) enum Node {
     /// A constant, by its bits (so it can be hashed); −0 is stored as +0.
     Const(u64),
-    /// State component `k`: what the Jacobian differentiates with respect to.
+    /// Variable `k`: a state component (what the Jacobian differentiates by), or the time.
     Var(usize),
-    /// A state-independent value computed by user code (a parameter, the time, a call), by index.
+    /// A state-independent value computed by user code (a parameter, a call), by index.
     Opaque(usize),
     Add(ExprId, ExprId),
     Mul(ExprId, ExprId),
@@ -80,6 +162,23 @@ pub(crate) enum Node {
     /// xʸ with a state-independent y.
     Powf(ExprId, ExprId),
     Call(Func, ExprId),
+    Call2(Func2, ExprId, ExprId),
+    /// `if selector == arm { then } else { otherwise }`: which arm of a branch on parameters ran
+    /// (the selector is set by the prologue's copy of the branch).
+    Select {
+        selector: u32,
+        arm: u32,
+        then: ExprId,
+        otherwise: ExprId,
+    },
+    /// `if a <= b { then } else { otherwise }`, comparing values of the graph: `min`, `max` and
+    /// `clamp` of state-dependent values.
+    Pick {
+        a: ExprId,
+        b: ExprId,
+        then: ExprId,
+        otherwise: ExprId,
+    },
 }
 
 /// The arena.
@@ -211,6 +310,55 @@ impl Graph {
         }
     }
 
+    pub(crate) fn call2(&mut self, f: Func2, a: ExprId, b: ExprId) -> ExprId {
+        match (self.constant(a), self.constant(b)) {
+            (Some(x), Some(y)) => self.num(f.eval(x, y)),
+            _ => self.intern(Node::Call2(f, a, b)),
+        }
+    }
+
+    /// `if selector == arm { then } else { otherwise }`; one value when both agree.
+    pub(crate) fn select(
+        &mut self,
+        selector: u32,
+        arm: u32,
+        then: ExprId,
+        otherwise: ExprId,
+    ) -> ExprId {
+        if then == otherwise {
+            then
+        } else {
+            self.intern(Node::Select {
+                selector,
+                arm,
+                then,
+                otherwise,
+            })
+        }
+    }
+
+    /// `if a <= b { then } else { otherwise }`; one value when both agree.
+    pub(crate) fn pick(&mut self, a: ExprId, b: ExprId, then: ExprId, otherwise: ExprId) -> ExprId {
+        if then == otherwise {
+            return then;
+        }
+        match (self.constant(a), self.constant(b)) {
+            (Some(x), Some(y)) => {
+                if x <= y {
+                    then
+                } else {
+                    otherwise
+                }
+            }
+            _ => self.intern(Node::Pick {
+                a,
+                b,
+                then,
+                otherwise,
+            }),
+        }
+    }
+
     /// The ids reachable from `roots`, in arena (evaluation) order.
     pub(crate) fn reachable(&self, roots: impl IntoIterator<Item = ExprId>) -> Vec<ExprId> {
         let mut seen = vec![false; self.nodes.len()];
@@ -222,9 +370,22 @@ impl Graph {
             match self.node(id) {
                 Node::Const(_) | Node::Var(_) | Node::Opaque(_) => {}
                 Node::Neg(a) | Node::Powi(a, _) | Node::Call(_, a) => stack.push(a),
-                Node::Add(a, b) | Node::Mul(a, b) | Node::Div(a, b) | Node::Powf(a, b) => {
+                Node::Add(a, b)
+                | Node::Mul(a, b)
+                | Node::Div(a, b)
+                | Node::Powf(a, b)
+                | Node::Call2(_, a, b) => {
                     stack.extend([a, b]);
                 }
+                Node::Select {
+                    then, otherwise, ..
+                } => stack.extend([then, otherwise]),
+                Node::Pick {
+                    a,
+                    b,
+                    then,
+                    otherwise,
+                } => stack.extend([a, b, then, otherwise]),
             }
         }
         (0..self.nodes.len())
@@ -233,7 +394,7 @@ impl Graph {
             .collect()
     }
 
-    /// Evaluates `id` with state `vars` and opaque values `opaques` (for tests).
+    /// Evaluates `id` with state `vars` and opaque values `opaques`, every selector 0 (for tests).
     #[cfg(test)]
     pub(crate) fn eval(&self, id: ExprId, vars: &[f64], opaques: &[f64]) -> f64 {
         let e = |id| self.eval(id, vars, opaques);
@@ -248,6 +409,19 @@ impl Graph {
             Node::Powi(a, n) => e(a).powi(n),
             Node::Powf(a, b) => e(a).powf(e(b)),
             Node::Call(f, a) => f.eval(e(a)),
+            Node::Call2(f, a, b) => f.eval(e(a), e(b)),
+            Node::Select {
+                arm,
+                then,
+                otherwise,
+                ..
+            } => e(if arm == 0 { then } else { otherwise }),
+            Node::Pick {
+                a,
+                b,
+                then,
+                otherwise,
+            } => e(if e(a) <= e(b) { then } else { otherwise }),
         }
     }
 }

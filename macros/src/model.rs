@@ -139,6 +139,12 @@ pub(crate) fn parse<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Option<Mod
                 declared.push((StateField { ident, role, shape }, field))
             }
             Some(_) => errors.at(&field.ty, "a state field needs at least one component"),
+            None if array_of_f64_with_computed_length(&field.ty) => errors.at(
+                &field.ty,
+                "the length of a state array must be an integer literal, such as `[f64; 64]`: \
+                 `#[system]` lays the state out before constants are evaluated, so write the \
+                 length out",
+            ),
             None => errors.at(
                 &field.ty,
                 format_args!(
@@ -304,6 +310,11 @@ pub(crate) fn shape_of(ty: &Type) -> Option<Shape> {
         }
         _ => None,
     }
+}
+
+/// `[f64; N]` whose length is not an integer literal (`[f64; N * N]`, `[f64; SIZE]`).
+fn array_of_f64_with_computed_length(ty: &Type) -> bool {
+    matches!(ty, Type::Array(a) if is_f64(&a.elem) && int_literal(&a.len).is_none())
 }
 
 /// Whether `ty` is plain `f64`.

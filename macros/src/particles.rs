@@ -535,12 +535,12 @@ pub(crate) fn expand_impl(args: &Args, item: &ItemStruct, imp: &ItemImpl) -> Tok
             ),
         );
     }
-    if let (Some(no), Some((ident, _))) = (&args.no_jacobian, &args.integrator)
-        && ident == "ImplicitEuler"
+    if let (Some(no), Some((ident, info))) = (&args.no_jacobian, &args.integrator)
+        && info.needs_jacobian
     {
         errors.at(
             no,
-            "`ImplicitEuler` needs the Jacobian that `jacobian = false` turns off",
+            format_args!("`{ident}` needs the Jacobian that `jacobian = false` turns off"),
         );
     }
     let mut lowered = Vec::new();
@@ -555,7 +555,9 @@ pub(crate) fn expand_impl(args: &Args, item: &ItemStruct, imp: &ItemImpl) -> Tok
     }
     if let Err(error) = errors.finish() {
         // The kernel attributes are odyn's: left in, rustc would add "cannot find attribute".
-        return crate::expand::with_error(strip_kernel_attributes(imp), error);
+        let rejected = crate::expand::with_error(strip_kernel_attributes(imp), error);
+        let stub = crate::generate::stub_model(&item.ident, &particles.state_ident());
+        return quote!(#rejected #stub);
     }
     let jacobian = (args.no_jacobian.is_none()).then_some(lowered);
     generate(&particles, args, &functions, imp, jacobian)
@@ -579,14 +581,7 @@ fn generate(
         Some(p) => quote!(&self.#p),
         None => quote!(&[]),
     };
-    let method = match &args.integrator {
-        Some((method, _)) => quote!(::odyn::Method::#method),
-        None => quote!(::odyn::Method::Rk4),
-    };
-    let dt = match &args.dt {
-        Some(dt) => quote!(::core::option::Option::Some((#dt) as f64)),
-        None => quote!(::core::option::Option::None),
-    };
+    let defaults = crate::generate::attribute_defaults(args);
     let link_lists = functions.kernels.iter().filter_map(|k| match &k.over {
         Over::Pairs(field) => {
             let name = field.to_string();
@@ -703,6 +698,12 @@ fn generate(
                         fn jacobian(&self, t: f64, y: &#state, jacobian: &mut Self::Matrix) {
                             ::odyn::particles::jacobian(self, t, y, jacobian)
                         }
+                        /// Kernels do not read the time: ∂f/∂t = 0.
+                        const TIME_DEPENDENT: bool = false;
+                        #[inline]
+                        fn time_derivative(&self, _: f64, _: &#state, dfdt: &mut #state) {
+                            ::odyn::State::as_mut_slice(dfdt).fill(0.0);
+                        }
                     }
                 },
                 quote! {
@@ -753,8 +754,7 @@ fn generate(
             type State = #state;
             type SecondOrder = Self;
             const NAME: &'static str = #name;
-            const DEFAULT_METHOD: ::odyn::Method = #method;
-            const DEFAULT_DT: ::core::option::Option<f64> = #dt;
+            #defaults
             fn state(&self) -> #state {
                 ::odyn::particles::ParticleState::from_fields(&self.#x, &self.#v, [#x_name, #v_name])
             }
@@ -797,6 +797,7 @@ fn kernel_jacobian(
         mut graph,
         outputs,
         prologue,
+        ..
     } = lowered;
     let mut differentiator = crate::derivative::Differentiator::default();
     // blocks[k][(r, c)] = ∂fᵣ/∂(vector k)_c

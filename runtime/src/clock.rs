@@ -15,14 +15,23 @@ pub struct Tick {
     /// The time left in the accumulator as a fraction of dt, in [0, 1): render
     /// `previous·(1 − alpha) + current·alpha`.
     pub alpha: f64,
+    /// Seconds of this frame's time that were not simulated: cut by
+    /// [`FixedTimestep::max_frame_time`], or left over when [`FixedTimestep::max_steps_per_frame`]
+    /// stopped the catch-up. The simulation then runs slower than real time instead of
+    /// spiralling.
+    pub dropped: f64,
 }
 
 /// A fixed-timestep accumulator for real-time loops.
 #[derive(Clone, Debug, PartialEq)]
 pub struct FixedTimestep {
-    /// The longest frame time taken into account, in seconds (default 0.1). A longer frame (a
-    /// breakpoint, a stalled window) is clipped so the loop does not spiral trying to catch up.
+    /// The longest frame time taken into account, in seconds: finite and positive (default 0.1).
+    /// A longer frame (a breakpoint, a stalled window) is clipped so the loop does not spiral
+    /// trying to catch up.
     pub max_frame_time: f64,
+    /// The most steps one frame takes, at least 1 (default 1000): the "spiral of death" guard
+    /// for a dt far below the frame time, where catching up would take longer than the frame.
+    pub max_steps_per_frame: u64,
     accumulator: f64,
 }
 
@@ -30,21 +39,24 @@ impl Default for FixedTimestep {
     fn default() -> Self {
         FixedTimestep {
             max_frame_time: 0.1,
+            max_steps_per_frame: 1000,
             accumulator: 0.0,
         }
     }
 }
 
 impl FixedTimestep {
-    /// An accumulator with the default frame-time cap of 0.1 s.
+    /// An accumulator with the default caps (0.1 s a frame, 1000 steps a frame).
     pub fn new() -> Self {
         Self::default()
     }
 
-    /// Adds one frame of `frame_time` seconds and takes as many whole steps as fit.
+    /// Adds one frame of `frame_time` seconds and takes as many whole steps as fit, within the
+    /// caps.
     ///
-    /// Errors with [`Error::InvalidInput`] for a negative or non-finite frame time, and passes on
-    /// a divergence from the stepper.
+    /// Errors with [`Error::InvalidInput`] for a negative or non-finite frame time, a
+    /// `max_frame_time` that is not finite and positive, or `max_steps_per_frame` = 0; and passes
+    /// on a divergence from the stepper.
     pub fn advance<M: Model, I: Integrator<M>>(
         &mut self,
         frame_time: f64,
@@ -53,20 +65,39 @@ impl FixedTimestep {
         if !(frame_time.is_finite() && frame_time >= 0.0) {
             return Err(Error::invalid(
                 "frame_time",
-                format!("must be finite and non-negative, got {frame_time}"),
+                format!("must be finite and non-negative, got {frame_time:?}"),
             ));
         }
-        self.accumulator += frame_time.min(self.max_frame_time);
+        if !(self.max_frame_time.is_finite() && self.max_frame_time > 0.0) {
+            return Err(Error::invalid(
+                "max_frame_time",
+                format!("must be finite and positive, got {:?}", self.max_frame_time),
+            ));
+        }
+        if self.max_steps_per_frame == 0 {
+            return Err(Error::invalid("max_steps_per_frame", "must be at least 1"));
+        }
+        let taken = frame_time.min(self.max_frame_time);
+        let mut dropped = frame_time - taken;
+        self.accumulator += taken;
         let dt = stepper.dt();
         let mut steps = 0;
         while self.accumulator >= dt {
+            if steps == self.max_steps_per_frame {
+                // Drop the whole steps that are left; keep the fraction for `alpha`.
+                let left = (self.accumulator / dt).floor() * dt;
+                dropped += left;
+                self.accumulator = (self.accumulator - left).max(0.0);
+                break;
+            }
             stepper.step()?;
             self.accumulator -= dt;
             steps += 1;
         }
         Ok(Tick {
             steps,
-            alpha: self.accumulator / dt,
+            alpha: (self.accumulator / dt).clamp(0.0, 1.0 - f64::EPSILON),
+            dropped,
         })
     }
 

@@ -7,7 +7,7 @@ use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::lu::partial_pivoting::{factor, solve};
 use faer::{Mat, MatMut, Par};
 
-/// A dense square matrix an implicit method can form I − h·J in and solve with.
+/// A dense square Jacobian: what the stability explorer reads entry by entry.
 pub trait DenseMatrix: Clone + fmt::Debug {
     /// The all-zero matrix; every buffer the matrix needs is allocated here, once.
     fn zeros() -> Self;
@@ -15,22 +15,32 @@ pub trait DenseMatrix: Clone + fmt::Debug {
     fn entry(&self, row: usize, column: usize) -> f64;
     /// Number of rows (= columns).
     fn dim(&self) -> usize;
-    /// Replaces `self` (a Jacobian J) by I − h·J.
-    fn identity_minus(&mut self, h: f64);
-    /// Solves `self`·x = b in place, overwriting `self` with its factors; false when `self` is
-    /// singular (or so close that the solution is not finite).
-    fn solve_in_place(&mut self, b: &mut [f64]) -> bool;
 }
 
-/// The linear algebra of a Newton iteration of implicit Euler: a Jacobian J, written by
-/// [`crate::Jacobian::jacobian`], and the solve of (I − h·J)·x = b.
+/// The linear algebra of implicit methods: a Jacobian J, written by
+/// [`crate::Jacobian::jacobian`], and solves with W = I − c·J.
 ///
-/// Dense models use a [`DenseMatrix`]; particle models a [`crate::particles::ParticleJacobian`],
-/// which solves the same system through the sparse velocity form of Baraff & Witkin.
+/// The factorization is kept apart from J — in [`NewtonMatrix::Factors`] — so a method can
+/// factorize once and solve several right-hand sides (the stages of a Rosenbrock method), and
+/// refactorize for another c without re-evaluating J (a step retried at a smaller size).
+///
+/// Dense models use `SMatrix` (nalgebra, on the stack; up to 3×3 by the closed-form inverse) or
+/// [`FaerDense`] (faer's LU); particle models a [`crate::particles::ParticleJacobian`], which
+/// solves the same systems through the sparse velocity form of Baraff & Witkin.
 pub trait NewtonMatrix: Clone + fmt::Debug {
-    /// Solves (I − h·J)·x = b in place, J being the Jacobian last written into `self`, which
-    /// this may overwrite; false when the matrix is singular or the solution is not finite.
-    fn solve_identity_minus(&mut self, h: f64, b: &mut [f64]) -> bool;
+    /// What a factorization of W keeps (LU factors and pivots), allocated once by
+    /// [`NewtonMatrix::factors`].
+    type Factors: Clone + fmt::Debug;
+
+    /// Room for the factors of a matrix like this one.
+    fn factors(&self) -> Self::Factors;
+
+    /// Forms W = I − c·J from the Jacobian last written into `self`, which stays as it was, and
+    /// factorizes it into `factors`; false when W is singular.
+    fn factorize(&mut self, c: f64, factors: &mut Self::Factors) -> bool;
+
+    /// Solves W·x = b in place with the last factorization; false when x is not finite.
+    fn solve(&mut self, factors: &mut Self::Factors, b: &mut [f64]) -> bool;
 
     /// Takes the options of the run that will solve with this matrix (dense matrices have none
     /// to take; particle Jacobians read [`crate::NewtonOptions::definite`]).
@@ -39,15 +49,20 @@ pub trait NewtonMatrix: Clone + fmt::Debug {
     }
 }
 
-impl<T: DenseMatrix> NewtonMatrix for T {
-    #[inline]
-    fn solve_identity_minus(&mut self, h: f64, b: &mut [f64]) -> bool {
-        self.identity_minus(h);
-        self.solve_in_place(b)
-    }
+/// The factors of a small dense W: its inverse up to 3×3 (closed form by cofactors, several
+/// times faster than a pivoted LU at these sizes: 3.3× on a 2×2 Newton step, measured in the
+/// peers bench), an LU with partial pivoting above.
+/// (`I` is the inverse's type, `L` the LU's: both fixed-size nalgebra types.)
+#[derive(Clone, Debug)]
+pub enum SmallFactors<I, L> {
+    /// W⁻¹.
+    Inverse(I),
+    /// P·W = L·U.
+    Lu(L),
 }
 
-/// `DenseMatrix` for `SMatrix<f64, N, N>`: nalgebra's fixed-size LU needs each size spelled out.
+/// `DenseMatrix` and `NewtonMatrix` for `SMatrix<f64, N, N>`: nalgebra's fixed-size LU needs each
+/// size spelled out.
 macro_rules! dense_matrix {
     ($($n:literal)*) => {$(
         impl DenseMatrix for nalgebra::SMatrix<f64, $n, $n> {
@@ -63,27 +78,46 @@ macro_rules! dense_matrix {
             fn dim(&self) -> usize {
                 $n
             }
-            #[inline]
-            fn identity_minus(&mut self, h: f64) {
-                *self = nalgebra::SMatrix::identity() - *self * h;
+        }
+
+        impl NewtonMatrix for nalgebra::SMatrix<f64, $n, $n> {
+            type Factors = SmallFactors<
+                nalgebra::SMatrix<f64, $n, $n>,
+                nalgebra::linalg::LU<f64, nalgebra::Const<$n>, nalgebra::Const<$n>>,
+            >;
+
+            fn factors(&self) -> Self::Factors {
+                SmallFactors::Inverse(nalgebra::SMatrix::identity())
             }
+
             #[inline]
-            fn solve_in_place(&mut self, b: &mut [f64]) -> bool {
-                let mut rhs = nalgebra::SVector::<f64, $n>::from_column_slice(b);
-                // Up to 3×3 nalgebra inverts in closed form (cofactors), several times faster
-                // than a pivoted LU at these sizes (3.3× on a 2×2 Newton step, measured in
-                // benches/peers.rs); the Newton matrices I − h·J are far from singular unless
-                // h·J has an eigenvalue near 1, which the singular check reports.
-                let solved = if $n <= 3 {
-                    match self.try_inverse() {
+            fn factorize(&mut self, c: f64, factors: &mut Self::Factors) -> bool {
+                let w = nalgebra::SMatrix::<f64, $n, $n>::identity() - *self * c;
+                if $n <= 3 {
+                    match w.try_inverse() {
                         Some(inverse) => {
-                            rhs = inverse * rhs;
-                            true
+                            *factors = SmallFactors::Inverse(inverse);
+                            inverse.iter().all(|x| x.is_finite())
                         }
                         None => false,
                     }
                 } else {
-                    self.lu().solve_mut(&mut rhs)
+                    let lu = w.lu();
+                    let ok = lu.is_invertible();
+                    *factors = SmallFactors::Lu(lu);
+                    ok
+                }
+            }
+
+            #[inline]
+            fn solve(&mut self, factors: &mut Self::Factors, b: &mut [f64]) -> bool {
+                let mut rhs = nalgebra::SVector::<f64, $n>::from_column_slice(b);
+                let solved = match factors {
+                    SmallFactors::Inverse(inverse) => {
+                        rhs = *inverse * rhs;
+                        true
+                    }
+                    SmallFactors::Lu(lu) => lu.solve_mut(&mut rhs),
                 };
                 b.copy_from_slice(rhs.as_slice());
                 solved && b.iter().all(|x| x.is_finite())
@@ -104,17 +138,29 @@ impl DenseMatrix for nalgebra::SMatrix<f64, 0, 0> {
     fn dim(&self) -> usize {
         0
     }
-    fn identity_minus(&mut self, _: f64) {}
-    fn solve_in_place(&mut self, _: &mut [f64]) -> bool {
+}
+
+impl NewtonMatrix for nalgebra::SMatrix<f64, 0, 0> {
+    type Factors = ();
+    fn factors(&self) {}
+    fn factorize(&mut self, _: f64, _: &mut ()) -> bool {
+        true
+    }
+    fn solve(&mut self, _: &mut (), _: &mut [f64]) -> bool {
         true
     }
 }
 
-/// An N×N matrix on the heap, solved with faer's partial-pivoting LU: the Newton matrix of
-/// models with more than 32 state components. The matrix, the permutations and the scratch
-/// space are allocated by [`DenseMatrix::zeros`] and reused by every solve.
+/// An N×N matrix on the heap, solved with faer's partial-pivoting LU: the Jacobian of models with
+/// more than 32 state components. Every buffer is allocated by [`DenseMatrix::zeros`] and
+/// [`NewtonMatrix::factors`]; factorizations and solves allocate nothing.
 pub struct FaerDense<const N: usize> {
     matrix: Mat<f64>,
+}
+
+/// The LU factors of a [`FaerDense`] W, with its permutation and scratch space.
+pub struct FaerLu<const N: usize> {
+    lu: Mat<f64>,
     perm: Vec<usize>,
     perm_inv: Vec<usize>,
     scratch: MemBuffer,
@@ -130,7 +176,9 @@ impl<const N: usize> FaerDense<N> {
     pub fn set(&mut self, row: usize, column: usize, value: f64) {
         self.matrix[(row, column)] = value;
     }
+}
 
+impl<const N: usize> FaerLu<N> {
     fn scratch_size() -> StackReq {
         let par = Par::Seq;
         factor::lu_in_place_scratch::<usize, f64>(N, N, par, Default::default())
@@ -142,6 +190,14 @@ impl<const N: usize> Clone for FaerDense<N> {
     fn clone(&self) -> Self {
         FaerDense {
             matrix: self.matrix.clone(),
+        }
+    }
+}
+
+impl<const N: usize> Clone for FaerLu<N> {
+    fn clone(&self) -> Self {
+        FaerLu {
+            lu: self.lu.clone(),
             perm: self.perm.clone(),
             perm_inv: self.perm_inv.clone(),
             scratch: MemBuffer::new(Self::scratch_size()),
@@ -153,7 +209,13 @@ impl<const N: usize> fmt::Debug for FaerDense<N> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_struct("FaerDense")
             .field("matrix", &self.matrix)
-            .finish_non_exhaustive()
+            .finish()
+    }
+}
+
+impl<const N: usize> fmt::Debug for FaerLu<N> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("FaerLu").finish_non_exhaustive()
     }
 }
 
@@ -161,9 +223,6 @@ impl<const N: usize> DenseMatrix for FaerDense<N> {
     fn zeros() -> Self {
         FaerDense {
             matrix: Mat::zeros(N, N),
-            perm: vec![0; N],
-            perm_inv: vec![0; N],
-            scratch: MemBuffer::new(Self::scratch_size()),
         }
     }
 
@@ -174,30 +233,44 @@ impl<const N: usize> DenseMatrix for FaerDense<N> {
     fn dim(&self) -> usize {
         N
     }
+}
 
-    fn identity_minus(&mut self, h: f64) {
-        for column in 0..N {
-            for row in 0..N {
-                let identity = if row == column { 1.0 } else { 0.0 };
-                self.matrix[(row, column)] = identity - h * self.matrix[(row, column)];
-            }
+impl<const N: usize> NewtonMatrix for FaerDense<N> {
+    type Factors = FaerLu<N>;
+
+    fn factors(&self) -> FaerLu<N> {
+        FaerLu {
+            lu: Mat::zeros(N, N),
+            perm: vec![0; N],
+            perm_inv: vec![0; N],
+            scratch: MemBuffer::new(FaerLu::<N>::scratch_size()),
         }
     }
 
-    fn solve_in_place(&mut self, b: &mut [f64]) -> bool {
-        let par = Par::Seq;
-        let stack = MemStack::new(&mut self.scratch);
-        let (_, perm) = factor::lu_in_place(
-            self.matrix.as_mut(),
-            &mut self.perm,
-            &mut self.perm_inv,
-            par,
-            stack,
+    fn factorize(&mut self, c: f64, f: &mut FaerLu<N>) -> bool {
+        for column in 0..N {
+            for row in 0..N {
+                let identity = if row == column { 1.0 } else { 0.0 };
+                f.lu[(row, column)] = identity - c * self.matrix[(row, column)];
+            }
+        }
+        factor::lu_in_place(
+            f.lu.as_mut(),
+            &mut f.perm,
+            &mut f.perm_inv,
+            Par::Seq,
+            MemStack::new(&mut f.scratch),
             Default::default(),
         );
+        // A zero pivot leaves U singular: the solve would produce infinities.
+        (0..N).all(|i| f.lu[(i, i)] != 0.0 && f.lu[(i, i)].is_finite())
+    }
+
+    fn solve(&mut self, f: &mut FaerLu<N>, b: &mut [f64]) -> bool {
+        let perm = faer::perm::PermRef::new_checked(&f.perm, &f.perm_inv, N);
         let rhs = MatMut::from_column_major_slice_mut(b, N, 1);
-        let lu = self.matrix.as_ref();
-        solve::solve_in_place(lu, lu, perm, rhs, par, MemStack::new(&mut self.scratch));
+        let lu = f.lu.as_ref();
+        solve::solve_in_place(lu, lu, perm, rhs, Par::Seq, MemStack::new(&mut f.scratch));
         b.iter().all(|x| x.is_finite())
     }
 }

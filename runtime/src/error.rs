@@ -42,8 +42,9 @@ pub enum Error {
     },
     /// The state became non-finite or left the divergence limit.
     #[error(
-        "{method} diverged at step {step} (t = {t}): component `{component}` = {value:e} \
-         (limit {limit:e}); reduce dt or choose a more stable method"
+        "{method} diverged at step {step} (t = {t:?}): component `{component}` = {value:e} \
+         (limit {limit:e}); reduce dt or choose a more stable method — or, if values this large \
+         are expected, raise the divergence limit"
     )]
     Diverged {
         /// The method that was stepping.
@@ -59,18 +60,62 @@ pub enum Error {
         /// The divergence limit in force.
         limit: f64,
     },
-    /// Newton's method did not converge within an implicit step.
+    /// Newton's method did not converge within an implicit step, even on the smallest sub-step
+    /// the halving allowed.
     #[error(
-        "Newton's method did not converge at t = {t} after {iters} iterations (residual {residual:e}); \
-         reduce dt or raise `NewtonOptions::max_iters`"
+        "Newton's method did not converge at t = {t:?} (step {dt:e}, after {halvings} halvings, \
+         {iters} iterations, residual {residual:e}): {}",
+        cause.explain(*iters, *halvings)
     )]
     NewtonDidNotConverge {
         /// Time at the end of the step being solved.
         t: f64,
-        /// Iterations made.
+        /// The size of that (sub-)step.
+        dt: f64,
+        /// Iterations made in the last attempt.
         iters: u32,
-        /// Max-norm of the residual y − y₀ − h·f(t, y) at the last iterate.
+        /// Max-norm of the residual y − y₀ − h·f(t, y) at the last iterate (NaN when the model
+        /// returned NaN).
         residual: f64,
+        /// Why the last attempt failed.
+        cause: NewtonFailure,
+        /// How many times the step was halved before giving up.
+        halvings: u32,
+    },
+    /// The matrix I − c·J of a linearly implicit step was singular (c = γ·h): the step is
+    /// retried smaller; past the smallest it is this error.
+    #[error(
+        "the matrix I − γh·J was singular at t = {t:?} (step {dt:e}): ∂f/∂y has an eigenvalue \
+         near 1/(γh); a smaller step avoids it"
+    )]
+    SingularMatrix {
+        /// Start of the step.
+        t: f64,
+        /// Its size.
+        dt: f64,
+    },
+    /// An adaptive run needed a step smaller than the resolution of t or `dt_min`: the problem
+    /// is stiff for this method, or its solution blows up or jumps at t.
+    #[error(
+        "the step size fell to {dt:e} at t = {t:?}, below what the run allows: the problem is \
+         probably stiff here (use an implicit method) or singular at t"
+    )]
+    StepSizeTooSmall {
+        /// Where the run stopped.
+        t: f64,
+        /// The step it would have needed.
+        dt: f64,
+    },
+    /// An adaptive run used up its step budget (`StepControl::max_steps`).
+    #[error(
+        "{steps} steps were not enough to reach the end (stopped at t = {t:?}): the problem is \
+         probably stiff for this method (use an implicit one), or raise `max_steps`"
+    )]
+    MaxSteps {
+        /// Where the run stopped.
+        t: f64,
+        /// The budget, accepted and rejected steps together.
+        steps: u64,
     },
     /// Reading or writing a file failed.
     #[error("cannot write `{}`: {source}", path.display())]
@@ -98,7 +143,69 @@ pub enum Error {
     },
 }
 
+/// Why an attempt at an implicit step's Newton iteration failed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum NewtonFailure {
+    /// It ran out of iterations (`NewtonOptions::max_iters`) while still converging.
+    Iterations,
+    /// Its updates stopped shrinking: the step is too large for the nonlinearity there.
+    Diverging,
+    /// The Newton matrix I − h·J was singular.
+    Singular,
+    /// The model's derivative or Jacobian returned NaN or infinity at an iterate.
+    NotFinite,
+}
+
+impl NewtonFailure {
+    /// What failed and the option that addresses it.
+    fn explain(self, iters: u32, halvings: u32) -> String {
+        match self {
+            NewtonFailure::Iterations => format!(
+                "it was still converging when its {iters} iterations ran out; raise \
+                 `NewtonOptions::max_iters`"
+            ),
+            NewtonFailure::Diverging | NewtonFailure::Singular => format!(
+                "{}; reduce dt, or raise `NewtonOptions::max_halvings` (now {halvings}) so the \
+                 step can be split further",
+                if self == NewtonFailure::Singular {
+                    "the Newton matrix I − h·J was singular"
+                } else {
+                    "its updates stopped shrinking, the step is too large for the nonlinearity \
+                     here"
+                }
+            ),
+            NewtonFailure::NotFinite => "the model's derivative or Jacobian returned NaN or \
+                infinity at an iterate; check its parameters and state"
+                .to_owned(),
+        }
+    }
+}
+
 impl Error {
+    /// Whether a driver may retry the step with a smaller size: a failed implicit solve.
+    pub(crate) fn is_retriable(&self) -> bool {
+        matches!(self, Error::SingularMatrix { .. })
+            || matches!(
+                self,
+                Error::NewtonDidNotConverge {
+                    cause: NewtonFailure::Iterations
+                        | NewtonFailure::Diverging
+                        | NewtonFailure::Singular
+                        | NewtonFailure::NotFinite,
+                    ..
+                }
+            )
+    }
+
+    /// Records how many halvings preceded a final failure.
+    pub(crate) fn with_halvings(mut self, depth: u32) -> Self {
+        if let Error::NewtonDidNotConverge { halvings, .. } = &mut self {
+            *halvings = depth;
+        }
+        self
+    }
+
     pub(crate) fn invalid(field: impl Into<String>, reason: impl Into<String>) -> Self {
         Error::InvalidInput {
             field: field.into(),

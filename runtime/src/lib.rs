@@ -7,6 +7,7 @@
 
 pub mod clock;
 mod dense;
+pub mod drive;
 mod error;
 pub mod integrators;
 mod method;
@@ -25,13 +26,17 @@ pub mod work_precision;
 
 pub use clock::{FixedTimestep, Tick};
 pub use dense::{DenseMatrix, FaerDense, NewtonMatrix};
-pub use error::{Error, Result};
+pub use drive::{
+    Action, Atol, Controller, Direction, Event, EventRecord, Progress, Stats, StepControl,
+    Tolerances,
+};
+pub use error::{Error, NewtonFailure, Result};
 pub use integrators::Integrator;
-pub use method::Method;
+pub use method::{Method, MethodInfo};
 pub use model::{Jacobian, Model, SecondOrder, State, Unavailable};
 pub use nalgebra;
 pub use newton::NewtonOptions;
-pub use simulation::{Length, RunOptions, Simulation};
+pub use simulation::{Length, RunOptions, Simulation, Stepping};
 pub use stepper::Stepper;
 pub use trajectory::{Sample, Trajectory};
 

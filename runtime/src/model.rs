@@ -40,6 +40,10 @@ pub trait Model {
     const DEFAULT_METHOD: Method;
     /// The step named by `#[system(dt = ...)]`.
     const DEFAULT_DT: Option<f64>;
+    /// The relative tolerance named by `#[system(rtol = ...)]`.
+    const DEFAULT_RTOL: Option<f64> = None;
+    /// The absolute tolerance named by `#[system(atol = ...)]`.
+    const DEFAULT_ATOL: Option<f64> = None;
 
     /// The state held in the model's own fields: the usual initial state.
     fn state(&self) -> Self::State;
@@ -100,6 +104,27 @@ pub trait Jacobian: Model {
 
     /// Writes ∂f/∂y at (t, y) into `jacobian`, every entry.
     fn jacobian(&self, t: f64, y: &Self::State, jacobian: &mut Self::Matrix);
+
+    /// Whether f reads the time, so ∂f/∂t may be non-zero (false for autonomous models: then
+    /// methods that need ∂f/∂t skip it at no cost).
+    const TIME_DEPENDENT: bool = true;
+
+    /// Writes ∂f/∂t at (t, y) into `dfdt`.
+    ///
+    /// `#[system]` generates it exactly from the model's code, or as zero for an autonomous model.
+    /// When the time reaches f through code it cannot differentiate (a call of the user's own
+    /// function of `t`), this default is used: a central difference
+    /// (f(t + h) − f(t − h))/(2h) with h = ε^⅓·max(1, |t|), accurate to about 1e-10 relative,
+    /// which allocates one state per call.
+    fn time_derivative(&self, t: f64, y: &Self::State, dfdt: &mut Self::State) {
+        let h = f64::EPSILON.cbrt() * t.abs().max(1.0);
+        let mut minus = y.clone();
+        self.derivative(t + h, y, dfdt);
+        self.derivative(t - h, y, &mut minus);
+        for (d, m) in dfdt.as_mut_slice().iter_mut().zip(minus.as_slice()) {
+            *d = (*d - m) / (2.0 * h);
+        }
+    }
 }
 
 /// The capability type of a model that lacks it (see [`Model`]): it has no values, so a method
@@ -117,6 +142,8 @@ impl<M: Model> Model for Unavailable<M> {
     const NAME: &'static str = M::NAME;
     const DEFAULT_METHOD: Method = M::DEFAULT_METHOD;
     const DEFAULT_DT: Option<f64> = M::DEFAULT_DT;
+    const DEFAULT_RTOL: Option<f64> = M::DEFAULT_RTOL;
+    const DEFAULT_ATOL: Option<f64> = M::DEFAULT_ATOL;
 
     fn state(&self) -> Self::State {
         self.never()
@@ -145,6 +172,10 @@ impl<M: Model> SecondOrder for Unavailable<M> {
 impl<M: Model> Jacobian for Unavailable<M> {
     type Matrix = nalgebra::SMatrix<f64, 0, 0>;
     const NONZEROS: &'static [(usize, usize)] = &[];
+    const TIME_DEPENDENT: bool = false;
+    fn time_derivative(&self, _: f64, _: &Self::State, _: &mut Self::State) {
+        self.never()
+    }
     fn jacobian_matrix(&self, _: &Self::State) -> Self::Matrix {
         self.never()
     }

@@ -11,8 +11,10 @@ pub struct NewtonOptions {
     pub tol: f64,
     /// Iterations allowed per solve (default 20).
     pub max_iters: u32,
-    /// When Newton fails, the step is retried as two half steps, recursively, up to this depth
-    /// (default 12, so down to dt/4096); the recorded grid is unchanged. Past it the step fails
+    /// When Newton fails, the step is retried as two half steps, and a failing half again, up to
+    /// this depth (default 20, so down to dt/1 048 576; at most 52); the recorded grid is
+    /// unchanged. Halving costs nothing until a step fails; Robertson's kinetics at dt = 1e3 need
+    /// 14 levels on their first step. Past it the step fails
     /// with [`crate::Error::NewtonDidNotConverge`]. A fold in the implicit equations — van der
     /// Pol's relaxation jump at dt ≫ 1/μ — needs this; 0 gives strict fixed-step behaviour.
     pub max_halvings: u32,
@@ -34,6 +36,36 @@ pub struct NewtonOptions {
 }
 
 impl NewtonOptions {
+    /// Checks every option.
+    ///
+    /// Errors: [`crate::Error::InvalidInput`] for a `tol` that is not finite and positive, no
+    /// iterations, or more than 52 halvings (a step of dt/2⁵² is below the resolution of t).
+    pub fn check(&self) -> crate::Result<()> {
+        use crate::Error;
+        if !(self.tol.is_finite() && self.tol > 0.0) {
+            return Err(Error::invalid(
+                "NewtonOptions::tol",
+                format!("must be finite and positive, got {:?}", self.tol),
+            ));
+        }
+        if self.max_iters == 0 {
+            return Err(Error::invalid(
+                "NewtonOptions::max_iters",
+                "must be at least 1",
+            ));
+        }
+        if self.max_halvings > 52 {
+            return Err(Error::invalid(
+                "NewtonOptions::max_halvings",
+                format!(
+                    "must be at most 52 (dt/2^52 is below the resolution of t), got {}",
+                    self.max_halvings
+                ),
+            ));
+        }
+        Ok(())
+    }
+
     /// The one-iteration (Baraff–Witkin) form, other options at their defaults.
     pub fn linearized() -> Self {
         NewtonOptions {
@@ -48,7 +80,7 @@ impl Default for NewtonOptions {
         NewtonOptions {
             tol: 1e-10,
             max_iters: 20,
-            max_halvings: 12,
+            max_halvings: 20,
             linearized: false,
             definite: false,
         }

@@ -13,7 +13,7 @@ use crate::{Error, Result, State, Trajectory};
 /// Writes `bytes` to `path` atomically, creating missing parent directories.
 pub fn write_atomic(path: impl AsRef<Path>, bytes: &[u8]) -> Result<()> {
     let path = path.as_ref();
-    with_temporary(path, "", |temp| {
+    with_temporary(path, |temp| {
         let write = || -> std::io::Result<()> {
             let mut file = fs::File::create(temp)?;
             file.write_all(bytes)?;
@@ -26,26 +26,38 @@ pub fn write_atomic(path: impl AsRef<Path>, bytes: &[u8]) -> Result<()> {
     })
 }
 
-/// Runs `write` on a fresh temporary path beside `path` (ending in `suffix`, for writers that
-/// choose a format from the extension), then renames the result onto `path`. On any failure the
-/// temporary is removed and an older file at `path` is left untouched.
-pub(crate) fn with_temporary(
-    path: &Path,
-    suffix: &str,
-    write: impl FnOnce(&Path) -> Result<()>,
-) -> Result<()> {
+/// Runs `write` on a fresh temporary path beside `path`, then renames the result onto `path`. On any failure —
+/// an error or a panic inside `write` — the temporary is removed and an older file at `path` is
+/// left untouched.
+///
+/// A symbolic link at `path` is followed: the file it points to is replaced, the link stays. A
+/// read-only file at `path` is refused with [`Error::Io`] (`PermissionDenied`) rather than
+/// silently replaced, which the rename alone would do.
+fn with_temporary(path: &Path, write: impl FnOnce(&Path) -> Result<()>) -> Result<()> {
     static COUNTER: AtomicU64 = AtomicU64::new(0);
     let io = |source| Error::Io {
         path: path.to_path_buf(),
         source,
     };
-    let name = path.file_name().ok_or_else(|| {
+    let target = match fs::symlink_metadata(path) {
+        Ok(meta) if meta.file_type().is_symlink() => fs::canonicalize(path).map_err(io)?,
+        _ => path.to_path_buf(),
+    };
+    if let Ok(meta) = fs::metadata(&target)
+        && meta.permissions().readonly()
+    {
+        return Err(io(std::io::Error::new(
+            std::io::ErrorKind::PermissionDenied,
+            "the file is read-only; odyn does not replace it",
+        )));
+    }
+    let name = target.file_name().ok_or_else(|| {
         Error::invalid(
             "output path",
             format!("`{}` does not name a file", path.display()),
         )
     })?;
-    let parent = path
+    let parent = target
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
@@ -53,13 +65,20 @@ pub(crate) fn with_temporary(
     let unique = COUNTER.fetch_add(1, Ordering::Relaxed);
     let mut temp_name = std::ffi::OsString::from(".");
     temp_name.push(name);
-    temp_name.push(format!(".{}.{unique}.tmp{suffix}", std::process::id()));
-    let temp: PathBuf = parent.join(temp_name);
-    let result = write(&temp).and_then(|()| fs::rename(&temp, path).map_err(io));
-    if result.is_err() {
-        let _ = fs::remove_file(&temp);
+    temp_name.push(format!(".{}.{unique}.tmp", std::process::id()));
+    let temp = Temporary(parent.join(temp_name));
+    write(&temp.0)?;
+    fs::rename(&temp.0, &target).map_err(io)
+}
+
+/// A temporary file that is removed when dropped, also while a panic unwinds; once renamed into
+/// place there is nothing left to remove (its name is unique to this process and call).
+struct Temporary(PathBuf);
+
+impl Drop for Temporary {
+    fn drop(&mut self) {
+        let _ = fs::remove_file(&self.0);
     }
-    result
 }
 
 /// Writes trajectories as one CSV table, atomically: `method,step,t,<components>[,energy]`,
@@ -72,7 +91,12 @@ pub fn write_csv<S: State>(path: impl AsRef<Path>, runs: &[&Trajectory<S>]) -> R
     let first = runs
         .first()
         .ok_or_else(|| Error::invalid("trajectories", "nothing to write: the list is empty"))?;
-    let sample = first.first();
+    let sample = first.samples.first().ok_or_else(|| {
+        Error::invalid(
+            "trajectory",
+            "has no samples to write (its `samples` were emptied)",
+        )
+    })?;
     let has_energy = sample.energy.is_some();
     let mut header = vec!["method".to_owned(), "step".to_owned(), "t".to_owned()];
     header.extend((0..sample.state.as_slice().len()).map(|i| sample.state.component_name(i)));
@@ -127,4 +151,26 @@ pub fn write_table<H: AsRef<str>, C: AsRef<str>>(
 /// when very large or small (`1e300`, not three hundred digits).
 pub fn number(x: f64) -> String {
     format!("{x:?}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::with_temporary;
+
+    /// A panic inside a writer unwinds through the temporary's guard, which removes the file.
+    #[test]
+    fn a_panic_while_writing_leaves_no_temporary() {
+        let dir = std::env::temp_dir().join(format!("odyn-output-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("panic.bin");
+        let result = std::panic::catch_unwind(|| {
+            with_temporary(&path, |temp| {
+                std::fs::write(temp, b"half").unwrap();
+                panic!("the writer failed")
+            })
+        });
+        assert!(result.is_err());
+        let left: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
+        assert!(left.is_empty(), "{left:?}");
+    }
 }

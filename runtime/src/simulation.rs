@@ -1,62 +1,101 @@
 //! [`Simulation`]: configure a run, pick the integrator at run time, record a [`Trajectory`].
 
+use crate::drive::{Driver, Progress, Recording, StepControl};
 use crate::integrators::{
-    ExplicitEuler, ImplicitEuler, Integrator, Leapfrog, PositionVerlet, Rk4, SymplecticEuler,
-    VelocityVerlet,
+    Dop853, ExplicitEuler, ImplicitEuler, Integrator, Leapfrog, PositionVerlet, Rk4, Rodas5P,
+    Rosenbrock23, SymplecticEuler, Tsit5, VelocityVerlet,
 };
-use crate::stepper::{DEFAULT_DIVERGENCE_LIMIT, check_dt};
+use crate::stepper::check_dt;
 use crate::{
-    Error, Method, Model, NewtonOptions, Result, Sample, SecondOrder, Stepper, Trajectory,
+    Error, Event, Method, Model, NewtonOptions, Result, SecondOrder, State, Tolerances, Trajectory,
 };
 
 /// How long a run lasts.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Length {
-    /// Exactly this many steps.
+    /// Exactly this many steps (fixed-step runs only).
     Steps(u64),
-    /// Simulated seconds: ⌈duration/dt⌉ steps (a ratio within 1e-9 of a whole number counts as
-    /// that number), so the run ends at or just past `duration`.
+    /// Simulated seconds. An adaptive run ends exactly at t₀ + duration; a fixed-step run takes
+    /// ⌈duration/dt⌉ steps (a ratio within 1e-9 of a whole number counts as that number), so it
+    /// ends at or just past it.
     Duration(f64),
 }
 
-/// Everything a run needs besides the model and its initial state.
+/// How the steps are sized.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Stepping {
+    /// Every step is dt (the methods with an error estimate run this way too, for order tests).
+    Fixed(f64),
+    /// Each step as large as the tolerances allow (methods with an error estimate only).
+    Adaptive(Tolerances),
+}
+
+/// Everything a run needs besides the model, its initial state and its events.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RunOptions {
     /// The integrator. Default: the model's `#[system(integrator = ...)]`, else [`Method::Rk4`].
     pub method: Method,
-    /// The fixed step. Default: the model's `#[system(dt = ...)]`; a run without one is an error.
-    pub dt: Option<f64>,
+    /// Fixed dt or tolerances. Default: the attribute's `rtol`/`atol`, else its `dt`; with
+    /// neither, adaptive methods use the default [`Tolerances`] and fixed-step methods need a
+    /// `.dt(..)`.
+    pub stepping: Option<Stepping>,
     /// How long to run. Default: none; a run without one is an error.
     pub length: Option<Length>,
     /// Start time (default 0).
     pub t0: f64,
-    /// Record every n-th step (default 1); step 0 and the last step are always recorded.
+    /// Record every n-th step (default 1: every grid step, or every accepted step of an adaptive
+    /// run); the initial and final states are always recorded.
     pub record_every: u64,
-    /// |component| beyond which the run counts as diverged (default 1e100).
-    pub divergence_limit: f64,
+    /// Record only at these times (strictly increasing), evaluated on the dense output, besides
+    /// the initial and final states; times outside the run are skipped. Default: none.
+    pub save_at: Option<Vec<f64>>,
+    /// Keep every step's dense-output polynomial so [`Trajectory::at`] works anywhere. Default:
+    /// on for adaptive runs, off for fixed-step ones (where it costs one more evaluation of f a
+    /// step for the Hermite interpolant).
+    pub dense_output: Option<bool>,
+    /// |component| beyond which a step counts as diverged. Default: 10¹⁰ × max(1, largest
+    /// |component| of the initial state) — far beyond anything an accurate run of a bounded model
+    /// reaches, and where an exploded explicit run of a stiff model is caught before its values
+    /// overflow.
+    pub divergence_limit: Option<f64>,
     /// Newton's method in implicit steps (see [`NewtonOptions`] for the defaults).
     pub newton: NewtonOptions,
+    /// First step, step bounds, step budget and controller of adaptive runs.
+    pub step_control: StepControl,
+    /// Events are located to within this time (default 1e-12, or the resolution of t if
+    /// coarser).
+    pub event_tolerance: f64,
 }
 
 impl Default for RunOptions {
     fn default() -> Self {
         RunOptions {
             method: Method::Rk4,
-            dt: None,
+            stepping: None,
             length: None,
             t0: 0.0,
             record_every: 1,
-            divergence_limit: DEFAULT_DIVERGENCE_LIMIT,
+            save_at: None,
+            dense_output: None,
+            divergence_limit: None,
             newton: NewtonOptions::default(),
+            step_control: StepControl::default(),
+            event_tolerance: 1e-12,
         }
     }
 }
 
-/// A progress callback: called with (steps done, steps in the run) at every recorded step.
-#[derive(Clone, Copy)]
-struct Progress<'m>(&'m dyn Fn(u64, u64));
+/// The default divergence limit for a run from `state` (see [`RunOptions::divergence_limit`]).
+pub(crate) fn default_divergence_limit<S: State>(state: &S) -> f64 {
+    let scale = state.as_slice().iter().fold(1.0f64, |m, x| m.max(x.abs()));
+    1e10 * scale
+}
 
-impl std::fmt::Debug for Progress<'_> {
+/// A progress callback (see [`Simulation::progress`]).
+#[derive(Clone, Copy)]
+struct ProgressFn<'m>(&'m dyn Fn(&Progress));
+
+impl std::fmt::Debug for ProgressFn<'_> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str("Progress(..)")
     }
@@ -67,36 +106,81 @@ impl std::fmt::Debug for Progress<'_> {
 pub struct Simulation<'m, M: Model> {
     model: &'m M,
     initial: Option<M::State>,
-    progress: Option<Progress<'m>>,
+    progress: Option<ProgressFn<'m>>,
+    events: Vec<Event<'m, M::State>>,
+    /// Whether `options.stepping` is the attribute's `dt`, which a switch to an adaptive method
+    /// drops in favour of tolerances.
+    attribute_dt: bool,
     /// The options; the setters below are shorthands for assigning these fields.
     pub options: RunOptions,
 }
 
 impl<'m, M: Model> Simulation<'m, M> {
-    /// A run of `model` from its own state, with its attribute's method and dt.
+    /// A run of `model` from its own state, with its attribute's method and dt or tolerances.
     pub fn new(model: &'m M) -> Self {
+        let tolerances = match (M::DEFAULT_RTOL, M::DEFAULT_ATOL) {
+            (None, None) => None,
+            (rtol, atol) => {
+                let default = Tolerances::default();
+                Some(Tolerances::new(
+                    rtol.unwrap_or(default.rtol),
+                    atol.unwrap_or(1e-9),
+                ))
+            }
+        };
+        let (stepping, attribute_dt) = match (tolerances, M::DEFAULT_DT) {
+            (Some(t), _) => (Some(Stepping::Adaptive(t)), false),
+            (None, Some(dt)) => (Some(Stepping::Fixed(dt)), true),
+            (None, None) => (None, false),
+        };
         let options = RunOptions {
             method: M::DEFAULT_METHOD,
-            dt: M::DEFAULT_DT,
+            stepping,
             ..RunOptions::default()
         };
         Simulation {
             model,
             initial: None,
             progress: None,
+            events: Vec::new(),
+            attribute_dt,
             options,
         }
     }
 
-    /// Uses `method` instead of the attribute's.
+    /// Uses `method` instead of the attribute's. Choosing an adaptive method drops a `dt` that
+    /// came from the attribute (the run then uses tolerances); an explicit `.dt(..)` stays.
     pub fn integrator(mut self, method: Method) -> Self {
         self.options.method = method;
+        if method.is_adaptive() && self.attribute_dt {
+            self.options.stepping = None;
+            self.attribute_dt = false;
+        }
         self
     }
 
-    /// Uses the fixed step `dt`.
+    /// Uses the fixed step `dt` (with any method, adaptive ones included).
     pub fn dt(mut self, dt: f64) -> Self {
-        self.options.dt = Some(dt);
+        self.options.stepping = Some(Stepping::Fixed(dt));
+        self.attribute_dt = false;
+        self
+    }
+
+    /// Steps adaptively to relative tolerance `rtol` and absolute tolerance `atol`.
+    pub fn tolerances(self, rtol: f64, atol: f64) -> Self {
+        self.with_tolerances(Tolerances::new(rtol, atol))
+    }
+
+    /// Steps adaptively to `tolerances` (per-component absolute tolerances, for instance).
+    pub fn with_tolerances(mut self, tolerances: Tolerances) -> Self {
+        self.options.stepping = Some(Stepping::Adaptive(tolerances));
+        self.attribute_dt = false;
+        self
+    }
+
+    /// Uses `control` for the first step, step bounds, budget and controller of adaptive runs.
+    pub fn step_control(mut self, control: StepControl) -> Self {
+        self.options.step_control = control;
         self
     }
 
@@ -118,6 +202,24 @@ impl<'m, M: Model> Simulation<'m, M> {
         self
     }
 
+    /// Records the state only at `times` (and at the start and end), through the dense output.
+    pub fn save_at(mut self, times: &[f64]) -> Self {
+        self.options.save_at = Some(times.to_vec());
+        self
+    }
+
+    /// Keeps (or drops) every step's dense output, for [`Trajectory::at`].
+    pub fn dense_output(mut self, keep: bool) -> Self {
+        self.options.dense_output = Some(keep);
+        self
+    }
+
+    /// Adds an event (see [`Event`]).
+    pub fn event(mut self, event: Event<'m, M::State>) -> Self {
+        self.events.push(event);
+        self
+    }
+
     /// Starts at time `t0`.
     pub fn start_time(mut self, t0: f64) -> Self {
         self.options.t0 = t0;
@@ -132,14 +234,14 @@ impl<'m, M: Model> Simulation<'m, M> {
 
     /// Sets the divergence limit (see [`RunOptions::divergence_limit`]).
     pub fn divergence_limit(mut self, limit: f64) -> Self {
-        self.options.divergence_limit = limit;
+        self.options.divergence_limit = Some(limit);
         self
     }
 
-    /// Calls `report(done, total)` at every recorded step (see [`Simulation::record_every`]) and
-    /// at the end: for a progress bar on long runs. The run's numbers do not depend on it.
-    pub fn progress(mut self, report: &'m dyn Fn(u64, u64)) -> Self {
-        self.progress = Some(Progress(report));
+    /// Calls `report` at every recorded sample and at the end: for a progress bar on long runs
+    /// ([`Progress::fraction`]). The run's numbers do not depend on it.
+    pub fn progress(mut self, report: &'m dyn Fn(&Progress)) -> Self {
+        self.progress = Some(ProgressFn(report));
         self
     }
 
@@ -152,9 +254,10 @@ impl<'m, M: Model> Simulation<'m, M> {
     /// Runs and returns the trajectory.
     ///
     /// Errors: [`Error::InvalidInput`] for bad options or a non-finite initial state,
-    /// [`Error::Unsupported`] when the method cannot integrate this model, and
-    /// [`Error::Diverged`] when the state blows up (use [`Simulation::run_partial`] to keep the
-    /// samples recorded before that).
+    /// [`Error::Unsupported`] when the method cannot integrate this model, [`Error::Diverged`]
+    /// when the state blows up, [`Error::StepSizeTooSmall`] and [`Error::MaxSteps`] when an
+    /// adaptive run cannot go on (use [`Simulation::run_partial`] to keep the samples recorded
+    /// before any of these).
     pub fn run(&self) -> Result<Trajectory<M::State>> {
         let (trajectory, failure) = self.run_partial()?;
         match failure {
@@ -163,42 +266,48 @@ impl<'m, M: Model> Simulation<'m, M> {
         }
     }
 
-    /// Runs and returns the trajectory up to the last good step, with the divergence that
-    /// stopped it, if any. Input and capability errors are still `Err`: nothing ran.
+    /// Runs and returns the trajectory up to the last good step, with the failure that stopped
+    /// it, if any. Input and capability errors are still `Err`: nothing ran.
     pub fn run_partial(&self) -> Result<(Trajectory<M::State>, Option<Error>)> {
         let plan = self.plan()?;
-        let method = self.options.method;
-        if method.needs_jacobian() {
-            let Some(jacobian) = self.model.as_jacobian() else {
-                return Err(self
-                    .unsupported("it has no Jacobian (its `#[system]` says `jacobian = false`)"));
-            };
-            return plan.drive::<_, ImplicitEuler<_>>(jacobian);
+        // Exhaustive: a new method must be given its integrator here, never another's.
+        match self.options.method {
+            Method::ExplicitEuler => plan.drive::<M, ExplicitEuler<_>>(self.model),
+            Method::Rk4 => plan.drive::<M, Rk4<_>>(self.model),
+            Method::Tsit5 => plan.drive::<M, Tsit5<_>>(self.model),
+            Method::Dop853 => plan.drive::<M, Dop853<_>>(self.model),
+            Method::SymplecticEuler => plan.drive::<_, SymplecticEuler<_>>(self.split()?),
+            Method::PositionVerlet => plan.drive::<_, PositionVerlet<_>>(self.split()?),
+            Method::VelocityVerlet => plan.drive::<_, VelocityVerlet<_>>(self.split()?),
+            Method::Leapfrog => plan.drive::<_, Leapfrog<_>>(self.split()?),
+            Method::ImplicitEuler => plan.drive::<_, ImplicitEuler<_>>(self.jacobian()?),
+            Method::Rosenbrock23 => plan.drive::<_, Rosenbrock23<_>>(self.jacobian()?),
+            Method::Rodas5P => plan.drive::<_, Rodas5P<_>>(self.jacobian()?),
         }
-        if !method.needs_second_order() {
-            return match method {
-                Method::ExplicitEuler => plan.drive::<M, ExplicitEuler<_>>(self.model),
-                _ => plan.drive::<M, Rk4<_>>(self.model),
-            };
-        }
+    }
+
+    /// The model as a second-order one, checked against what the method needs.
+    fn split(&self) -> Result<&'m M::SecondOrder> {
         let Some(split) = self.model.as_second_order() else {
             return Err(self.unsupported(
                 "it is first-order (`#[state]` fields) and the method needs \
                  `#[position]`/`#[velocity]` fields",
             ));
         };
-        if method.needs_velocity_free_forces() && M::SecondOrder::READS_VELOCITY {
+        if self.options.method.needs_velocity_free_forces() && M::SecondOrder::READS_VELOCITY {
             return Err(self.unsupported(
                 "its force reads a velocity (in `acceleration`, or a kernel's velocity arguments), \
                  and position Verlet has no velocity to give it; use velocity Verlet or leapfrog",
             ));
         }
-        match method {
-            Method::SymplecticEuler => plan.drive::<_, SymplecticEuler<_>>(split),
-            Method::PositionVerlet => plan.drive::<_, PositionVerlet<_>>(split),
-            Method::VelocityVerlet => plan.drive::<_, VelocityVerlet<_>>(split),
-            _ => plan.drive::<_, Leapfrog<_>>(split),
-        }
+        Ok(split)
+    }
+
+    /// The model with its Jacobian.
+    fn jacobian(&self) -> Result<&'m M::Jacobian> {
+        self.model.as_jacobian().ok_or_else(|| {
+            self.unsupported("it has no Jacobian (its `#[system]` says `jacobian = false`)")
+        })
     }
 
     fn unsupported(&self, reason: &'static str) -> Error {
@@ -209,54 +318,136 @@ impl<'m, M: Model> Simulation<'m, M> {
         }
     }
 
-    fn plan(&self) -> Result<Plan<'m, M::State>> {
+    fn plan(&self) -> Result<Plan<'_, 'm, M>> {
         let o = &self.options;
-        let dt = o.dt.ok_or_else(|| {
-            Error::invalid(
-                "dt",
-                "no step given: call `.dt(..)` or set `#[system(dt = ..)]`",
-            )
-        })?;
-        check_dt(dt)?;
-        let steps = match o.length {
-            None => {
-                return Err(Error::invalid(
-                    "length",
-                    "no run length given: call `.steps(..)` or `.duration(..)`",
+        let method = o.method;
+        let initial = self.initial.clone().unwrap_or_else(|| self.model.state());
+        let stepping = match (&o.stepping, method.is_adaptive()) {
+            (Some(Stepping::Fixed(dt)), _) => {
+                check_dt(*dt)?;
+                Stepping::Fixed(*dt)
+            }
+            (Some(Stepping::Adaptive(tolerances)), true) => {
+                tolerances.check(initial.as_slice().len())?;
+                Stepping::Adaptive(tolerances.clone())
+            }
+            (Some(Stepping::Adaptive(_)), false) => {
+                return Err(self.unsupported(
+                    "it has no error estimate, so it cannot step to tolerances; give it a \
+                     `.dt(..)`, or choose an adaptive method (Tsit5, Dop853)",
                 ));
             }
-            Some(Length::Steps(n)) => n,
-            Some(Length::Duration(d)) => steps_for(d, dt)?,
+            (None, true) => Stepping::Adaptive(Tolerances::default()),
+            (None, false) => {
+                return Err(Error::invalid(
+                    "dt",
+                    "no step given: call `.dt(..)` or set `#[system(dt = ..)]`",
+                ));
+            }
+        };
+        let length = o.length.ok_or_else(|| {
+            Error::invalid(
+                "length",
+                "no run length given: call `.steps(..)` or `.duration(..)`",
+            )
+        })?;
+        if !o.t0.is_finite() {
+            return Err(Error::invalid(
+                "t0",
+                format!("start time must be finite, got {:?}", o.t0),
+            ));
+        }
+        let dense = o
+            .dense_output
+            .unwrap_or(matches!(stepping, Stepping::Adaptive(_)));
+        let span = match (stepping, length) {
+            (Stepping::Fixed(dt), Length::Steps(steps)) => Span::Fixed { dt, steps },
+            (Stepping::Fixed(dt), Length::Duration(d)) => Span::Fixed {
+                dt,
+                steps: steps_for(d, dt)?,
+            },
+            (Stepping::Adaptive(tolerances), Length::Duration(d)) => Span::Adaptive {
+                tolerances,
+                t_end: o.t0 + checked_duration(d)?,
+            },
+            (Stepping::Adaptive(_), Length::Steps(_)) => {
+                return Err(Error::invalid(
+                    "length",
+                    "an adaptive run chooses its own steps: give it a `.duration(..)`, or a \
+                     `.dt(..)` to run a fixed number of fixed steps",
+                ));
+            }
         };
         if o.record_every == 0 {
             return Err(Error::invalid("record_every", "must be at least 1"));
         }
-        if o.divergence_limit.is_nan() || o.divergence_limit <= 0.0 {
+        if let Some(times) = &o.save_at {
+            if let Some(t) = times.iter().find(|t| !t.is_finite()) {
+                return Err(Error::invalid(
+                    "save_at",
+                    format!("times must be finite, got {t:?}"),
+                ));
+            }
+            if times.windows(2).any(|w| w[1] <= w[0]) {
+                return Err(Error::invalid(
+                    "save_at",
+                    "times must be strictly increasing",
+                ));
+            }
+        }
+        let limit = match o.divergence_limit {
+            None => default_divergence_limit(&initial),
+            Some(limit) if limit > 0.0 => limit,
+            Some(limit) => {
+                return Err(Error::invalid(
+                    "divergence_limit",
+                    format!("must be positive, got {limit:?}"),
+                ));
+            }
+        };
+        if !(o.event_tolerance.is_finite() && o.event_tolerance >= 0.0) {
             return Err(Error::invalid(
-                "divergence_limit",
-                format!("must be positive, got {}", o.divergence_limit),
+                "event_tolerance",
+                format!(
+                    "must be finite and non-negative, got {:?}",
+                    o.event_tolerance
+                ),
             ));
         }
+        o.step_control.check()?;
+        o.newton.check()?;
         Ok(Plan {
-            initial: self.initial.clone().unwrap_or_else(|| self.model.state()),
-            dt,
-            steps,
-            t0: o.t0,
-            record_every: o.record_every,
-            divergence_limit: o.divergence_limit,
-            newton: o.newton,
-            progress: self.progress,
+            initial,
+            span,
+            simulation: self,
+            limit,
+            dense,
         })
     }
 }
 
-fn steps_for(duration: f64, dt: f64) -> Result<u64> {
-    if !(duration.is_finite() && duration >= 0.0) {
-        return Err(Error::invalid(
+/// How a validated run steps and where it ends.
+#[derive(Clone, Debug)]
+enum Span {
+    /// `steps` steps of `dt`.
+    Fixed { dt: f64, steps: u64 },
+    /// To `t_end`, each step within `tolerances`.
+    Adaptive { tolerances: Tolerances, t_end: f64 },
+}
+
+fn checked_duration(duration: f64) -> Result<f64> {
+    if duration.is_finite() && duration >= 0.0 {
+        Ok(duration)
+    } else {
+        Err(Error::invalid(
             "duration",
-            format!("must be finite and non-negative, got {duration}"),
-        ));
+            format!("must be finite and non-negative, got {duration:?}"),
+        ))
     }
+}
+
+fn steps_for(duration: f64, dt: f64) -> Result<u64> {
+    let duration = checked_duration(duration)?;
     let ratio = duration / dt;
     let nearest = ratio.round();
     let steps = if (ratio - nearest).abs() <= 1e-9 * nearest.max(1.0) {
@@ -267,89 +458,77 @@ fn steps_for(duration: f64, dt: f64) -> Result<u64> {
     if steps > 1e15 {
         return Err(Error::invalid(
             "duration",
-            format!("{duration} s at dt = {dt} is {steps:e} steps, more than this runner takes"),
+            format!(
+                "{duration:?} s at dt = {dt:e} is {steps:e} steps, more than this runner takes"
+            ),
         ));
     }
     Ok(steps as u64)
 }
 
 /// A validated run.
-struct Plan<'m, S> {
-    initial: S,
-    dt: f64,
-    steps: u64,
-    t0: f64,
-    record_every: u64,
-    divergence_limit: f64,
-    newton: NewtonOptions,
-    progress: Option<Progress<'m>>,
+struct Plan<'s, 'm, M: Model> {
+    initial: M::State,
+    span: Span,
+    simulation: &'s Simulation<'m, M>,
+    limit: f64,
+    dense: bool,
 }
 
-impl<S: crate::State> Plan<'_, S> {
-    // One function per integrator: inlined into `run_partial`'s dispatch, the seven run loops
-    // shared one body and the cheap ones ran up to 1.7× slower (measured on leapfrog).
+impl<M: Model> Plan<'_, '_, M> {
+    // One function per integrator: inlined into `run_partial`'s dispatch, the run loops shared
+    // one body and the cheap ones ran up to 1.7× slower (measured on leapfrog).
     #[inline(never)]
-    fn drive<N, I>(self, model: &N) -> Result<(Trajectory<S>, Option<Error>)>
+    fn drive<N, I>(self, model: &N) -> Result<(Trajectory<M::State>, Option<Error>)>
     where
-        N: Model<State = S>,
+        N: Model<State = M::State>,
         I: Integrator<N>,
     {
-        let mut stepper =
-            Stepper::<N, I>::with_newton(model, self.initial, self.t0, self.dt, &self.newton)?
-                .with_divergence_limit(self.divergence_limit);
-        let capacity = (self.steps / self.record_every + 2).min(1 << 20) as usize;
-        let mut samples = Vec::with_capacity(capacity);
-        // The recorder gets copies, never `&stepper`: a reference escaping into the (possibly
-        // out-of-line) push would pin the stepper's state in memory for the whole loop.
-        let record = |step: u64, t: f64, state: S, samples: &mut Vec<Sample<S>>| {
-            let energy = model.energy(&state);
-            samples.push(Sample {
-                step,
-                t,
-                state,
-                energy,
-            });
+        let o = &self.simulation.options;
+        let recording = Recording {
+            every: o.record_every,
+            save_at: o.save_at.as_deref(),
+            dense: self.dense,
+            progress: self.simulation.progress.map(|p| p.0),
         };
-        record(
-            stepper.steps(),
-            stepper.t(),
-            stepper.state().clone(),
-            &mut samples,
-        );
-        let mut failure = None;
-        // A countdown, not `n % record_every`: a 64-bit division per step costs more than a
-        // cheap model's whole step.
-        let mut until_record = self.record_every;
-        for n in 1..=self.steps {
-            if let Err(error) = stepper.step() {
-                failure = Some(error);
-                break;
-            }
-            until_record -= 1;
-            if until_record == 0 || n == self.steps {
-                record(
-                    stepper.steps(),
-                    stepper.t(),
-                    stepper.state().clone(),
-                    &mut samples,
-                );
-                until_record = self.record_every;
-                if let Some(Progress(report)) = self.progress {
-                    report(n, self.steps);
-                }
-            }
-        }
-        let good_steps = stepper.steps() - u64::from(failure.is_some());
-        let evaluations = stepper.evaluations();
+        let mut driver = Driver::<N, I>::new(
+            model,
+            o.t0,
+            self.initial,
+            &o.newton,
+            self.limit,
+            self.simulation.events.clone(),
+            o.event_tolerance,
+            recording,
+        )?;
+        let outcome = match &self.span {
+            Span::Fixed { dt, steps } => driver.run_fixed(*dt, 0, *steps),
+            Span::Adaptive { tolerances, t_end } => driver.run_adaptive(
+                *t_end,
+                tolerances,
+                &o.step_control,
+                I::CONTROLLER,
+                I::METHOD.order(),
+            ),
+        };
+        let stats = driver.stats;
+        let record = driver.record;
         let trajectory = Trajectory {
             model: N::NAME,
             method: I::METHOD,
-            dt: self.dt,
-            steps: good_steps,
-            evaluations: evaluations.force,
-            jacobian_evaluations: evaluations.jacobian,
-            samples,
+            dt: match self.span {
+                Span::Fixed { dt, .. } => Some(dt),
+                Span::Adaptive { .. } => None,
+            },
+            tolerances: match self.span {
+                Span::Fixed { .. } => None,
+                Span::Adaptive { tolerances, .. } => Some(tolerances),
+            },
+            stats,
+            samples: record.samples,
+            events: record.events,
+            dense: record.dense,
         };
-        Ok((trajectory, failure))
+        Ok((trajectory, outcome.err()))
     }
 }

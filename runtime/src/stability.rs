@@ -9,20 +9,55 @@ use nalgebra::{Complex, DMatrix};
 
 use crate::{DenseMatrix, Error, Jacobian, Method, Model, Result, State};
 
-/// How a measured limit is found.
+/// How a measured limit is found. [`measured_limit`] checks every field first.
 #[derive(Clone, Debug, PartialEq)]
 pub struct StabilityProbe {
-    /// Steps per trial run (default 20 000).
+    /// Steps per trial run, at least 2 (default 20 000).
     pub steps: u64,
     /// A run is unstable when the largest energy of its second half exceeds that of its first
-    /// half by more than this fraction (default 1e-3), or when it diverges. Bounded methods
+    /// half by more than this fraction, finite and non-negative (default 1e-3), or when it
+    /// diverges. Bounded methods
     /// oscillate within a fixed band, so both halves see the same maximum; an unstable one grows.
     pub growth: f64,
-    /// Bisection stops when the bracket is this narrow relative to its lower end (default 1e-6).
+    /// Bisection stops when the bracket is this narrow relative to its lower end, from 1e-15
+    /// (about the resolution of `f64`) to 1 (default 1e-6).
     pub precision: f64,
     /// The bracket search gives up — the limit is 0 or ∞ — after this many halvings or
-    /// doublings of the first guess (default 40).
+    /// doublings of the first guess, at most 1000 (default 40).
     pub max_doublings: u32,
+}
+
+impl StabilityProbe {
+    /// Checks every setting.
+    ///
+    /// Errors: [`Error::InvalidInput`] naming the first setting out of its documented range.
+    pub fn check(&self) -> Result<()> {
+        if self.steps < 2 {
+            return Err(Error::invalid(
+                "StabilityProbe::steps",
+                format!("must be at least 2, got {}", self.steps),
+            ));
+        }
+        if !(self.growth.is_finite() && self.growth >= 0.0) {
+            return Err(Error::invalid(
+                "StabilityProbe::growth",
+                format!("must be finite and non-negative, got {:?}", self.growth),
+            ));
+        }
+        if !(1e-15..=1.0).contains(&self.precision) {
+            return Err(Error::invalid(
+                "StabilityProbe::precision",
+                format!("must be from 1e-15 to 1, got {:?}", self.precision),
+            ));
+        }
+        if self.max_doublings > 1000 {
+            return Err(Error::invalid(
+                "StabilityProbe::max_doublings",
+                format!("must be at most 1000, got {}", self.max_doublings),
+            ));
+        }
+        Ok(())
+    }
 }
 
 impl Default for StabilityProbe {
@@ -40,6 +75,9 @@ impl Default for StabilityProbe {
 /// the bracket search from `guess`.
 ///
 /// The energy is the model's own when it defines one, else the squared norm of the state.
+///
+/// Errors: [`Error::InvalidInput`] for a guess that is not finite and positive or a `probe`
+/// setting out of range (see [`StabilityProbe::check`]); the run's own input errors.
 pub fn measured_limit<M: Model>(
     model: &M,
     state: &M::State,
@@ -53,11 +91,13 @@ pub fn measured_limit<M: Model>(
             format!("must be finite and positive, got {guess}"),
         ));
     }
+    probe.check()?;
     let stable = |dt: f64| bounded(model, state, method, dt, probe);
+    let mut tries = 0..=probe.max_doublings;
     let (mut lo, mut hi) = if stable(guess)? {
         let mut lo = guess;
         loop {
-            if lo > guess * 2f64.powi(probe.max_doublings as i32) {
+            if tries.next().is_none() {
                 return Ok(f64::INFINITY);
             }
             if !stable(2.0 * lo)? {
@@ -68,7 +108,7 @@ pub fn measured_limit<M: Model>(
     } else {
         let mut hi = guess;
         loop {
-            if hi < guess / 2f64.powi(probe.max_doublings as i32) {
+            if tries.next().is_none() {
                 return Ok(0.0);
             }
             if stable(0.5 * hi)? {
@@ -77,7 +117,12 @@ pub fn measured_limit<M: Model>(
             hi *= 0.5;
         }
     };
-    while hi - lo > probe.precision * lo {
+    // precision ≥ 1e-15 ends this within ~50 halvings; the cap guards against lo reaching a
+    // subnormal where the relative test could not shrink.
+    for _ in 0..200 {
+        if hi - lo <= probe.precision * lo {
+            break;
+        }
         let mid = 0.5 * (lo + hi);
         if stable(mid)? { lo = mid } else { hi = mid }
     }
@@ -119,7 +164,10 @@ fn bounded<M: Model>(
 }
 
 /// The eigenvalues of ∂f/∂y at (t, `state`).
-pub fn eigenvalues<M: Jacobian>(model: &M, t: f64, state: &M::State) -> Vec<Complex<f64>>
+///
+/// Errors: [`Error::InvalidInput`] when the Jacobian has an entry that is not finite (the
+/// eigenvalue iteration would not end).
+pub fn eigenvalues<M: Jacobian>(model: &M, t: f64, state: &M::State) -> Result<Vec<Complex<f64>>>
 where
     M::Matrix: DenseMatrix,
 {
@@ -127,47 +175,51 @@ where
     model.jacobian(t, state, &mut jacobian);
     let n = jacobian.dim();
     let dense = DMatrix::from_fn(n, n, |r, c| jacobian.entry(r, c));
-    dense.complex_eigenvalues().iter().copied().collect()
+    if let Some(index) = dense.iter().position(|x| !x.is_finite()) {
+        let (row, column) = (index % n, index / n);
+        return Err(Error::invalid(
+            "jacobian",
+            format!(
+                "∂f/∂y[{row}][{column}] = {:?} at t = {t:?}: no spectrum to predict from",
+                dense[index]
+            ),
+        ));
+    }
+    Ok(dense.complex_eigenvalues().iter().copied().collect())
 }
 
 /// The largest stable dt `method` is predicted to have, from the eigenvalues λ of the Jacobian at
 /// `state`:
 ///
-/// - explicit Euler: |1 + dt·λ| ≤ 1 for every λ, i.e. dt ≤ −2·Re λ/|λ|² (0 when some λ has
-///   Re λ ≥ 0 and λ ≠ 0, as on an undamped oscillator);
-/// - RK4: |R(dt·λ)| ≤ 1 with R(z) = 1 + z + z²/2 + z³/6 + z⁴/24, found along each ray (2√2/ω on
-///   the imaginary axis);
+/// - explicit Runge–Kutta methods (explicit Euler, RK4, Tsit5, DOP853 at a fixed step): the first
+///   h along each ray hλ where |R(hλ)| exceeds 1, R being the method's stability polynomial
+///   (explicit Euler: dt ≤ −2·Re λ/|λ|², 0 on an undamped oscillator; RK4: 2√2/ω on the
+///   imaginary axis);
 /// - symplectic Euler, both Verlets, leapfrog: dt < 2/ω with ω = max |λ|, the oscillator limit
 ///   (these methods are for undamped mechanics; with damping the true limit differs slightly);
-/// - implicit Euler: unconditional (∞) when every Re λ ≤ 0.
-pub fn predicted_limit<M: Jacobian>(model: &M, t: f64, state: &M::State, method: Method) -> f64
+/// - implicit Euler and the Rosenbrock methods (A-stable): unconditional (∞) when every
+///   Re λ ≤ 0.
+///
+/// Errors: as [`eigenvalues`].
+pub fn predicted_limit<M: Jacobian>(
+    model: &M,
+    t: f64,
+    state: &M::State,
+    method: Method,
+) -> Result<f64>
 where
     M::Matrix: DenseMatrix,
 {
-    let lambdas: Vec<_> = eigenvalues(model, t, state)
+    let lambdas: Vec<_> = eigenvalues(model, t, state)?
         .into_iter()
         .filter(|l| l.norm() > 1e-300)
         .collect();
-    let fastest = lambdas.iter().map(|l| l.norm()).fold(0.0, f64::max);
     if lambdas.is_empty() {
-        return f64::INFINITY;
+        return Ok(f64::INFINITY);
     }
-    match method {
-        Method::ExplicitEuler => lambdas
-            .iter()
-            .map(|l| {
-                if l.re < 0.0 {
-                    -2.0 * l.re / l.norm_sqr()
-                } else {
-                    0.0
-                }
-            })
-            .fold(f64::INFINITY, f64::min),
-        Method::Rk4 => lambdas
-            .iter()
-            .map(|l| rk4_ray_limit(*l))
-            .fold(f64::INFINITY, f64::min),
-        Method::ImplicitEuler => {
+    let fastest = lambdas.iter().map(|l| l.norm()).fold(0.0, f64::max);
+    Ok(match method {
+        Method::ImplicitEuler | Method::Rosenbrock23 | Method::Rodas5P => {
             if lambdas.iter().all(|l| l.re <= 0.0) {
                 f64::INFINITY
             } else {
@@ -178,19 +230,47 @@ where
         | Method::PositionVerlet
         | Method::VelocityVerlet
         | Method::Leapfrog => 2.0 / fastest,
-    }
+        Method::ExplicitEuler | Method::Rk4 | Method::Tsit5 | Method::Dop853 => {
+            let polynomial = crate::integrators::stability_polynomial(method);
+            lambdas
+                .iter()
+                .map(|l| ray_limit(*l, &polynomial))
+                .fold(f64::INFINITY, f64::min)
+        }
+    })
 }
 
-/// The first h > 0 at which |R(h·λ)| exceeds 1 for RK4, by a scan then bisection.
-fn rk4_ray_limit(lambda: Complex<f64>) -> f64 {
+/// The coefficients γ₀ … γ_s of the stability polynomial R(z) = Σₖ γₖzᵏ of an explicit
+/// Runge–Kutta method (explicit Euler, RK4, Tsit5, DOP853), computed from its tableau; `None`
+/// for other methods. On y′ = λy a step multiplies y by R(h·λ).
+pub fn stability_polynomial(method: Method) -> Option<Vec<f64>> {
+    let polynomial = crate::integrators::stability_polynomial(method);
+    (!polynomial.is_empty()).then_some(polynomial)
+}
+
+/// The first h > 0 at which |R(h·λ)| exceeds 1, by a scan then bisection; 0 when even the
+/// smallest step is unstable (λ in the right half-plane, or on the imaginary axis where |R|
+/// grows from the start, as explicit Euler's 1 + iy does).
+fn ray_limit(lambda: Complex<f64>, polynomial: &[f64]) -> f64 {
+    if lambda.re > 1e-12 * lambda.norm() {
+        return 0.0;
+    }
+    if lambda.re.abs() <= 1e-12 * lambda.norm() && grows_on_imaginary_axis(polynomial) {
+        return 0.0;
+    }
     let r = |h: f64| {
         let z = lambda * h;
-        (Complex::new(1.0, 0.0) + z + z * z / 2.0 + z * z * z / 6.0 + z * z * z * z / 24.0).norm()
+        polynomial
+            .iter()
+            .rev()
+            .fold(Complex::new(0.0, 0.0), |acc, &g| acc * z + g)
+            .norm()
     };
-    // |R| ≤ 1 up to |z| ≈ 2.8 on every stable ray; scan in steps of |z| = 0.01 up to 4.
+    // Every explicit method's region lies within |z| ≤ 8 (DOP853's reaches about 6);
+    // scan in steps of |z| = 0.01.
     let step = 0.01 / lambda.norm();
     let mut h = step;
-    while h * lambda.norm() < 4.0 {
+    while h * lambda.norm() < 8.0 {
         if r(h) > 1.0 + 1e-12 {
             let (mut lo, mut hi) = (h - step, h);
             for _ in 0..100 {
@@ -206,4 +286,47 @@ fn rk4_ray_limit(lambda: Complex<f64>) -> f64 {
         h += step;
     }
     0.0
+}
+
+/// Whether |R(iy)|² − 1 = Σₖ eₖy²ᵏ is positive for small y: the sign of its lowest coefficient
+/// that is not round-off. eₖ = Σᵢ₊ⱼ₌₂ₖ (−1)^(k−j)·γᵢγⱼ.
+fn grows_on_imaginary_axis(polynomial: &[f64]) -> bool {
+    let degree = polynomial.len().saturating_sub(1);
+    for k in 1..=degree {
+        let mut e = 0.0;
+        for j in 0..=2 * k {
+            let i = 2 * k - j;
+            if i > degree || j > degree {
+                continue;
+            }
+            // (iy)^i·(−iy)^j = i^(i−j)·y^(2k), and i − j = 2(k − j).
+            let sign = if (k + j) % 2 == 0 { 1.0 } else { -1.0 };
+            e += sign * polynomial[i] * polynomial[j];
+        }
+        if e.abs() > 1e-12 {
+            return e > 0.0;
+        }
+    }
+    false
+}
+
+#[cfg(test)]
+mod tests {
+    use super::grows_on_imaginary_axis;
+
+    #[test]
+    fn growth_on_the_imaginary_axis() {
+        // Explicit Euler: |1 + iy|² = 1 + y².
+        assert!(grows_on_imaginary_axis(&[1.0, 1.0]));
+        // RK4: |R(iy)|² = 1 − y⁶/72 + y⁸/576.
+        assert!(!grows_on_imaginary_axis(&[
+            1.0,
+            1.0,
+            0.5,
+            1.0 / 6.0,
+            1.0 / 24.0
+        ]));
+        // Second-order Taylor: |1 + iy − y²/2|² = 1 + y⁴/4.
+        assert!(grows_on_imaginary_axis(&[1.0, 1.0, 0.5]));
+    }
 }

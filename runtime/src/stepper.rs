@@ -1,25 +1,20 @@
 //! [`Stepper`]: a model, an integrator and a state, advanced one checked step at a time.
 
-use crate::integrators::Evaluations;
-use crate::{Error, Integrator, Model, NewtonOptions, Result, State};
-
-/// The default bound on |state component| beyond which a run counts as diverged.
-pub(crate) const DEFAULT_DIVERGENCE_LIMIT: f64 = 1e100;
+use crate::drive::{Driver, Recording};
+use crate::simulation::default_divergence_limit;
+use crate::{Error, Integrator, Model, NewtonOptions, Result, Stats};
 
 /// Advances one state with a fixed method and a fixed dt, refusing non-finite results.
 ///
-/// The runner ([`crate::Simulation`]) and the real-time loop ([`crate::FixedTimestep`]) both step
-/// through it. Time is computed as t₀ + n·dt, never accumulated, so two steppers that have taken
-/// the same number of steps are at bit-identical times.
-#[derive(Clone, Debug)]
-pub struct Stepper<'m, M: Model, I> {
-    model: &'m M,
-    integrator: I,
-    state: M::State,
-    t0: f64,
+/// The real-time loop ([`crate::FixedTimestep`]) steps through it, and so can code that drives a
+/// model by hand. It runs the same driver as [`crate::Simulation`] — the same checks at the start
+/// (including [`Model::check`]), the same step halving for implicit methods, the same divergence
+/// test — without recording. Time is computed as t₀ + n·dt, never accumulated, so two steppers
+/// that have taken the same number of steps are at bit-identical times.
+pub struct Stepper<'m, M: Model, I: Integrator<M>> {
+    driver: Driver<'static, 'm, M, I>,
     dt: f64,
     steps: u64,
-    divergence_limit: f64,
 }
 
 impl<'m, M: Model, I: Integrator<M>> Stepper<'m, M, I> {
@@ -32,7 +27,8 @@ impl<'m, M: Model, I: Integrator<M>> Stepper<'m, M, I> {
         Self::with_newton(model, state, t0, dt, &NewtonOptions::default())
     }
 
-    /// [`Stepper::new`] with the Newton options of implicit methods.
+    /// [`Stepper::new`] with the Newton options of implicit methods (checked, see
+    /// [`NewtonOptions::check`]).
     pub fn with_newton(
         model: &'m M,
         state: M::State,
@@ -40,76 +36,81 @@ impl<'m, M: Model, I: Integrator<M>> Stepper<'m, M, I> {
         dt: f64,
         newton: &NewtonOptions,
     ) -> Result<Self> {
-        check_dt(dt)?;
-        if !t0.is_finite() {
-            return Err(Error::invalid(
-                "t0",
-                format!("start time must be finite, got {t0}"),
-            ));
-        }
-        if let Some((index, value)) = first_outside(&state, f64::MAX) {
-            return Err(Error::invalid(
-                format!("initial state `{}`", state.component_name(index)),
-                format!("must be finite, got {value}"),
-            ));
-        }
-        model.check(&state)?;
-        let integrator = I::start(model, t0, dt, &state, newton)?;
-        Ok(Stepper {
-            model,
-            integrator,
-            state,
-            t0,
-            dt,
-            steps: 0,
-            divergence_limit: DEFAULT_DIVERGENCE_LIMIT,
-        })
+        Self::with_limit(model, state, t0, dt, newton, None)
     }
 
-    /// Sets the bound on |component| beyond which a step counts as diverged (default 1e100;
+    /// [`Stepper::with_newton`] with a divergence limit: the bound on |component| beyond which a
+    /// step counts as diverged (default: see [`crate::RunOptions::divergence_limit`];
     /// `f64::INFINITY` catches only infinities and NaN).
-    pub fn with_divergence_limit(mut self, limit: f64) -> Self {
-        self.divergence_limit = limit;
-        self
+    ///
+    /// Errors: as [`Stepper::with_newton`], and [`Error::InvalidInput`] for a limit that is not
+    /// positive (NaN included).
+    pub fn with_limit(
+        model: &'m M,
+        state: M::State,
+        t0: f64,
+        dt: f64,
+        newton: &NewtonOptions,
+        divergence_limit: Option<f64>,
+    ) -> Result<Self> {
+        check_dt(dt)?;
+        let limit = match divergence_limit {
+            None => default_divergence_limit(&state),
+            Some(limit) if limit > 0.0 => limit,
+            Some(limit) => {
+                return Err(Error::invalid(
+                    "divergence_limit",
+                    format!("must be positive, got {limit:?}"),
+                ));
+            }
+        };
+        let quiet = Recording {
+            every: 0,
+            save_at: None,
+            dense: false,
+            progress: None,
+        };
+        let driver = Driver::new(model, t0, state, newton, limit, Vec::new(), 0.0, quiet)?;
+        Ok(Stepper {
+            driver,
+            dt,
+            steps: 0,
+        })
     }
 
     /// The integrator, with whatever it counts (an implicit method's factorizations).
     pub fn integrator(&self) -> &I {
-        &self.integrator
+        self.driver.integrator()
     }
 
     /// Takes one step.
     ///
     /// Errors with [`Error::Diverged`] when a component of the new state is non-finite or beyond
     /// the divergence limit, and with [`Error::NewtonDidNotConverge`] when an implicit step
-    /// fails; the state is then the rejected one, and stepping further is pointless.
+    /// fails even after halving; the state is then the last good one.
     #[inline]
     pub fn step(&mut self) -> Result<()> {
-        let t = self.t();
-        let stepped = self.integrator.step(self.model, t, &mut self.state);
-        self.steps += 1;
-        stepped?;
-        match first_outside(&self.state, self.divergence_limit) {
-            None => Ok(()),
-            Some((index, value)) => Err(Error::Diverged {
-                method: I::METHOD,
-                step: self.steps,
-                t: self.t(),
-                component: self.state.component_name(index),
-                value,
-                limit: self.divergence_limit,
-            }),
+        let stepped = self.driver.run_fixed(self.dt, self.steps, 1);
+        if stepped.is_ok() {
+            self.steps += 1;
         }
+        stepped
     }
 
     /// The current state.
     pub fn state(&self) -> &M::State {
-        &self.state
+        self.driver.state()
+    }
+
+    /// The current state, to change between steps (an impulse, a user's drag): the method
+    /// restarts from the changed state at the next step, as after an event.
+    pub fn state_mut(&mut self) -> &mut M::State {
+        self.driver.state_mut()
     }
 
     /// The current time, t₀ + steps·dt.
     pub fn t(&self) -> f64 {
-        self.t0 + self.steps as f64 * self.dt
+        self.driver.t()
     }
 
     /// The fixed step.
@@ -122,14 +123,26 @@ impl<'m, M: Model, I: Integrator<M>> Stepper<'m, M, I> {
         self.steps
     }
 
-    /// Force and Jacobian evaluations made so far.
-    pub fn evaluations(&self) -> Evaluations {
-        self.integrator.evaluations(self.steps)
+    /// What the steps so far cost.
+    pub fn stats(&self) -> Stats {
+        self.driver.stats
     }
 
     /// The model being stepped.
     pub fn model(&self) -> &'m M {
-        self.model
+        self.driver.model()
+    }
+}
+
+impl<M: Model, I: Integrator<M>> std::fmt::Debug for Stepper<'_, M, I> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Stepper")
+            .field("model", &M::NAME)
+            .field("method", &I::METHOD)
+            .field("t", &self.t())
+            .field("dt", &self.dt)
+            .field("steps", &self.steps)
+            .finish_non_exhaustive()
     }
 }
 
@@ -139,22 +152,7 @@ pub(crate) fn check_dt(dt: f64) -> Result<()> {
     } else {
         Err(Error::invalid(
             "dt",
-            format!("must be finite and positive, got {dt}"),
+            format!("must be finite and positive, got {dt:?}"),
         ))
-    }
-}
-
-/// The first component that is NaN or whose magnitude exceeds `limit`.
-#[inline]
-fn first_outside<S: State>(state: &S, limit: f64) -> Option<(usize, f64)> {
-    let s = state.as_slice();
-    // One branch-free pass for the common case; locate the culprit only on failure.
-    let ok = s.iter().fold(true, |ok, x| ok & (x.abs() <= limit));
-    if ok {
-        None
-    } else {
-        s.iter()
-            .position(|x| x.is_nan() || x.abs() > limit)
-            .map(|i| (i, s[i]))
     }
 }

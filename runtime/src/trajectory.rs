@@ -1,15 +1,19 @@
-//! [`Trajectory`]: what a run recorded, step by step.
+//! [`Trajectory`]: what a run recorded — samples, events, statistics, and the dense output that
+//! gives the solution at any time.
 
 use std::path::Path;
 
-use crate::{Method, Result, State, output};
+use crate::drive::{DenseOutput, EventRecord};
+use crate::{Error, Method, Result, State, Stats, Tolerances, output};
 
-/// One recorded step.
+/// One recorded state.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Sample<S> {
-    /// Step number; 0 is the initial state.
+    /// The step it was recorded at: the grid step n of a fixed-step run (t = t₀ + n·dt, whatever
+    /// sub-steps halving took), the number of accepted steps of an adaptive one; 0 is the initial
+    /// state.
     pub step: u64,
-    /// Time, t₀ + step·dt.
+    /// Time: t₀ + step·dt on a fixed grid, the step's end or a save time otherwise.
     pub t: f64,
     /// The typed state.
     pub state: S,
@@ -24,23 +28,28 @@ pub struct Trajectory<S> {
     pub model: &'static str,
     /// The method that produced it.
     pub method: Method,
-    /// The fixed step.
-    pub dt: f64,
-    /// Steps taken (the last sample's step).
-    pub steps: u64,
-    /// Force (derivative or acceleration) evaluations made.
-    pub evaluations: u64,
-    /// Jacobian evaluations made (implicit methods only).
-    pub jacobian_evaluations: u64,
-    /// Recorded samples, in step order; never empty (step 0 is always recorded).
+    /// The fixed step, for a fixed-step run.
+    pub dt: Option<f64>,
+    /// The tolerances, for an adaptive run.
+    pub tolerances: Option<Tolerances>,
+    /// What the run cost.
+    pub stats: Stats,
+    /// Recorded samples in time order; never empty as odyn returns them (the initial state is
+    /// always recorded). An event that changed the state appears as two samples at its time,
+    /// before and after.
     pub samples: Vec<Sample<S>>,
+    /// Every event that happened, in time order.
+    pub events: Vec<EventRecord<S>>,
+    /// One polynomial per accepted step, when the run kept them (adaptive runs do by default):
+    /// what [`Trajectory::at`] evaluates.
+    pub dense: Option<DenseOutput>,
 }
 
 impl<S: State> Trajectory<S> {
     /// The first sample (the initial state).
     ///
     /// # Panics
-    /// If `samples` was emptied by hand; every trajectory odyn returns holds step 0.
+    /// If `samples` was emptied by hand; every trajectory odyn returns holds the initial state.
     pub fn first(&self) -> &Sample<S> {
         &self.samples[0]
     }
@@ -55,6 +64,42 @@ impl<S: State> Trajectory<S> {
             .expect("a trajectory always holds its initial sample")
     }
 
+    /// Accepted steps taken, sub-steps of halved implicit steps included (see [`Stats::steps`]).
+    pub fn steps(&self) -> u64 {
+        self.stats.steps
+    }
+
+    /// The recorded times.
+    pub fn times(&self) -> impl Iterator<Item = f64> + '_ {
+        self.samples.iter().map(|s| s.t)
+    }
+
+    /// The state at time `t`, from the run's dense output: the method's own interpolant (order 4
+    /// for Tsit5, 7 for DOP853) or the cubic Hermite one, never a straight line between samples.
+    /// At an event that changed the state, the state after it.
+    ///
+    /// Errors: [`Error::InvalidInput`] when the run kept no dense output (fixed-step runs keep
+    /// it only with `.dense_output(true)`), or `t` is outside the run.
+    pub fn at(&self, t: f64) -> Result<S> {
+        let dense = self.dense.as_ref().ok_or_else(|| {
+            Error::invalid(
+                "dense output",
+                "this run kept none; run it with `.dense_output(true)`",
+            )
+        })?;
+        let mut state = self
+            .samples
+            .first()
+            .ok_or_else(|| Error::invalid("trajectory", "has no samples"))?
+            .state
+            .clone();
+        if dense.is_empty() && t == self.first().t {
+            return Ok(state);
+        }
+        dense.eval_into(t, &mut state)?;
+        Ok(state)
+    }
+
     /// Recorded energies as (t, E), for models that define an energy.
     pub fn energies(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
         self.samples
@@ -64,10 +109,28 @@ impl<S: State> Trajectory<S> {
 
     /// Final energy over initial energy, for models that define an energy.
     pub fn energy_ratio(&self) -> Option<f64> {
-        Some(self.last().energy? / self.first().energy?)
+        Some(self.samples.last()?.energy? / self.samples.first()?.energy?)
+    }
+
+    /// The largest |E(t) − E(0)| / |E(0)| over the recorded samples, for models that define an
+    /// energy (|E(t) − E(0)| when E(0) = 0). NaN if any recorded energy is NaN.
+    pub fn max_energy_error(&self) -> Option<f64> {
+        let e0 = self.samples.first()?.energy?;
+        let scale = if e0 == 0.0 { 1.0 } else { e0.abs() };
+        Some(self.energies().fold(0.0, |worst: f64, (_, e)| {
+            let error = (e - e0).abs() / scale;
+            if error.is_nan() || worst.is_nan() {
+                f64::NAN
+            } else {
+                worst.max(error)
+            }
+        }))
     }
 
     /// Writes the samples as CSV (`method,step,t,<components>,energy`), atomically.
+    ///
+    /// Errors: [`Error::InvalidInput`] when `samples` is empty; [`Error::Io`] when the file
+    /// cannot be written.
     pub fn write_csv(&self, path: impl AsRef<Path>) -> Result<()> {
         output::write_csv(path, &[self])
     }

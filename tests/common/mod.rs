@@ -16,6 +16,72 @@ pub fn slope(points: &[(f64, f64)]) -> f64 {
     cov / var
 }
 
+/// A small deterministic generator (xorshift64*), so failures reproduce.
+pub struct Rng(pub u64);
+
+impl Rng {
+    pub fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        let bits = self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11;
+        lo + (hi - lo) * (bits as f64 / (1u64 << 53) as f64)
+    }
+}
+
+/// Compares ∂f/∂y with central differences of f at `samples` random states drawn by `draw`.
+/// The step h = 1e-6·(1 + |yⱼ|) leaves truncation and round-off errors near 1e-9 relative, so
+/// 1e-6 relative (to the Jacobian's largest entry in the row) is a strict but safe bound.
+pub fn check<M: odyn::Jacobian>(
+    model: &M,
+    t: f64,
+    samples: usize,
+    mut draw: impl FnMut(&mut Rng) -> M::State,
+) where
+    M::Matrix: odyn::DenseMatrix,
+{
+    let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
+    for _ in 0..samples {
+        let y = draw(&mut rng);
+        let n = y.as_slice().len();
+        let mut jacobian = model.jacobian_matrix(&y);
+        model.jacobian(t, &y, &mut jacobian);
+        for row in 0..n {
+            let numeric: Vec<f64> = (0..n)
+                .map(|column| central(model, t, &y, row, column))
+                .collect();
+            let scale = numeric.iter().map(|v| v.abs()).fold(1e-300, f64::max);
+            for (column, fd) in numeric.iter().enumerate() {
+                let exact = odyn::DenseMatrix::entry(&jacobian, row, column);
+                assert!(
+                    (exact - fd).abs() <= 1e-6 * scale,
+                    "{} ∂f{row}/∂y{column} at {y:?}: generated {exact}, central difference {fd}",
+                    M::NAME
+                );
+                if !M::NONZEROS.contains(&(row, column)) {
+                    assert_eq!(
+                        exact,
+                        0.0,
+                        "{}: ({row}, {column}) is a structural zero",
+                        M::NAME
+                    );
+                }
+            }
+        }
+    }
+}
+
+pub fn central<M: Model>(model: &M, t: f64, y: &M::State, row: usize, column: usize) -> f64 {
+    let h = 1e-6 * (1.0 + y.as_slice()[column].abs());
+    let (mut plus, mut minus) = (y.clone(), y.clone());
+    plus.as_mut_slice()[column] += h;
+    minus.as_mut_slice()[column] -= h;
+    let (mut f_plus, mut f_minus) = (y.clone(), y.clone());
+    model.derivative(t, &plus, &mut f_plus);
+    model.derivative(t, &minus, &mut f_minus);
+    (f_plus.as_slice()[row] - f_minus.as_slice()[row]) / (2.0 * h)
+}
+
 /// Damped spring, m·ẍ = −k·x − b·ẋ (the tutorial's model).
 #[system(integrator = SymplecticEuler, dt = 0.016)]
 #[derive(Clone, Copy, Debug)]
@@ -288,4 +354,74 @@ impl Bank {
             -289.0 * x[16],
         ]
     }
+}
+
+/// A ball under gravity, ÿ = −g (its bounces are events).
+#[system]
+#[derive(Clone, Copy, Debug)]
+pub struct Ball {
+    #[position]
+    pub y: f64,
+    #[velocity]
+    pub v: f64,
+    pub g: f64,
+}
+
+#[system]
+impl Ball {
+    fn acceleration(&self) -> f64 {
+        -self.g
+    }
+
+    fn energy(&self) -> f64 {
+        0.5 * self.v * self.v + self.g * self.y
+    }
+}
+
+/// The Arenstorf orbit: a satellite in the rotating frame of the Earth–Moon system, whose
+/// solution is periodic (Hairer, Nørsett & Wanner, *Solving ODEs I*, §II.0, eq. (0.1)). Written
+/// as SciPy's reference script writes it, so both evaluate f identically.
+#[system(integrator = Dop853)]
+#[derive(Clone, Copy, Debug)]
+pub struct Arenstorf {
+    #[position]
+    pub y1: f64,
+    #[position]
+    pub y2: f64,
+    #[velocity]
+    pub v1: f64,
+    #[velocity]
+    pub v2: f64,
+    /// The Moon's mass fraction μ.
+    pub mu: f64,
+}
+
+#[system]
+impl Arenstorf {
+    fn acceleration(&self) -> (f64, f64) {
+        let mu = self.mu;
+        let mup = 1.0 - self.mu;
+        let d1 = ((self.y1 + mu).powi(2) + self.y2.powi(2)).powf(1.5);
+        let d2 = ((self.y1 - mup).powi(2) + self.y2.powi(2)).powf(1.5);
+        (
+            self.y1 + 2.0 * self.v2 - mup * (self.y1 + mu) / d1 - mu * (self.y1 - mup) / d2,
+            self.y2 - 2.0 * self.v1 - mup * self.y2 / d1 - mu * self.y2 / d2,
+        )
+    }
+}
+
+impl Arenstorf {
+    /// The periodic orbit of HNW I, §II.0: μ = 0.012277471, from (0.994, 0) with
+    /// y2′(0) = −2.00158510637908252240537862224; period T = 17.0652165601579625588917206249.
+    pub fn orbit() -> Self {
+        Arenstorf {
+            y1: 0.994,
+            y2: 0.0,
+            v1: 0.0,
+            v2: -2.001_585_106_379_082_4,
+            mu: 0.012_277_471,
+        }
+    }
+
+    pub const PERIOD: f64 = 17.065_216_560_157_964;
 }

@@ -25,6 +25,8 @@ impl ::odyn::Model for Kepler {
     const NAME: &'static str = "Kepler";
     const DEFAULT_METHOD: ::odyn::Method = ::odyn::Method::Leapfrog;
     const DEFAULT_DT: ::core::option::Option<f64> = ::core::option::Option::None;
+    const DEFAULT_RTOL: ::core::option::Option<f64> = ::core::option::Option::None;
+    const DEFAULT_ATOL: ::core::option::Option<f64> = ::core::option::Option::None;
     #[inline]
     fn state(&self) -> KeplerState {
         KeplerState {
@@ -64,11 +66,23 @@ impl ::odyn::SecondOrder for Kepler {
 const _: () = {
     let _ = <Kepler>::acceleration;
 };
+const _: () = {
+    let _ = <Kepler as ::odyn::Model>::DEFAULT_DT;
+    let _ = <Kepler as ::odyn::Model>::DEFAULT_RTOL;
+    let _ = <Kepler as ::odyn::Model>::DEFAULT_ATOL;
+};
 #[automatically_derived]
 impl Kepler {
     #[doc(hidden)]
     #[inline]
-    #[allow(unused_variables, unused_parens, non_snake_case, clippy::all)]
+    #[allow(
+        unused_variables,
+        unused_assignments,
+        unused_mut,
+        unused_parens,
+        non_snake_case,
+        clippy::all
+    )]
     fn __odyn_jacobian(
         &self,
         _: f64,
@@ -146,5 +160,10 @@ impl ::odyn::Jacobian for Kepler {
         jacobian: &mut ::odyn::__private::nalgebra::SMatrix<f64, 4, 4>,
     ) {
         self.__odyn_jacobian(t, y.r, y.v, jacobian)
+    }
+    const TIME_DEPENDENT: bool = false;
+    #[inline(always)]
+    fn time_derivative(&self, _: f64, _: &KeplerState, dfdt: &mut KeplerState) {
+        ::odyn::State::as_mut_slice(dfdt).fill(0.0);
     }
 }

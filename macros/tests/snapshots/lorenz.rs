@@ -32,6 +32,8 @@ impl ::odyn::Model for Lorenz {
     const NAME: &'static str = "Lorenz";
     const DEFAULT_METHOD: ::odyn::Method = ::odyn::Method::Rk4;
     const DEFAULT_DT: ::core::option::Option<f64> = ::core::option::Option::None;
+    const DEFAULT_RTOL: ::core::option::Option<f64> = ::core::option::Option::None;
+    const DEFAULT_ATOL: ::core::option::Option<f64> = ::core::option::Option::None;
     #[inline]
     fn state(&self) -> LorenzState {
         LorenzState {
@@ -62,11 +64,23 @@ impl ::odyn::Model for Lorenz {
 const _: () = {
     let _ = <Lorenz>::derivative;
 };
+const _: () = {
+    let _ = <Lorenz as ::odyn::Model>::DEFAULT_DT;
+    let _ = <Lorenz as ::odyn::Model>::DEFAULT_RTOL;
+    let _ = <Lorenz as ::odyn::Model>::DEFAULT_ATOL;
+};
 #[automatically_derived]
 impl Lorenz {
     #[doc(hidden)]
     #[inline]
-    #[allow(unused_variables, unused_parens, non_snake_case, clippy::all)]
+    #[allow(
+        unused_variables,
+        unused_assignments,
+        unused_mut,
+        unused_parens,
+        non_snake_case,
+        clippy::all
+    )]
     fn __odyn_jacobian(
         &self,
         _: f64,
@@ -120,5 +134,10 @@ impl ::odyn::Jacobian for Lorenz {
         jacobian: &mut ::odyn::__private::nalgebra::SMatrix<f64, 3, 3>,
     ) {
         self.__odyn_jacobian(t, y.x, y.y, y.z, jacobian)
+    }
+    const TIME_DEPENDENT: bool = false;
+    #[inline(always)]
+    fn time_derivative(&self, _: f64, _: &LorenzState, dfdt: &mut LorenzState) {
+        ::odyn::State::as_mut_slice(dfdt).fill(0.0);
     }
 }

@@ -26,9 +26,16 @@ impl ::odyn::Model for Spring {
     type State = SpringState;
     const NAME: &'static str = "Spring";
     const DEFAULT_METHOD: ::odyn::Method = ::odyn::Method::SymplecticEuler;
-    const DEFAULT_DT: ::core::option::Option<f64> = ::core::option::Option::Some(
-        (0.016) as f64,
-    );
+    const DEFAULT_DT: ::core::option::Option<f64> = ::core::option::Option::Some({
+        let value = (0.016) as f64;
+        ::core::assert!(
+            value.is_finite() && value > 0.0,
+            "`dt` in `#[system]` must be finite and positive"
+        );
+        value
+    });
+    const DEFAULT_RTOL: ::core::option::Option<f64> = ::core::option::Option::None;
+    const DEFAULT_ATOL: ::core::option::Option<f64> = ::core::option::Option::None;
     #[inline]
     fn state(&self) -> SpringState {
         SpringState {
@@ -69,11 +76,23 @@ const _: () = {
     let _ = <Spring>::acceleration;
     let _ = <Spring>::energy;
 };
+const _: () = {
+    let _ = <Spring as ::odyn::Model>::DEFAULT_DT;
+    let _ = <Spring as ::odyn::Model>::DEFAULT_RTOL;
+    let _ = <Spring as ::odyn::Model>::DEFAULT_ATOL;
+};
 #[automatically_derived]
 impl Spring {
     #[doc(hidden)]
     #[inline]
-    #[allow(unused_variables, unused_parens, non_snake_case, clippy::all)]
+    #[allow(
+        unused_variables,
+        unused_assignments,
+        unused_mut,
+        unused_parens,
+        non_snake_case,
+        clippy::all
+    )]
     fn __odyn_jacobian(
         &self,
         _: f64,
@@ -119,5 +138,10 @@ impl ::odyn::Jacobian for Spring {
         jacobian: &mut ::odyn::__private::nalgebra::SMatrix<f64, 2, 2>,
     ) {
         self.__odyn_jacobian(t, y.x, y.v, jacobian)
+    }
+    const TIME_DEPENDENT: bool = false;
+    #[inline(always)]
+    fn time_derivative(&self, _: f64, _: &SpringState, dfdt: &mut SpringState) {
+        ::odyn::State::as_mut_slice(dfdt).fill(0.0);
     }
 }

@@ -1,7 +1,7 @@
 //! Explicit (forward) Euler.
 
-use super::{Integrator, axpy};
-use crate::{Method, Model, NewtonOptions, Result, State};
+use super::{Integrator, Step, set_axpy};
+use crate::{Method, Model, NewtonOptions, Result, State, Stats};
 
 /// Explicit (forward) Euler: yₙ₊₁ = yₙ + h·f(tₙ, yₙ).
 ///
@@ -18,26 +18,26 @@ use crate::{Method, Model, NewtonOptions, Result, State};
 /// 2nd ed., Springer 1993, §I.7.
 #[derive(Clone, Debug)]
 pub struct ExplicitEuler<S> {
-    dt: f64,
     dydt: S,
 }
 
 impl<M: Model> Integrator<M> for ExplicitEuler<M::State> {
     const METHOD: Method = Method::ExplicitEuler;
-    const STARTUP_EVALUATIONS: u64 = 0;
-    const EVALUATIONS_PER_STEP: u64 = 1;
 
-    fn start(_: &M, _: f64, dt: f64, state: &M::State, _: &NewtonOptions) -> Result<Self> {
-        Ok(ExplicitEuler {
-            dt,
-            dydt: state.clone(),
-        })
+    fn prepare(_: &M, _: f64, y0: &M::State, _: &NewtonOptions, _: &mut Stats) -> Result<Self> {
+        Ok(ExplicitEuler { dydt: y0.clone() })
     }
 
     #[inline]
-    fn step(&mut self, model: &M, t: f64, y: &mut M::State) -> Result<()> {
-        model.derivative(t, y, &mut self.dydt);
-        axpy(y.as_mut_slice(), self.dt, self.dydt.as_slice());
-        Ok(())
+    fn attempt(&mut self, model: &M, s: Step<'_, M::State>, y_new: &mut M::State) -> Result<f64> {
+        model.derivative(s.t, s.y, &mut self.dydt);
+        s.stats.evaluations += 1;
+        set_axpy(
+            y_new.as_mut_slice(),
+            s.y.as_slice(),
+            s.h,
+            self.dydt.as_slice(),
+        );
+        Ok(0.0)
     }
 }

@@ -1,7 +1,9 @@
 //! Implicit (backward) Euler, solved by Newton's method with the generated Jacobian.
 
-use super::{Evaluations, Integrator};
-use crate::{Error, Jacobian, Method, NewtonMatrix, NewtonOptions, Result, State};
+use super::{Integrator, Step};
+use crate::{
+    Error, Jacobian, Method, NewtonFailure, NewtonMatrix, NewtonOptions, Result, State, Stats,
+};
 
 /// Implicit (backward) Euler: yₙ₊₁ = yₙ + h·f(tₙ₊₁, yₙ₊₁).
 ///
@@ -13,10 +15,11 @@ use crate::{Error, Jacobian, Method, NewtonMatrix, NewtonOptions, Result, State}
 /// [`crate::particles::ParticleJacobian`]), which gives the same iterates. It stops when
 /// |Δᵢ| ≤ tol·(1 + |yᵢ|) for every component. With [`NewtonOptions::linearized`] it takes exactly
 /// one iteration and accepts it: the linearly implicit Euler of Baraff & Witkin (1998), one
-/// factorization per step. When the iteration fails — too many iterations,
-/// a singular matrix, or updates that stop shrinking — the step is retried as two half steps,
-/// recursively up to [`NewtonOptions::max_halvings`] deep, and past that fails with
-/// [`Error::NewtonDidNotConverge`]. The recorded grid keeps the fixed dt.
+/// factorization per step. When the iteration fails — too many iterations, a singular matrix,
+/// updates that stop shrinking, or a non-finite value — the attempt fails with
+/// [`Error::NewtonDidNotConverge`] naming the cause; the fixed-step driver then retries the step
+/// as two half steps, up to [`NewtonOptions::max_halvings`] deep. The recorded grid keeps the
+/// fixed dt.
 ///
 /// - **Order** 1.
 /// - **Energy**: on ẍ = −ω²x the step divides (x, v/ω) by 1 − iωh, so the energy is multiplied by
@@ -26,112 +29,93 @@ use crate::{Error, Jacobian, Method, NewtonMatrix, NewtonOptions, Result, State}
 ///
 /// Reference: E. Hairer, G. Wanner, *Solving Ordinary Differential Equations II*, 2nd ed.,
 /// Springer 1996, §IV.3 (stability) and §IV.8 (Newton iterations).
-#[derive(Clone, Debug)]
 pub struct ImplicitEuler<M: Jacobian> {
-    dt: f64,
     newton: NewtonOptions,
-    /// yₙ, the start of the step.
-    start: M::State,
     /// f(tₙ₊₁, yᵏ).
     force: M::State,
     /// −G(yᵏ), then the Newton update Δ.
     update: M::State,
-    /// J(yᵏ), overwritten by the solve of (I − h·J)·Δ = −G.
+    /// J(yᵏ).
     jacobian: M::Matrix,
-    evaluations: Evaluations,
+    /// The factors of I − h·J(yᵏ).
+    factors: <M::Matrix as NewtonMatrix>::Factors,
 }
 
 impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
     const METHOD: Method = Method::ImplicitEuler;
-    const STARTUP_EVALUATIONS: u64 = 0;
-    const EVALUATIONS_PER_STEP: u64 = 0;
 
-    fn start(model: &M, _: f64, dt: f64, state: &M::State, newton: &NewtonOptions) -> Result<Self> {
-        let mut jacobian = model.jacobian_matrix(state);
+    fn prepare(
+        model: &M,
+        _: f64,
+        y0: &M::State,
+        newton: &NewtonOptions,
+        _: &mut Stats,
+    ) -> Result<Self> {
+        let mut jacobian = model.jacobian_matrix(y0);
         jacobian.configure(newton);
         Ok(ImplicitEuler {
-            dt,
             newton: *newton,
-            start: state.clone(),
-            force: state.clone(),
-            update: state.clone(),
+            force: y0.clone(),
+            update: y0.clone(),
+            factors: jacobian.factors(),
             jacobian,
-            evaluations: Evaluations::default(),
         })
     }
 
-    fn step(&mut self, model: &M, t: f64, y: &mut M::State) -> Result<()> {
-        self.advance(model, t, self.dt, y, 0)
-    }
-
-    fn evaluations(&self, _: u64) -> Evaluations {
-        self.evaluations
-    }
-}
-
-impl<M: Jacobian> ImplicitEuler<M> {
-    /// The Newton matrix, holding the last Jacobian or its factors: particle models read their
-    /// factorization counts from it.
-    pub fn matrix(&self) -> &M::Matrix {
-        &self.jacobian
-    }
-
-    /// One step of size `h` from `t`, retried as two half steps when Newton fails.
-    fn advance(&mut self, model: &M, t: f64, h: f64, y: &mut M::State, depth: u32) -> Result<()> {
-        self.start.clone_from(y);
-        match self.solve(model, t + h, h, y) {
-            Err(_) if depth < self.newton.max_halvings => {
-                // The failure path may allocate (a dynamic state's copy); success never does.
-                y.clone_from(&self.start);
-                let saved = y.clone();
-                if let Err(error) = self.advance(model, t, 0.5 * h, y, depth + 1) {
-                    y.clone_from(&saved);
-                    return Err(error);
-                }
-                self.advance(model, t + 0.5 * h, 0.5 * h, y, depth + 1)
-            }
-            result => result,
-        }
-    }
-
-    /// Newton's method for y = yₙ + h·f(t₁, y), from y = yₙ = `self.start`.
-    fn solve(&mut self, model: &M, t1: f64, h: f64, y: &mut M::State) -> Result<()> {
+    /// Newton's method for y = yₙ + h·f(tₙ₊₁, y), from y⁰ = yₙ.
+    fn attempt(&mut self, model: &M, s: Step<'_, M::State>, y: &mut M::State) -> Result<f64> {
+        let (t1, h) = (s.t + s.h, s.h);
+        y.clone_from(s.y);
         let mut residual = f64::NAN;
         let mut previous_update = f64::INFINITY;
+        let fail = |iters, residual, cause| Error::NewtonDidNotConverge {
+            t: t1,
+            dt: h,
+            iters,
+            residual,
+            cause,
+            halvings: 0,
+        };
         for iter in 1..=self.newton.max_iters {
             model.derivative(t1, y, &mut self.force);
-            self.evaluations.force += 1;
+            s.stats.evaluations += 1;
             let rhs = self.update.as_mut_slice();
             residual = 0.0;
-            let terms = self
-                .start
-                .as_slice()
-                .iter()
-                .zip(self.force.as_slice())
-                .zip(y.as_slice());
+            let terms =
+                s.y.as_slice()
+                    .iter()
+                    .zip(self.force.as_slice())
+                    .zip(y.as_slice());
             for (bi, ((y0, f), yk)) in rhs.iter_mut().zip(terms) {
                 *bi = y0 + h * f - yk;
-                residual = residual.max(bi.abs());
+                // NaN-propagating max: a NaN residual must not read as converged.
+                if bi.abs() > residual || bi.is_nan() {
+                    residual = bi.abs();
+                }
+            }
+            if !residual.is_finite() {
+                return Err(fail(iter, residual, NewtonFailure::NotFinite));
             }
             model.jacobian(t1, y, &mut self.jacobian);
-            self.evaluations.jacobian += 1;
-            if !self.jacobian.solve_identity_minus(h, rhs) {
-                return Err(Error::NewtonDidNotConverge {
-                    t: t1,
-                    iters: iter,
-                    residual,
-                });
+            s.stats.jacobian_evaluations += 1;
+            s.stats.factorizations += 1;
+            s.stats.linear_solves += 1;
+            if !(self.jacobian.factorize(h, &mut self.factors)
+                && self.jacobian.solve(&mut self.factors, rhs))
+            {
+                let cause = if rhs.iter().all(|x| x.is_finite()) {
+                    NewtonFailure::Singular
+                } else {
+                    NewtonFailure::NotFinite
+                };
+                return Err(fail(iter, residual, cause));
             }
             // Newton that stops contracting (θ = ‖Δₖ‖/‖Δₖ₋₁‖ ≥ 1) is heading for another root
             // of the implicit equations, or none: give up so the step can be halved (the test of
             // Hairer & Wanner 1996, §IV.8).
             let update = rhs.iter().fold(0.0, |m: f64, d| m.max(d.abs()));
-            if update.is_nan() || (update >= previous_update && !self.newton.linearized) {
-                return Err(Error::NewtonDidNotConverge {
-                    t: t1,
-                    iters: iter,
-                    residual,
-                });
+            if update >= previous_update && !self.newton.linearized {
+                return Err(fail(iter, residual, NewtonFailure::Diverging));
             }
             previous_update = update;
             let mut converged = true;
@@ -140,13 +124,21 @@ impl<M: Jacobian> ImplicitEuler<M> {
                 converged &= di.abs() <= self.newton.tol * (1.0 + yi.abs());
             }
             if converged || self.newton.linearized {
-                return Ok(());
+                return Ok(0.0);
             }
         }
-        Err(Error::NewtonDidNotConverge {
-            t: t1,
-            iters: self.newton.max_iters,
+        Err(fail(
+            self.newton.max_iters,
             residual,
-        })
+            NewtonFailure::Iterations,
+        ))
+    }
+}
+
+impl<M: Jacobian> ImplicitEuler<M> {
+    /// The Newton matrix, holding the last Jacobian or its factors: particle models read their
+    /// factorization counts from it.
+    pub fn matrix(&self) -> &M::Matrix {
+        &self.jacobian
     }
 }

@@ -1,8 +1,8 @@
 //! Leapfrog in kick-drift-kick form.
 
-use super::{Integrator, axpy};
+use super::{Integrator, Step, axpy, set_axpy};
 use crate::model::{split, split_mut};
-use crate::{Method, NewtonOptions, Result, SecondOrder, State};
+use crate::{Method, NewtonOptions, Result, SecondOrder, State, Stats};
 
 /// Leapfrog, kick-drift-kick: vₙ₊½ = vₙ + ½h·aₙ, xₙ₊₁ = xₙ + h·vₙ₊½, vₙ₊₁ = vₙ₊½ + ½h·aₙ₊₁.
 ///
@@ -19,10 +19,9 @@ use crate::{Method, NewtonOptions, Result, SecondOrder, State};
 /// §I.3.1; V. Springel, "The cosmological simulation code GADGET-2", MNRAS 364 (2005) 1105, §4.
 #[derive(Clone, Debug)]
 pub struct Leapfrog<S> {
-    dt: f64,
     /// aₙ in the velocity half.
     accel: S,
-    /// aₙ₊₁ in the velocity half.
+    /// aₙ₊₁ of the last attempt, in the velocity half.
     next: S,
     /// The state at which aₙ₊₁ is evaluated, when the force reads velocities.
     probe: S,
@@ -30,41 +29,56 @@ pub struct Leapfrog<S> {
 
 impl<M: SecondOrder> Integrator<M> for Leapfrog<M::State> {
     const METHOD: Method = Method::Leapfrog;
-    const STARTUP_EVALUATIONS: u64 = 1;
-    const EVALUATIONS_PER_STEP: u64 = 1;
 
-    fn start(model: &M, t0: f64, dt: f64, state: &M::State, _: &NewtonOptions) -> Result<Self> {
-        let mut accel = state.clone();
-        model.acceleration(t0, state, &mut accel);
+    fn prepare(
+        model: &M,
+        t0: f64,
+        y0: &M::State,
+        _: &NewtonOptions,
+        stats: &mut Stats,
+    ) -> Result<Self> {
+        let mut accel = y0.clone();
+        model.acceleration(t0, y0, &mut accel);
+        stats.evaluations += 1;
         Ok(Leapfrog {
-            dt,
             next: accel.clone(),
-            probe: state.clone(),
+            probe: y0.clone(),
             accel,
         })
     }
 
     #[inline]
-    fn step(&mut self, model: &M, t: f64, state: &mut M::State) -> Result<()> {
-        let half = 0.5 * self.dt;
+    fn attempt(&mut self, model: &M, s: Step<'_, M::State>, y_new: &mut M::State) -> Result<f64> {
+        let (h, half) = (s.h, 0.5 * s.h);
         let (_, a) = split(self.accel.as_slice());
+        let (x0, v0) = split(s.y.as_slice());
         {
-            let (x, v) = split_mut(state.as_mut_slice());
-            axpy(v, half, a); // kick
-            axpy(x, self.dt, v); // drift
+            let (x, v) = split_mut(y_new.as_mut_slice());
+            set_axpy(v, v0, half, a); // kick
+            set_axpy(x, x0, h, v); // drift
         }
         if M::READS_VELOCITY {
-            self.probe.clone_from(state);
+            self.probe.clone_from(y_new);
             let (_, v_probe) = split_mut(self.probe.as_mut_slice());
             axpy(v_probe, half, a);
-            model.acceleration(t + self.dt, &self.probe, &mut self.next);
+            model.acceleration(s.t + h, &self.probe, &mut self.next);
         } else {
-            model.acceleration(t + self.dt, state, &mut self.next);
+            model.acceleration(s.t + h, y_new, &mut self.next);
         }
+        s.stats.evaluations += 1;
         let (_, a_next) = split(self.next.as_slice());
-        let (_, v) = split_mut(state.as_mut_slice());
+        let (_, v) = split_mut(y_new.as_mut_slice());
         axpy(v, half, a_next); // kick
+        Ok(0.0)
+    }
+
+    #[inline]
+    fn accept(&mut self) {
         std::mem::swap(&mut self.accel, &mut self.next);
-        Ok(())
+    }
+
+    fn restart(&mut self, model: &M, t: f64, y: &M::State, stats: &mut Stats) {
+        model.acceleration(t, y, &mut self.accel);
+        stats.evaluations += 1;
     }
 }

@@ -1,7 +1,7 @@
 //! The classical fourth-order Runge–Kutta method.
 
-use super::{Integrator, set_axpy};
-use crate::{Method, Model, NewtonOptions, Result, State};
+use super::{Integrator, Step, set_axpy};
+use crate::{Method, Model, NewtonOptions, Result, State, Stats};
 
 /// Classical Runge–Kutta: k₁ = f(tₙ, yₙ), k₂ = f(tₙ + h/2, yₙ + h/2·k₁),
 /// k₃ = f(tₙ + h/2, yₙ + h/2·k₂), k₄ = f(tₙ + h, yₙ + h·k₃),
@@ -16,27 +16,23 @@ use crate::{Method, Model, NewtonOptions, Result, State};
 /// Ordinary Differential Equations I*, 2nd ed., 1993, §II.1.
 #[derive(Clone, Debug)]
 pub struct Rk4<S> {
-    dt: f64,
     k: [S; 4],
     probe: S,
 }
 
 impl<M: Model> Integrator<M> for Rk4<M::State> {
     const METHOD: Method = Method::Rk4;
-    const STARTUP_EVALUATIONS: u64 = 0;
-    const EVALUATIONS_PER_STEP: u64 = 4;
 
-    fn start(_: &M, _: f64, dt: f64, state: &M::State, _: &NewtonOptions) -> Result<Self> {
+    fn prepare(_: &M, _: f64, y0: &M::State, _: &NewtonOptions, _: &mut Stats) -> Result<Self> {
         Ok(Rk4 {
-            dt,
-            k: std::array::from_fn(|_| state.clone()),
-            probe: state.clone(),
+            k: std::array::from_fn(|_| y0.clone()),
+            probe: y0.clone(),
         })
     }
 
     #[inline]
-    fn step(&mut self, model: &M, t: f64, y: &mut M::State) -> Result<()> {
-        let h = self.dt;
+    fn attempt(&mut self, model: &M, s: Step<'_, M::State>, y_new: &mut M::State) -> Result<f64> {
+        let (t, h, y) = (s.t, s.h, s.y);
         let [k1, k2, k3, k4] = &mut self.k;
         let probe = &mut self.probe;
         model.derivative(t, y, k1);
@@ -46,6 +42,7 @@ impl<M: Model> Integrator<M> for Rk4<M::State> {
         model.derivative(t + 0.5 * h, probe, k3);
         set_axpy(probe.as_mut_slice(), y.as_slice(), h, k3.as_slice());
         model.derivative(t + h, probe, k4);
+        s.stats.evaluations += 4;
         let sixth = h / 6.0;
         let ks = k1
             .as_slice()
@@ -53,9 +50,10 @@ impl<M: Model> Integrator<M> for Rk4<M::State> {
             .zip(k2.as_slice())
             .zip(k3.as_slice())
             .zip(k4.as_slice());
-        for (yi, (((a, b), c), d)) in y.as_mut_slice().iter_mut().zip(ks) {
-            *yi += sixth * (a + 2.0 * b + 2.0 * c + d);
+        let out = y_new.as_mut_slice().iter_mut().zip(y.as_slice());
+        for ((o, yi), (((a, b), c), d)) in out.zip(ks) {
+            *o = yi + sixth * (a + 2.0 * b + 2.0 * c + d);
         }
-        Ok(())
+        Ok(0.0)
     }
 }

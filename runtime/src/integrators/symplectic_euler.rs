@@ -1,8 +1,8 @@
 //! Symplectic (semi-implicit) Euler.
 
-use super::{Integrator, axpy};
+use super::{Integrator, Step, set_axpy};
 use crate::model::{split, split_mut};
-use crate::{Method, NewtonOptions, Result, SecondOrder, State};
+use crate::{Method, NewtonOptions, Result, SecondOrder, State, Stats};
 
 /// Symplectic (semi-implicit) Euler, velocity first:
 /// vₙ₊₁ = vₙ + h·a(tₙ, xₙ, vₙ), xₙ₊₁ = xₙ + h·vₙ₊₁.
@@ -18,29 +18,25 @@ use crate::{Method, NewtonOptions, Result, SecondOrder, State};
 /// Springer 2006, §I.1.2 and Theorem VI.3.3.
 #[derive(Clone, Debug)]
 pub struct SymplecticEuler<S> {
-    dt: f64,
     accel: S,
 }
 
 impl<M: SecondOrder> Integrator<M> for SymplecticEuler<M::State> {
     const METHOD: Method = Method::SymplecticEuler;
-    const STARTUP_EVALUATIONS: u64 = 0;
-    const EVALUATIONS_PER_STEP: u64 = 1;
 
-    fn start(_: &M, _: f64, dt: f64, state: &M::State, _: &NewtonOptions) -> Result<Self> {
-        Ok(SymplecticEuler {
-            dt,
-            accel: state.clone(),
-        })
+    fn prepare(_: &M, _: f64, y0: &M::State, _: &NewtonOptions, _: &mut Stats) -> Result<Self> {
+        Ok(SymplecticEuler { accel: y0.clone() })
     }
 
     #[inline]
-    fn step(&mut self, model: &M, t: f64, state: &mut M::State) -> Result<()> {
-        model.acceleration(t, state, &mut self.accel);
+    fn attempt(&mut self, model: &M, s: Step<'_, M::State>, y_new: &mut M::State) -> Result<f64> {
+        model.acceleration(s.t, s.y, &mut self.accel);
+        s.stats.evaluations += 1;
         let (_, a) = split(self.accel.as_slice());
-        let (x, v) = split_mut(state.as_mut_slice());
-        axpy(v, self.dt, a);
-        axpy(x, self.dt, v);
-        Ok(())
+        let (x0, v0) = split(s.y.as_slice());
+        let (x, v) = split_mut(y_new.as_mut_slice());
+        set_axpy(v, v0, s.h, a);
+        set_axpy(x, x0, s.h, v);
+        Ok(0.0)
     }
 }

@@ -1,8 +1,8 @@
 //! Velocity Verlet.
 
-use super::{Integrator, axpy};
+use super::{Integrator, Step, axpy};
 use crate::model::{split, split_mut};
-use crate::{Method, NewtonOptions, Result, SecondOrder, State};
+use crate::{Method, NewtonOptions, Result, SecondOrder, State, Stats};
 
 /// Velocity Verlet: xₙ₊₁ = xₙ + h·vₙ + ½h²·aₙ, vₙ₊₁ = vₙ + ½h·(aₙ + aₙ₊₁).
 ///
@@ -20,53 +20,71 @@ use crate::{Method, NewtonOptions, Result, SecondOrder, State};
 /// 637; Hairer, Lubich & Wanner, *Geometric Numerical Integration*, 2nd ed., 2006, §I.1.4.
 #[derive(Clone, Debug)]
 pub struct VelocityVerlet<S> {
-    dt: f64,
     /// aₙ in the velocity half.
     accel: S,
-    /// aₙ₊₁ in the velocity half.
+    /// aₙ₊₁ of the last attempt, in the velocity half.
     next: S,
-    /// The state at which aₙ₊₁ is evaluated.
+    /// The state at which aₙ₊₁ is evaluated, when the force reads velocities.
     probe: S,
 }
 
 impl<M: SecondOrder> Integrator<M> for VelocityVerlet<M::State> {
     const METHOD: Method = Method::VelocityVerlet;
-    const STARTUP_EVALUATIONS: u64 = 1;
-    const EVALUATIONS_PER_STEP: u64 = 1;
 
-    fn start(model: &M, t0: f64, dt: f64, state: &M::State, _: &NewtonOptions) -> Result<Self> {
-        let mut accel = state.clone();
-        model.acceleration(t0, state, &mut accel);
+    fn prepare(
+        model: &M,
+        t0: f64,
+        y0: &M::State,
+        _: &NewtonOptions,
+        stats: &mut Stats,
+    ) -> Result<Self> {
+        let mut accel = y0.clone();
+        model.acceleration(t0, y0, &mut accel);
+        stats.evaluations += 1;
         Ok(VelocityVerlet {
-            dt,
             next: accel.clone(),
-            probe: state.clone(),
+            probe: y0.clone(),
             accel,
         })
     }
 
     #[inline]
-    fn step(&mut self, model: &M, t: f64, state: &mut M::State) -> Result<()> {
-        let h = self.dt;
+    fn attempt(&mut self, model: &M, s: Step<'_, M::State>, y_new: &mut M::State) -> Result<f64> {
+        let h = s.h;
         let (_, a) = split(self.accel.as_slice());
+        let (x0, v0) = split(s.y.as_slice());
         {
-            let (x, v) = split_mut(state.as_mut_slice());
-            for ((xi, vi), ai) in x.iter_mut().zip(v.iter()).zip(a) {
-                *xi += h * vi + 0.5 * h * h * ai;
+            let (x, v) = split_mut(y_new.as_mut_slice());
+            for (((xi, x0i), v0i), ai) in x.iter_mut().zip(x0).zip(v0).zip(a) {
+                *xi = x0i + h * v0i + 0.5 * h * h * ai;
             }
+            v.copy_from_slice(v0);
         }
-        self.probe.clone_from(state);
-        if M::READS_VELOCITY {
+        let probe = if M::READS_VELOCITY {
+            self.probe.clone_from(y_new);
             let (_, v_probe) = split_mut(self.probe.as_mut_slice());
             axpy(v_probe, h, a);
-        }
-        model.acceleration(t + h, &self.probe, &mut self.next);
+            &self.probe
+        } else {
+            &*y_new
+        };
+        model.acceleration(s.t + h, probe, &mut self.next);
+        s.stats.evaluations += 1;
         let (_, a_next) = split(self.next.as_slice());
-        let (_, v) = split_mut(state.as_mut_slice());
+        let (_, v) = split_mut(y_new.as_mut_slice());
         for ((vi, ai), bi) in v.iter_mut().zip(a).zip(a_next) {
             *vi += 0.5 * h * (ai + bi);
         }
+        Ok(0.0)
+    }
+
+    #[inline]
+    fn accept(&mut self) {
         std::mem::swap(&mut self.accel, &mut self.next);
-        Ok(())
+    }
+
+    fn restart(&mut self, model: &M, t: f64, y: &M::State, stats: &mut Stats) {
+        model.acceleration(t, y, &mut self.accel);
+        stats.evaluations += 1;
     }
 }

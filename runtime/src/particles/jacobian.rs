@@ -71,6 +71,8 @@ pub struct ParticleJacobian<const D: usize> {
     cursor: usize,
     /// Project the blocks to definite stiffness before assembly ([`crate::NewtonOptions::definite`]).
     definite: bool,
+    /// The c of the last factorization of I − c·J.
+    scale: f64,
     solver: Solver,
 }
 
@@ -133,6 +135,7 @@ impl<const D: usize> ParticleJacobian<D> {
             ends,
             cursor: 0,
             definite: false,
+            scale: 0.0,
             solver,
         }
     }
@@ -381,21 +384,31 @@ impl<const D: usize> NewtonMatrix for ParticleJacobian<D> {
         self.definite = newton.definite;
     }
 
-    fn solve_identity_minus(&mut self, h: f64, b: &mut [f64]) -> bool {
+    /// The factorization lives in the sparse solver inside the matrix.
+    type Factors = ();
+
+    fn factors(&self) {}
+
+    /// Assembles M − c·∂f/∂v − c²·∂f/∂x and factorizes it: (I − c·J)·x = b for the first-order
+    /// system is solved through this velocity form.
+    fn factorize(&mut self, c: f64, _: &mut ()) -> bool {
+        self.assemble(c);
+        self.scale = c;
+        self.solver.factorize()
+    }
+
+    fn solve(&mut self, _: &mut (), b: &mut [f64]) -> bool {
         let n = D * self.particles;
         if b.len() != 2 * n {
             return false;
         }
-        self.assemble(h);
+        let c = self.scale;
         let (bx, bv) = b.split_at_mut(n);
-        self.velocity_rhs(h, bx, bv);
-        if !self.solver.factorize() {
-            return false;
-        }
+        self.velocity_rhs(c, bx, bv);
         self.solver.substitute();
         for ((x, v), dv) in bx.iter_mut().zip(bv.iter_mut()).zip(&self.solver.rhs) {
             *v = *dv;
-            *x += h * dv;
+            *x += c * dv;
         }
         b.iter().all(|x| x.is_finite())
     }
@@ -640,6 +653,7 @@ impl<const D: usize> Clone for ParticleJacobian<D> {
             diagonal: self.diagonal.clone(),
             cursor: self.cursor,
             definite: self.definite,
+            scale: self.scale,
             solver: self.solver.clone(),
         }
     }

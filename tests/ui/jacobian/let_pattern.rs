@@ -12,8 +12,8 @@ pub struct Model {
 #[system]
 impl Model {
     fn acceleration(&self) -> f64 {
-        let (a, b) = (self.x, self.v);
-        -a - b
+        let &a = &self.x;
+        -a
     }
 }
 

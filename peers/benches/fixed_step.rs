@@ -1,8 +1,9 @@
 //! odyn against the same method written by hand and against two peer crates, `ode_solvers` and
 //! `differential-equations`, on the same problems from the same initial states.
 //!
-//! `cargo bench --bench peers`. Every variant of a group runs side by side in one process;
-//! compare medians within a group (the machine is shared, so absolute times drift between runs).
+//! `cargo bench --manifest-path peers/Cargo.toml --bench fixed_step`. Every variant of a group
+//! runs side by side in one process; compare medians within a group (the machine is shared, so
+//! absolute times drift between runs).
 //!
 //! - `lorenz_rk4`: 10⁶ classical RK4 steps of dt = 1e-5 (to t = 10) on Lorenz, σ = 10, ρ = 28,
 //!   β = 8/3, from (1, 1, 1).
@@ -40,9 +41,9 @@ use std::hint::black_box;
 use differential_equations::linalg::Matrix;
 use differential_equations::methods::{ExplicitRungeKutta, ImplicitRungeKutta};
 use differential_equations::ode::{ODE, OrdinaryNumericalMethod};
-use odyn::NewtonOptions;
 use odyn::integrators::{ImplicitEuler, Integrator, Rk4};
 use odyn::prelude::*;
+use odyn::{NewtonOptions, Stats};
 
 /// RK4 groups: 10⁶ steps of 1e-5, to t = 10.
 const RK4_DT: f64 = 1e-5;
@@ -174,11 +175,20 @@ impl ODE<f64, [f64; 2]> for VanDerPol {
 /// Steps a model with odyn's integrator `I` through the [`Integrator`] trait.
 fn odyn_run<M: Model, I: Integrator<M>>(model: &M, dt: f64, steps: u64) -> M::State {
     let mut state = model.state();
-    let mut integrator = I::start(model, 0.0, dt, &state, &NewtonOptions::default())
+    let mut scratch = state.clone();
+    let mut stats = Stats::default();
+    let mut integrator = I::start(model, 0.0, &state, &NewtonOptions::default(), &mut stats)
         .expect("a fixed-size model always starts");
     for n in 0..steps {
         integrator
-            .step(model, n as f64 * dt, &mut state)
+            .step(
+                model,
+                n as f64 * dt,
+                dt,
+                &mut state,
+                &mut scratch,
+                &mut stats,
+            )
             .expect("step");
     }
     state

@@ -1,0 +1,458 @@
+//! Expressions: literals, paths, fields and indices, operators, calls, branch values, and the
+//! state literal `<Model>State { … }`; and the function's value as f(t, y) in state layout.
+
+use proc_macro2::TokenStream;
+use quote::{ToTokens, quote};
+use syn::{BinOp, Expr, ExprBinary, ExprField, Ident, Lit, Member, UnOp};
+
+use super::scope::{is_self, path_name};
+use super::{Lowering, MAX_DEPTH, Prologue, Value};
+use crate::ir::{ExprId, Graph};
+use crate::model::{Order, Role, Shape, int_literal, shape_of};
+
+/// An arithmetic operator.
+#[derive(Clone, Copy)]
+pub(super) enum Arith {
+    Add,
+    Sub,
+    Mul,
+    Div,
+}
+
+/// The operator of `a op= b`.
+pub(super) fn compound(op: &BinOp) -> Option<Arith> {
+    match op {
+        BinOp::AddAssign(_) => Some(Arith::Add),
+        BinOp::SubAssign(_) => Some(Arith::Sub),
+        BinOp::MulAssign(_) => Some(Arith::Mul),
+        BinOp::DivAssign(_) => Some(Arith::Div),
+        _ => None,
+    }
+}
+
+/// The component a field access names: `.x` … `.w` of a vector, `.0` … of a tuple.
+pub(super) fn component_index(f: &ExprField) -> Option<usize> {
+    match &f.member {
+        Member::Named(n) => ["x", "y", "z", "w"].iter().position(|c| n == c),
+        Member::Unnamed(i) => Some(i.index as usize),
+    }
+}
+
+impl Lowering<'_> {
+    /// Lowers `e`; a state-independent expression the graph cannot express becomes opaque.
+    pub(super) fn expr(&mut self, e: &Expr) -> syn::Result<Value> {
+        if self.depth >= MAX_DEPTH {
+            self.too_deep = true;
+            return Err(self.refuse(
+                e,
+                format_args!(
+                    "an expression nested more than {MAX_DEPTH} levels deep; split it with `let`s"
+                ),
+            ));
+        }
+        let prologue = self.prologue.len();
+        let scopes =
+            matches!(e, Expr::If(_) | Expr::Match(_) | Expr::Block(_)).then(|| self.scopes.clone());
+        self.depth += 1;
+        let lowered = self.structural(e);
+        self.depth -= 1;
+        match lowered {
+            Ok(value) => Ok(value),
+            // Too deep to follow is final: no opaque fallback (its tokens could be just as deep).
+            Err(error) if self.too_deep => Err(error),
+            Err(_) if !self.depends(e) => {
+                // Whatever the failed attempt made opaque (`s` of `s.rest`) is part of `e` now.
+                self.prologue.truncate(prologue);
+                if let Some(scopes) = scopes {
+                    self.scopes = scopes;
+                }
+                if self.reads_time(e) {
+                    self.time_opaque = true;
+                }
+                Ok(Value::Scalar(self.opaque(e.to_token_stream())))
+            }
+            Err(error) => Err(error),
+        }
+    }
+
+    pub(super) fn scalar(&mut self, e: &Expr) -> syn::Result<ExprId> {
+        match self.expr(e)? {
+            Value::Scalar(id) => Ok(id),
+            _ => Err(self.error(e, "a vector where a number is expected")),
+        }
+    }
+
+    pub(super) fn opaque(&mut self, tokens: TokenStream) -> ExprId {
+        let index = self.opaques;
+        self.opaques += 1;
+        self.prologue.push(Prologue::Opaque(index, tokens));
+        self.graph.opaque(index)
+    }
+
+    fn structural(&mut self, e: &Expr) -> syn::Result<Value> {
+        match e {
+            Expr::Lit(lit) => match &lit.lit {
+                Lit::Float(f) => Ok(Value::Scalar(self.graph.num(f.base10_parse()?))),
+                Lit::Int(i) => Ok(Value::Scalar(self.graph.num(i.base10_parse()?))),
+                other => Err(self.error(other, "a literal that is not a number")),
+            },
+            Expr::Paren(p) => self.expr(&p.expr),
+            Expr::Group(g) => self.expr(&g.expr),
+            // nalgebra takes vector arguments by reference (`a.dot(&b)`): same value.
+            Expr::Reference(r) if r.mutability.is_none() => self.expr(&r.expr),
+            Expr::Path(p) => {
+                let name = path_name(e).ok_or_else(|| self.error(p, "a path"))?;
+                if let Some(binding) = self.lookup(&name) {
+                    return match &binding.value {
+                        Some(value) => Ok(value.clone()),
+                        // Read by name in the prologue (`expr` makes it opaque).
+                        None => Err(self.error(p, format_args!("`{name}`"))),
+                    };
+                }
+                if let Some((_, index)) = self.time.as_ref().filter(|(t, _)| *t == name) {
+                    return Ok(Value::Scalar(self.graph.var(*index)));
+                }
+                Err(self.error(p, format_args!("`{name}`")))
+            }
+            Expr::Field(f) => self.field(f),
+            Expr::Index(index) => {
+                let base = self.expr(&index.expr)?;
+                let i = int_literal(&index.index).ok_or_else(|| {
+                    self.error(&index.index, "an index that is not an integer literal")
+                })?;
+                self.component(&base, i, &index.index)
+            }
+            Expr::Unary(u) if matches!(u.op, UnOp::Neg(_)) => {
+                let value = self.expr(&u.expr)?;
+                Ok(self.map(value, |g, x| g.neg(x)))
+            }
+            Expr::Binary(b) => self.binary(b),
+            Expr::MethodCall(m) => {
+                let receiver = self.expr(&m.receiver)?;
+                let args: Vec<&Expr> = m.args.iter().collect();
+                self.apply(&m.method.to_string(), receiver, &args, &m.method)
+            }
+            Expr::Call(c) => self.call(c),
+            Expr::Struct(s) => self.state_literal(s),
+            Expr::Tuple(t) => Ok(Value::Tuple(
+                t.elems
+                    .iter()
+                    .map(|e| self.expr(e))
+                    .collect::<syn::Result<_>>()?,
+            )),
+            Expr::Array(a) => Ok(Value::Vector(
+                a.elems
+                    .iter()
+                    .map(|e| self.scalar(e))
+                    .collect::<syn::Result<_>>()?,
+            )),
+            Expr::Block(b) if b.label.is_none() => self.block_value(&b.block),
+            Expr::If(_) | Expr::Match(_) => self.branch_value(e),
+            Expr::ForLoop(l) if self.depends(&l.expr) => {
+                Err(self.error(&l.expr, "the state in a loop bound (`for`)"))
+            }
+            Expr::ForLoop(l) => {
+                Err(self.error(l.for_token, "a loop whose body reads the state (`for`)"))
+            }
+            Expr::While(w) => Err(self.error(&w.cond, "a loop that reads the state (`while`)")),
+            Expr::Loop(l) => Err(self.error(l.loop_token, "a loop that reads the state (`loop`)")),
+            Expr::Cast(c) => Err(self.error(c, "a cast (`as`) of a state-dependent value")),
+            Expr::Macro(m) => Err(self.error(m, "a macro call on the state")),
+            Expr::Closure(c) => Err(self.error(c, "a closure over the state")),
+            Expr::Return(r) => Err(self.refuse(
+                r,
+                "a `return` inside an expression; return from the function's own statements or \
+                 from an `if`/`match` among them",
+            )),
+            other => Err(self.error(other, "this kind of expression")),
+        }
+    }
+
+    fn field(&mut self, f: &ExprField) -> syn::Result<Value> {
+        if is_self(&f.base) {
+            let Member::Named(name) = &f.member else {
+                return Err(self.error(f, "a tuple field of `self`"));
+            };
+            if let Some(offset) = self.offset(name) {
+                let shape = self.model.field(name).expect("offset found it").shape;
+                return Ok(self.state_value(offset, shape));
+            }
+            // A parameter: opaque, with its shape when it has one of the state shapes.
+            return match self.parameter_shape(name) {
+                Some(Shape::Scalar) | None => Ok(Value::Scalar(self.opaque(f.to_token_stream()))),
+                Some(shape) => Ok(Value::Vector(
+                    (0..shape.len())
+                        .map(|i| self.opaque(quote!(#f[#i])))
+                        .collect(),
+                )),
+            };
+        }
+        let base = self.expr(&f.base)?;
+        let index = component_index(f)
+            .ok_or_else(|| self.error(&f.member, "a field other than `x`, `y`, `z`, `w`"))?;
+        self.component(&base, index, &f.member)
+    }
+
+    pub(super) fn component(
+        &mut self,
+        base: &Value,
+        i: usize,
+        at: impl ToTokens,
+    ) -> syn::Result<Value> {
+        match base {
+            Value::Vector(v) if i < v.len() => Ok(Value::Scalar(v[i])),
+            Value::Tuple(t) if i < t.len() => Ok(t[i].clone()),
+            _ => Err(self.error(at, "a component that is out of range or of a number")),
+        }
+    }
+
+    fn binary(&mut self, b: &ExprBinary) -> syn::Result<Value> {
+        let op = match b.op {
+            BinOp::Add(_) => Arith::Add,
+            BinOp::Sub(_) => Arith::Sub,
+            BinOp::Mul(_) => Arith::Mul,
+            BinOp::Div(_) => Arith::Div,
+            _ => {
+                return Err(self.error(
+                    b.op,
+                    format_args!("the operator `{}`", b.op.to_token_stream()),
+                ));
+            }
+        };
+        let (left, right) = (self.expr(&b.left)?, self.expr(&b.right)?);
+        self.arithmetic(&b.op.to_token_stream(), op, left, right)
+    }
+
+    pub(super) fn arithmetic(
+        &mut self,
+        at: &TokenStream,
+        op: Arith,
+        left: Value,
+        right: Value,
+    ) -> syn::Result<Value> {
+        let g = &mut self.graph;
+        let scalar = |g: &mut Graph, a, b| match op {
+            Arith::Add => g.add(a, b),
+            Arith::Sub => g.sub(a, b),
+            Arith::Mul => g.mul(a, b),
+            Arith::Div => g.div(a, b),
+        };
+        match (left, right) {
+            (Value::Scalar(a), Value::Scalar(b)) => Ok(Value::Scalar(scalar(g, a, b))),
+            (Value::Vector(a), Value::Vector(b))
+                if a.len() == b.len() && matches!(op, Arith::Add | Arith::Sub) =>
+            {
+                Ok(Value::Vector(
+                    a.into_iter().zip(b).map(|(x, y)| scalar(g, x, y)).collect(),
+                ))
+            }
+            (Value::Scalar(s), Value::Vector(v)) if matches!(op, Arith::Mul) => {
+                Ok(Value::Vector(v.into_iter().map(|x| g.mul(s, x)).collect()))
+            }
+            (Value::Vector(v), Value::Scalar(s)) if matches!(op, Arith::Mul | Arith::Div) => Ok(
+                Value::Vector(v.into_iter().map(|x| scalar(g, x, s)).collect()),
+            ),
+            (Value::Vector(_), Value::Vector(_)) if matches!(op, Arith::Mul) => Err(self.error(
+                at,
+                "vector × vector (use `dot`, `cross` or `component_mul`)",
+            )),
+            _ => Err(self.error(at, "operands of mismatched shapes")),
+        }
+    }
+
+    pub(super) fn map(
+        &mut self,
+        value: Value,
+        f: impl Fn(&mut Graph, ExprId) -> ExprId + Copy,
+    ) -> Value {
+        match value {
+            Value::Scalar(x) => Value::Scalar(f(&mut self.graph, x)),
+            Value::Vector(v) => {
+                Value::Vector(v.into_iter().map(|x| f(&mut self.graph, x)).collect())
+            }
+            Value::Tuple(t) => Value::Tuple(t.into_iter().map(|v| self.map(v, f)).collect()),
+        }
+    }
+
+    fn call(&mut self, c: &syn::ExprCall) -> syn::Result<Value> {
+        let Expr::Path(path) = &*c.func else {
+            return Err(self.error(&c.func, "a call"));
+        };
+        let segments: Vec<String> = path
+            .path
+            .segments
+            .iter()
+            .map(|s| s.ident.to_string())
+            .collect();
+        let args: Vec<&Expr> = c.args.iter().collect();
+        match segments
+            .iter()
+            .map(String::as_str)
+            .collect::<Vec<_>>()
+            .as_slice()
+        {
+            [.., ty, "new"] if vector_len(ty).is_some() || *ty == "SVector" => {
+                let parts = args
+                    .iter()
+                    .map(|a| self.scalar(a))
+                    .collect::<syn::Result<_>>()?;
+                Ok(Value::Vector(parts))
+            }
+            [.., ty, "zeros"] if vector_len(ty).is_some() => {
+                let zero = self.graph.num(0.0);
+                Ok(Value::Vector(vec![zero; vector_len(ty).expect("checked")]))
+            }
+            [.., "f64", name] if !args.is_empty() => {
+                let receiver = self.expr(args[0])?;
+                let method = &path
+                    .path
+                    .segments
+                    .last()
+                    .expect("a path has segments")
+                    .ident;
+                self.apply(name, receiver, &args[1..], method)
+            }
+            _ => Err(self.error(
+                &c.func,
+                format_args!(
+                    "a call of `{}` (odyn cannot see inside functions; inline it)",
+                    segments.join("::")
+                ),
+            )),
+        }
+    }
+
+    /// `<Model>State { x: …, v: … }`, the return value of `derivative`.
+    fn state_literal(&mut self, s: &syn::ExprStruct) -> syn::Result<Value> {
+        if !s.path.is_ident(&self.model.state_ident()) {
+            return Err(self.error(&s.path, "a struct literal other than the model's state"));
+        }
+        if let Some(rest) = &s.rest {
+            return Err(self.error(rest, "`..` in the state literal"));
+        }
+        let mut components = vec![None; self.model.len()];
+        for field in &s.fields {
+            let Member::Named(name) = &field.member else {
+                return Err(self.error(field, "a tuple field"));
+            };
+            let offset = self
+                .offset(name)
+                .ok_or_else(|| self.error(name, "an unknown state field"))?;
+            let parts = match self.expr(&field.expr)? {
+                Value::Scalar(x) => vec![x],
+                Value::Vector(v) => v,
+                Value::Tuple(_) => return Err(self.error(&field.expr, "a tuple")),
+            };
+            for (i, part) in parts.into_iter().enumerate() {
+                components[offset + i] = Some(part);
+            }
+        }
+        let components: Option<Vec<_>> = components.into_iter().collect();
+        components
+            .map(Value::Vector)
+            .ok_or_else(|| self.error(s, "a state literal with missing fields"))
+    }
+
+    /// f(t, y) in state layout order, from the body's value.
+    pub(super) fn outputs(
+        &mut self,
+        value: Value,
+        f: &syn::ImplItemFn,
+    ) -> syn::Result<Vec<ExprId>> {
+        let flat = |v: Value| match v {
+            Value::Scalar(x) => Some(vec![x]),
+            Value::Vector(v) => Some(v),
+            Value::Tuple(_) => None,
+        };
+        let mismatch = |l: &Self| {
+            l.error(
+                &f.sig.output,
+                "a return value whose shape does not match the state",
+            )
+        };
+        match self.model.order {
+            Order::First => {
+                let v = flat(value).ok_or_else(|| mismatch(self))?;
+                if v.len() == self.model.len() {
+                    Ok(v)
+                } else {
+                    Err(mismatch(self))
+                }
+            }
+            Order::Second => {
+                let velocities: Vec<_> = self
+                    .model
+                    .with_role(Role::Velocity)
+                    .map(|f| f.shape.len())
+                    .collect();
+                let parts = match (value, velocities.len()) {
+                    (Value::Tuple(parts), n) if n > 1 => parts,
+                    (single, 1) => vec![single],
+                    _ => return Err(mismatch(self)),
+                };
+                let mut accelerations = Vec::new();
+                for (part, len) in parts.into_iter().zip(&velocities) {
+                    let v = flat(part).ok_or_else(|| mismatch(self))?;
+                    if v.len() != *len {
+                        return Err(mismatch(self));
+                    }
+                    accelerations.extend(v);
+                }
+                // y = [q; v], so f = [v; a].
+                let dof = accelerations.len();
+                let mut f: Vec<_> = (0..dof).map(|i| self.graph.var(dof + i)).collect();
+                f.extend(accelerations);
+                Ok(f)
+            }
+        }
+    }
+
+    pub(super) fn integer(&self, e: &Expr) -> Option<i32> {
+        match e {
+            Expr::Lit(_) | Expr::Group(_) | Expr::Paren(_) => {
+                int_literal(e).and_then(|n| i32::try_from(n).ok())
+            }
+            Expr::Unary(u) if matches!(u.op, UnOp::Neg(_)) => self.integer(&u.expr).map(|n| -n),
+            _ => None,
+        }
+    }
+
+    fn offset(&self, name: &Ident) -> Option<usize> {
+        let mut offset = 0;
+        for f in &self.model.states {
+            if f.ident == name {
+                return Some(offset);
+            }
+            offset += f.shape.len();
+        }
+        None
+    }
+
+    fn state_value(&mut self, offset: usize, shape: Shape) -> Value {
+        match shape {
+            Shape::Scalar => Value::Scalar(self.graph.var(offset)),
+            _ => Value::Vector(
+                (0..shape.len())
+                    .map(|i| self.graph.var(offset + i))
+                    .collect(),
+            ),
+        }
+    }
+
+    fn parameter_shape(&self, name: &Ident) -> Option<Shape> {
+        let syn::Fields::Named(fields) = &self.model.item.fields else {
+            return None;
+        };
+        fields
+            .named
+            .iter()
+            .find(|f| f.ident.as_ref() == Some(name))
+            .and_then(|f| shape_of(&f.ty))
+    }
+}
+
+fn vector_len(ty: &str) -> Option<usize> {
+    ty.strip_prefix("Vector")
+        .and_then(|n| n.parse().ok())
+        .filter(|n| (1..=6).contains(n))
+}

@@ -1,0 +1,196 @@
+//! Stage 4: lowering a force function's body from syn into the expression graph.
+//!
+//! Only what depends on the state must be understood: any sub-expression that does not (a
+//! parameter, a call on parameters, a constant) becomes an opaque leaf, evaluated by the user's own
+//! code before the Jacobian — the *prologue*. What does depend on the state must be built from the
+//! supported operations ([`methods`]); anything else is an error at that sub-expression, naming
+//! what is supported. The time is a variable of the graph, so ∂f/∂t comes from the same
+//! differentiation as ∂f/∂y.
+//!
+//! The stage is split by construct:
+//!
+//! - this file: the entry points, the values a sub-expression lowers to, the error message;
+//! - [`scope`]: locals, `let` patterns, and which expressions read the state or the time;
+//! - [`statements`]: statements, branches on parameters (`if`, `match`) and early `return`s;
+//! - [`expr`]: expressions — literals, paths, fields, operators, calls, the state literal;
+//! - [`methods`]: the one table of supported methods, with their rules and the list the error
+//!   messages print.
+
+mod expr;
+mod methods;
+mod scope;
+mod statements;
+
+use std::collections::HashMap;
+
+use proc_macro2::TokenStream;
+use quote::ToTokens;
+use syn::{Expr, Ident, Pat, Stmt};
+
+use crate::ir::{ExprId, Graph};
+use crate::model::Model;
+
+use scope::Binding;
+
+/// Deepest expression nesting the lowering follows; deeper code is refused with a compile error
+/// rather than risking the compiler's stack (a 1000-deep expression once crashed rustc here).
+pub(crate) const MAX_DEPTH: u32 = 128;
+
+/// A lowered force function.
+pub(crate) struct Lowered {
+    pub(crate) graph: Graph,
+    /// f(t, y) component by component, in state layout order.
+    pub(crate) outputs: Vec<ExprId>,
+    /// What runs before the Jacobian: the body's state-independent statements, the opaque
+    /// values, and copies of the branches on parameters, in source order.
+    pub(crate) prologue: Vec<Prologue>,
+    /// The graph variable of the time, when the function reads it.
+    pub(crate) time: Option<usize>,
+    /// Whether ∂f/∂t is exact: false when the time reaches f through code odyn cannot
+    /// differentiate (a call of the user's own function of `t`, a loop).
+    pub(crate) exact_time: bool,
+}
+
+/// One item of the prologue.
+pub(crate) enum Prologue {
+    /// A state-independent statement of the user's, kept so opaque values can name its locals.
+    Stmt(Box<Stmt>),
+    /// Opaque value `index`, computed by the user's expression.
+    Opaque(usize, TokenStream),
+    /// A branch on parameters: the same branch runs in the prologue, records which arm it took in
+    /// its selector, and computes the arm's own opaque values.
+    Branch(Box<Branch>),
+}
+
+/// A branch of the prologue.
+pub(crate) struct Branch {
+    /// The selector variable: set to the index of the arm that ran.
+    pub(crate) selector: u32,
+    /// How the arm is chosen.
+    pub(crate) kind: BranchKind,
+    /// Each arm's prologue.
+    pub(crate) arms: Vec<Vec<Prologue>>,
+}
+
+/// How a branch chooses its arm.
+pub(crate) enum BranchKind {
+    /// `if c₀ {…} else if c₁ {…} else {…}`: the conditions, one fewer than the arms (the last
+    /// arm is the `else`, empty when the user wrote none).
+    If(Vec<Expr>),
+    /// `match scrutinee { pattern [if guard] => … }`.
+    Match(Box<Expr>, Vec<(Pat, Option<Expr>)>),
+}
+
+/// The value of a sub-expression.
+#[derive(Clone, Debug, PartialEq)]
+enum Value {
+    Scalar(ExprId),
+    Vector(Vec<ExprId>),
+    Tuple(Vec<Value>),
+}
+
+struct Lowering<'m> {
+    model: &'m Model<'m>,
+    function: String,
+    /// The time argument's name and its graph variable.
+    time: Option<(Ident, usize)>,
+    graph: Graph,
+    prologue: Vec<Prologue>,
+    opaques: usize,
+    selectors: u32,
+    scopes: Vec<HashMap<String, Binding>>,
+    /// Current nesting of `expr` calls (see [`MAX_DEPTH`]).
+    depth: u32,
+    /// Set when an expression went deeper than [`MAX_DEPTH`].
+    too_deep: bool,
+    /// Set when the time reaches an opaque value (so ∂f/∂t cannot be exact).
+    time_opaque: bool,
+}
+
+/// Lowers the body of `f`, the model's `acceleration` or `derivative`.
+pub(crate) fn lower(model: &Model<'_>, f: &syn::ImplItemFn) -> syn::Result<Lowered> {
+    let time = f.sig.inputs.iter().nth(1).and_then(|arg| match arg {
+        syn::FnArg::Typed(t) => match &*t.pat {
+            Pat::Ident(p) => Some((p.ident.clone(), model.len())),
+            _ => None,
+        },
+        syn::FnArg::Receiver(_) => None,
+    });
+    let mut l = Lowering::new(model, f, time);
+    let value = l.body(&f.block)?;
+    let outputs = l.outputs(value, f)?;
+    Ok(l.finish(outputs))
+}
+
+/// Lowers a particle kernel. `vectors` are its D-vector arguments, bound in order to the graph
+/// variables D·k … D·k + D − 1; `model` supplies only parameter shapes (its `states` are empty).
+/// The body's value, a D-vector, is the output.
+pub(crate) fn lower_kernel(
+    model: &Model<'_>,
+    f: &syn::ImplItemFn,
+    vectors: &[Ident],
+    dim: usize,
+) -> syn::Result<Lowered> {
+    let mut l = Lowering::new(model, f, None);
+    for (k, name) in vectors.iter().enumerate() {
+        let parts = (0..dim).map(|i| l.graph.var(dim * k + i)).collect();
+        l.bind(name.to_string(), Some(Value::Vector(parts)), true);
+    }
+    let outputs = match l.body(&f.block)? {
+        Value::Vector(v) if v.len() == dim => v,
+        _ => {
+            return Err(l.error(
+                &f.sig.output,
+                format_args!("a kernel value that is not a {dim}-vector force"),
+            ));
+        }
+    };
+    Ok(l.finish(outputs))
+}
+
+impl<'m> Lowering<'m> {
+    fn new(model: &'m Model<'m>, f: &syn::ImplItemFn, time: Option<(Ident, usize)>) -> Self {
+        Lowering {
+            model,
+            function: f.sig.ident.to_string(),
+            time,
+            graph: Graph::default(),
+            prologue: Vec::new(),
+            opaques: 0,
+            selectors: 0,
+            scopes: vec![HashMap::new()],
+            depth: 0,
+            too_deep: false,
+            time_opaque: false,
+        }
+    }
+
+    fn finish(self, outputs: Vec<ExprId>) -> Lowered {
+        Lowered {
+            graph: self.graph,
+            outputs,
+            prologue: self.prologue,
+            time: self.time.map(|(_, index)| index),
+            exact_time: !self.time_opaque,
+        }
+    }
+
+    /// The error for something the differentiation cannot go through, at `tokens`.
+    fn error(&self, tokens: impl ToTokens, what: impl std::fmt::Display) -> syn::Error {
+        syn::Error::new_spanned(
+            tokens,
+            format!(
+                "odyn cannot differentiate {what} in `{}`, so it cannot derive the Jacobian; {} \
+                 (or add `jacobian = false` to `#[system]` to use explicit methods only)",
+                self.function,
+                methods::supported()
+            ),
+        )
+    }
+
+    /// An error about the code's structure rather than an operation (a `return` in the wrong
+    /// place), with its own advice.
+    fn refuse(&self, tokens: impl ToTokens, message: impl std::fmt::Display) -> syn::Error {
+        syn::Error::new_spanned(tokens, format!("{message} in `{}`", self.function))
+    }
+}

@@ -1,0 +1,286 @@
+//! Locals and their values, `let` patterns, and which expressions read the state or the time.
+
+use proc_macro2::TokenStream;
+use quote::quote;
+use syn::visit::{self, Visit};
+use syn::{Expr, Ident, Member, Pat};
+
+use super::{Lowering, MAX_DEPTH, Value};
+
+/// A local in scope.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) struct Binding {
+    /// Its value in the graph; `None` for a local the lowering does not follow (bound by a
+    /// `match` pattern, or a `let` pattern of an opaque value): expressions that use it stay the
+    /// user's code, evaluated in the prologue, where the local exists.
+    pub(super) value: Option<Value>,
+    /// Whether it depends on the state.
+    pub(super) dependent: bool,
+}
+
+impl Lowering<'_> {
+    pub(super) fn bind(&mut self, name: String, value: Option<Value>, dependent: bool) {
+        let scope = self.scopes.last_mut().expect("there is always a scope");
+        scope.insert(name, Binding { value, dependent });
+    }
+
+    pub(super) fn lookup(&self, name: &str) -> Option<&Binding> {
+        self.scopes.iter().rev().find_map(|scope| scope.get(name))
+    }
+
+    /// Replaces the binding of `name` in the innermost scope that has it.
+    pub(super) fn rebind(&mut self, name: &str, binding: Binding) {
+        for scope in self.scopes.iter_mut().rev() {
+            if let Some(slot) = scope.get_mut(name) {
+                *slot = binding;
+                return;
+            }
+        }
+    }
+
+    /// Binds the names of `pat` to the parts of `value`: a plain name, `_`, a tuple pattern of a
+    /// tuple (or of a vector's components), a slice pattern of a vector, with type ascriptions.
+    /// Returns false when the pattern does not fit the value's shape.
+    pub(super) fn bind_pattern(&mut self, pat: &Pat, value: Value, dependent: bool) -> bool {
+        match pat {
+            Pat::Ident(p) if p.subpat.is_none() => {
+                self.bind(p.ident.to_string(), Some(value), dependent);
+                true
+            }
+            Pat::Wild(_) => true,
+            Pat::Type(t) => self.bind_pattern(&t.pat, value, dependent),
+            Pat::Paren(p) => self.bind_pattern(&p.pat, value, dependent),
+            Pat::Tuple(t) => {
+                let parts = match value {
+                    Value::Tuple(parts) => parts,
+                    Value::Vector(v) => v.into_iter().map(Value::Scalar).collect(),
+                    Value::Scalar(_) => return false,
+                };
+                parts.len() == t.elems.len()
+                    && t.elems
+                        .iter()
+                        .zip(parts)
+                        .all(|(p, v)| self.bind_pattern(p, v, dependent))
+            }
+            Pat::Slice(s) => match value {
+                Value::Vector(v) if v.len() == s.elems.len() => s
+                    .elems
+                    .iter()
+                    .zip(v)
+                    .all(|(p, x)| self.bind_pattern(p, Value::Scalar(x), dependent)),
+                _ => false,
+            },
+            _ => false,
+        }
+    }
+
+    /// A value of `shape`'s shape whose parts read the local `name` back by name (`m`, `v[0]`,
+    /// `pair.1`): opaque values the prologue computes after the code that changed the local.
+    pub(super) fn read_back(&mut self, name: TokenStream, shape: &Value) -> Value {
+        match shape {
+            Value::Scalar(_) => Value::Scalar(self.opaque(name)),
+            Value::Vector(v) => Value::Vector(
+                (0..v.len())
+                    .map(|i| self.opaque(quote!(#name[#i])))
+                    .collect(),
+            ),
+            Value::Tuple(parts) => Value::Tuple(
+                parts
+                    .iter()
+                    .enumerate()
+                    .map(|(i, part)| {
+                        let index = syn::Index::from(i);
+                        self.read_back(quote!(#name.#index), part)
+                    })
+                    .collect(),
+            ),
+        }
+    }
+
+    /// Binds every name `pat` introduces as a local the lowering does not follow.
+    pub(super) fn bind_unfollowed(&mut self, pat: &Pat) {
+        for name in pattern_names(pat) {
+            self.bind(name, None, false);
+        }
+    }
+
+    /// Whether `e` reads the state: `self.<state field>`, or a local bound to a state-dependent
+    /// value. Conservatively true for expressions nested deeper than [`MAX_DEPTH`].
+    pub(super) fn depends(&self, e: &Expr) -> bool {
+        let mut finder = Reads {
+            lowering: self,
+            time: false,
+            found: false,
+            depth: 0,
+        };
+        finder.visit_expr(e);
+        finder.found
+    }
+
+    /// Whether `e` mentions the time argument.
+    pub(super) fn reads_time(&self, e: &Expr) -> bool {
+        let mut finder = Reads {
+            lowering: self,
+            time: true,
+            found: false,
+            depth: 0,
+        };
+        finder.visit_expr(e);
+        finder.found
+    }
+
+    pub(super) fn depends_tokens(&self, tokens: &TokenStream) -> bool {
+        tokens.clone().into_iter().any(|tree| match tree {
+            proc_macro2::TokenTree::Ident(i) => {
+                self.lookup(&i.to_string()).is_some_and(|b| b.dependent)
+            }
+            proc_macro2::TokenTree::Group(g) => self.depends_tokens(&g.stream()),
+            _ => false,
+        })
+    }
+
+    fn is_time(&self, name: &str) -> bool {
+        self.time.as_ref().is_some_and(|(t, _)| t == name) && self.lookup(name).is_none()
+    }
+}
+
+/// Finds reads of the state (or, with `time`, of the time).
+struct Reads<'l, 'm> {
+    lowering: &'l Lowering<'m>,
+    time: bool,
+    found: bool,
+    depth: u32,
+}
+
+impl<'ast> Visit<'ast> for Reads<'_, '_> {
+    fn visit_expr(&mut self, e: &'ast Expr) {
+        if self.found {
+            return;
+        }
+        if self.depth > MAX_DEPTH {
+            // Too deep to follow: count it as read, so the lowering refuses it at its depth.
+            self.found = true;
+            return;
+        }
+        match e {
+            Expr::Field(f) if is_self(&f.base) => {
+                if let Member::Named(name) = &f.member {
+                    self.found |= !self.time && self.lowering.model.field(name).is_some();
+                }
+            }
+            Expr::Path(_) => {
+                if let Some(name) = path_name(e) {
+                    self.found |= if self.time {
+                        self.lowering.is_time(&name)
+                    } else {
+                        self.lowering.lookup(&name).is_some_and(|b| b.dependent)
+                    };
+                }
+            }
+            _ => {
+                self.depth += 1;
+                visit::visit_expr(self, e);
+                self.depth -= 1;
+            }
+        }
+    }
+
+    fn visit_macro(&mut self, m: &'ast syn::Macro) {
+        if self.time {
+            self.found |= m.tokens.clone().into_iter().any(|t| match t {
+                proc_macro2::TokenTree::Ident(i) => self.lowering.is_time(&i.to_string()),
+                _ => false,
+            });
+        } else {
+            self.found |= self.lowering.depends_tokens(&m.tokens);
+        }
+    }
+}
+
+/// The locals a statement may assign: targets of `=` and `op=`, receivers of method calls (which
+/// may take `&mut self`), and `&mut` borrows — each a bound local, as the user spelled it (its
+/// span resolves to the user's local in generated code).
+pub(super) fn assigned(lowering: &Lowering<'_>, e: &Expr) -> Vec<Ident> {
+    struct Finder<'l, 'm> {
+        lowering: &'l Lowering<'m>,
+        names: Vec<Ident>,
+    }
+    impl Finder<'_, '_> {
+        fn target(&mut self, e: &Expr) {
+            let base = match e {
+                Expr::Index(i) => &*i.expr,
+                Expr::Field(f) => &*f.base,
+                other => other,
+            };
+            if let Expr::Path(p) = base
+                && let Some(ident) = p.path.get_ident()
+                && self.lowering.lookup(&ident.to_string()).is_some()
+                && !self.names.contains(ident)
+            {
+                self.names.push(ident.clone());
+            }
+        }
+    }
+    impl<'ast> Visit<'ast> for Finder<'_, '_> {
+        fn visit_expr(&mut self, e: &'ast Expr) {
+            match e {
+                Expr::Assign(a) => self.target(&a.left),
+                Expr::Binary(b) if super::expr::compound(&b.op).is_some() => self.target(&b.left),
+                Expr::MethodCall(m) => self.target(&m.receiver),
+                Expr::Reference(r) if r.mutability.is_some() => self.target(&r.expr),
+                _ => {}
+            }
+            visit::visit_expr(self, e);
+        }
+    }
+    let mut finder = Finder {
+        lowering,
+        names: Vec::new(),
+    };
+    finder.visit_expr(e);
+    finder.names
+}
+
+/// The names a pattern binds.
+pub(super) fn pattern_names(pat: &Pat) -> Vec<String> {
+    struct Names(Vec<String>);
+    impl<'ast> Visit<'ast> for Names {
+        fn visit_pat_ident(&mut self, p: &'ast syn::PatIdent) {
+            self.0.push(p.ident.to_string());
+            visit::visit_pat_ident(self, p);
+        }
+    }
+    let mut names = Names(Vec::new());
+    names.visit_pat(pat);
+    names.0
+}
+
+/// Whether `stmts` contain a `return` that leaves the function (not one inside a closure or a
+/// nested item).
+pub(super) fn returns(stmts: &[syn::Stmt]) -> bool {
+    struct Finder(bool);
+    impl<'ast> Visit<'ast> for Finder {
+        fn visit_expr_return(&mut self, _: &'ast syn::ExprReturn) {
+            self.0 = true;
+        }
+        fn visit_expr_closure(&mut self, _: &'ast syn::ExprClosure) {}
+        fn visit_item(&mut self, _: &'ast syn::Item) {}
+        fn visit_expr_async(&mut self, _: &'ast syn::ExprAsync) {}
+    }
+    let mut finder = Finder(false);
+    for stmt in stmts {
+        finder.visit_stmt(stmt);
+    }
+    finder.0
+}
+
+pub(super) fn is_self(e: &Expr) -> bool {
+    matches!(e, Expr::Path(p) if p.qself.is_none() && p.path.is_ident("self"))
+}
+
+pub(super) fn path_name(e: &Expr) -> Option<String> {
+    match e {
+        Expr::Path(p) if p.qself.is_none() => p.path.get_ident().map(Ident::to_string),
+        _ => None,
+    }
+}

@@ -1,0 +1,178 @@
+//! Dense output: the solution between the ends of an accepted step, as a polynomial in the
+//! fraction θ of the step, and the store that keeps one per step for [`crate::Trajectory::at`].
+
+use crate::{Error, Result, State};
+
+/// y(t + θh) = Σₖ cₖ·θᵏ on one accepted step, θ ∈ [0, 1]: coefficient vectors c₀ … c_d.
+///
+/// Each method with its own continuous extension fills one from its stages (Tsit5's order-4
+/// interpolant, DOP853's order-7 one, the Rosenbrock methods'); every other method gets the
+/// cubic Hermite interpolant through y and f at both ends ([`DenseStep::hermite`]), order 3.
+#[derive(Clone, Debug)]
+pub struct DenseStep<S> {
+    /// Start of the step.
+    pub t: f64,
+    /// Its size.
+    pub h: f64,
+    /// Coefficients c₀ … c_d; only the first `len` are in use.
+    coefficients: Vec<S>,
+    len: usize,
+}
+
+impl<S: State> DenseStep<S> {
+    /// Room for polynomials of degree up to `degree`, every buffer shaped like `like`.
+    pub(crate) fn new(like: &S, degree: usize) -> Self {
+        DenseStep {
+            t: 0.0,
+            h: 0.0,
+            coefficients: (0..=degree).map(|_| like.clone()).collect(),
+            len: 0,
+        }
+    }
+
+    /// Starts filling a polynomial of `degree` for the step (t, h); returns its coefficient
+    /// buffers, to be overwritten.
+    pub(crate) fn fill(&mut self, t: f64, h: f64, degree: usize) -> &mut [S] {
+        debug_assert!(degree < self.coefficients.len());
+        self.t = t;
+        self.h = h;
+        self.len = degree + 1;
+        &mut self.coefficients[..=degree]
+    }
+
+    /// The degree in use.
+    pub fn degree(&self) -> usize {
+        self.len.saturating_sub(1)
+    }
+
+    /// The coefficients in use, c₀ first.
+    pub fn coefficients(&self) -> &[S] {
+        &self.coefficients[..self.len]
+    }
+
+    /// Writes y(t + θh) into `out` by Horner's rule.
+    pub fn eval(&self, theta: f64, out: &mut S) {
+        let c = self.coefficients();
+        let out = out.as_mut_slice();
+        out.copy_from_slice(c[self.len - 1].as_slice());
+        for ck in c[..self.len - 1].iter().rev() {
+            for (o, a) in out.iter_mut().zip(ck.as_slice()) {
+                *o = *o * theta + a;
+            }
+        }
+    }
+
+    /// The cubic Hermite interpolant through (y₀, f₀) at t and (y₁, f₁) at t + h:
+    /// y(θ) = y₀ + θ·h·f₀ + θ²·(3Δ − h(2f₀ + f₁)) + θ³·(h(f₀ + f₁) − 2Δ), Δ = y₁ − y₀
+    /// (Hairer, Nørsett & Wanner, *Solving ODEs I*, §II.6, eq. (6.7)); order 3.
+    pub(crate) fn hermite(&mut self, t: f64, h: f64, ends: [&S; 4]) {
+        let [y0, f0, y1, f1] = ends.map(State::as_slice);
+        let [c0, c1, c2, c3] = self.fill(t, h, 3) else {
+            unreachable!("fill returns degree + 1 coefficients")
+        };
+        let parts = c0
+            .as_mut_slice()
+            .iter_mut()
+            .zip(c1.as_mut_slice())
+            .zip(c2.as_mut_slice())
+            .zip(c3.as_mut_slice());
+        for (i, (((a0, a1), a2), a3)) in parts.enumerate() {
+            let delta = y1[i] - y0[i];
+            *a0 = y0[i];
+            *a1 = h * f0[i];
+            *a2 = 3.0 * delta - h * (2.0 * f0[i] + f1[i]);
+            *a3 = h * (f0[i] + f1[i]) - 2.0 * delta;
+        }
+    }
+}
+
+/// The dense output of a whole run: one polynomial per accepted step, in time order.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct DenseOutput {
+    /// Step starts, increasing.
+    starts: Vec<f64>,
+    /// Step sizes h: each polynomial is in θ = (t − start)/h.
+    sizes: Vec<f64>,
+    /// Where each step's validity ends: start + h, or earlier when an event cut the step short.
+    ends: Vec<f64>,
+    /// Offsets into `values` where each step's coefficients begin (one more entry than steps).
+    offsets: Vec<usize>,
+    /// Coefficients, step after step, c₀ first, each `dim` long.
+    values: Vec<f64>,
+    dim: usize,
+}
+
+impl DenseOutput {
+    pub(crate) fn new(dim: usize) -> Self {
+        DenseOutput {
+            offsets: vec![0],
+            dim,
+            ..Default::default()
+        }
+    }
+
+    /// Appends one step's polynomial, valid up to `end` (≤ t + h).
+    pub(crate) fn push<S: State>(&mut self, step: &DenseStep<S>, end: f64) {
+        self.starts.push(step.t);
+        self.sizes.push(step.h);
+        self.ends.push(end);
+        for c in step.coefficients() {
+            self.values.extend_from_slice(c.as_slice());
+        }
+        self.offsets.push(self.values.len());
+    }
+
+    /// Steps held.
+    pub fn len(&self) -> usize {
+        self.starts.len()
+    }
+
+    /// Whether no step is held.
+    pub fn is_empty(&self) -> bool {
+        self.starts.is_empty()
+    }
+
+    /// The time span covered.
+    pub fn span(&self) -> Option<(f64, f64)> {
+        Some((*self.starts.first()?, *self.ends.last()?))
+    }
+
+    /// Writes y(t) into `out` (its components; other parts of `out` are kept).
+    ///
+    /// At a time shared by two steps (a step boundary, or an event that changed the state) the
+    /// later step is used, so the value after a reset is the one after the event.
+    ///
+    /// Errors: [`Error::InvalidInput`] when `t` is outside the span or not finite.
+    pub fn eval_into<S: State>(&self, t: f64, out: &mut S) -> Result<()> {
+        let outside = || {
+            Error::invalid(
+                "t",
+                format!(
+                    "{t:?} is outside the dense output's span {:?}",
+                    self.span().unwrap_or((f64::NAN, f64::NAN))
+                ),
+            )
+        };
+        let (lo, hi) = self.span().ok_or_else(outside)?;
+        if !(t >= lo && t <= hi) {
+            return Err(outside());
+        }
+        // The last step starting at or before t.
+        let k = self.starts.partition_point(|&s| s <= t).saturating_sub(1);
+        let theta = if self.sizes[k] > 0.0 {
+            ((t - self.starts[k]) / self.sizes[k]).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let coefficients = &self.values[self.offsets[k]..self.offsets[k + 1]];
+        let out = out.as_mut_slice();
+        let degree = coefficients.len() / self.dim - 1;
+        out.copy_from_slice(&coefficients[degree * self.dim..]);
+        for c in coefficients.chunks_exact(self.dim).rev().skip(1) {
+            for (o, a) in out.iter_mut().zip(c) {
+                *o = *o * theta + a;
+            }
+        }
+        Ok(())
+    }
+}

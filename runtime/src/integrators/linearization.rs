@@ -1,0 +1,98 @@
+//! What the linearly implicit methods share: J = ∂f/∂y and ∂f/∂t at the start of a step, and
+//! the factorization of W = I − c·J, each made once and reused as long as it stays valid.
+
+use crate::{Error, Jacobian, NewtonMatrix, Result, Stats};
+
+/// J, ∂f/∂t and the factors of W for the current step.
+///
+/// Reuse: J and ∂f/∂t are evaluated at the first attempt from a state and kept while the driver
+/// retries that state with smaller steps (a rejected step keeps (t, y)); W is refactorized only
+/// when its c = γ·h changes, so a retried step costs one factorization and no Jacobian. Both are
+/// dropped when a step is accepted or an event changes the state.
+pub(super) struct Linearization<M: Jacobian> {
+    pub(super) jacobian: M::Matrix,
+    factors: <M::Matrix as NewtonMatrix>::Factors,
+    /// ∂f/∂t at the start of the step (zero for autonomous models, never evaluated).
+    pub(super) dfdt: M::State,
+    /// Whether `jacobian` and `dfdt` hold the current state's.
+    current: bool,
+    /// The c of the current factorization, if it is valid.
+    factored: Option<f64>,
+}
+
+impl<M: Jacobian> Linearization<M> {
+    pub(super) fn new(model: &M, y0: &M::State) -> Self {
+        let jacobian = model.jacobian_matrix(y0);
+        let mut dfdt = y0.clone();
+        crate::State::as_mut_slice(&mut dfdt).fill(0.0);
+        Linearization {
+            factors: jacobian.factors(),
+            jacobian,
+            dfdt,
+            current: false,
+            factored: None,
+        }
+    }
+
+    /// Evaluates J and ∂f/∂t at (t, y) unless they are already the current state's.
+    pub(super) fn evaluate(&mut self, model: &M, t: f64, y: &M::State, stats: &mut Stats) {
+        if self.current {
+            return;
+        }
+        model.jacobian(t, y, &mut self.jacobian);
+        stats.jacobian_evaluations += 1;
+        if M::TIME_DEPENDENT {
+            model.time_derivative(t, y, &mut self.dfdt);
+            stats.time_derivative_evaluations += 1;
+        }
+        self.current = true;
+        self.factored = None;
+    }
+
+    /// Factorizes W = I − c·J unless it already is, for this c.
+    ///
+    /// Errors: [`Error::SingularMatrix`] (retriable: the driver tries a smaller step).
+    pub(super) fn factorize(&mut self, c: f64, t: f64, h: f64, stats: &mut Stats) -> Result<()> {
+        if self.factored == Some(c) {
+            return Ok(());
+        }
+        self.factored = None;
+        stats.factorizations += 1;
+        if self.jacobian.factorize(c, &mut self.factors) {
+            self.factored = Some(c);
+            Ok(())
+        } else {
+            Err(Error::SingularMatrix { t, dt: h })
+        }
+    }
+
+    /// Solves W·x = b in place.
+    ///
+    /// Errors: [`Error::SingularMatrix`] when x is not finite.
+    pub(super) fn solve(&mut self, b: &mut [f64], t: f64, h: f64, stats: &mut Stats) -> Result<()> {
+        stats.linear_solves += 1;
+        if self.jacobian.solve(&mut self.factors, b) {
+            Ok(())
+        } else {
+            Err(Error::SingularMatrix { t, dt: h })
+        }
+    }
+
+    /// The step was accepted or the state changed: the next step linearizes afresh.
+    pub(super) fn invalidate(&mut self) {
+        self.current = false;
+        self.factored = None;
+    }
+}
+
+impl<M: Jacobian> Clone for Linearization<M> {
+    fn clone(&self) -> Self {
+        Linearization {
+            jacobian: self.jacobian.clone(),
+            factors: self.factors.clone(),
+            dfdt: self.dfdt.clone(),
+            current: self.current,
+            factored: self.factored,
+        }
+    }
+}

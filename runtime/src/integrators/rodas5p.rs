@@ -1,0 +1,182 @@
+//! Rodas5P: Steinebach's stiffly accurate Rosenbrock–Wanner method of order 5(4).
+
+use super::linearization::Linearization;
+use super::tableaux::rodas5p::{A, C, COUPLING, D, GAMMA, H, STAGES};
+use super::{Integrator, Step, axpy};
+use crate::drive::DenseStep;
+use crate::{Controller, Jacobian, Method, NewtonOptions, Result, State, Stats};
+
+/// Rodas5P, the Rosenbrock–Wanner method of order 5 of Steinebach (2023), in the W-transformed
+/// form of Hairer & Wanner (*Solving ODEs II*, §IV.7): with J = ∂f/∂y and T = ∂f/∂t at (tₙ, yₙ)
+/// and one matrix W = I − γh·J for all eight stages,
+///
+/// ```text
+/// Uᵢ = yₙ + Σⱼ aᵢⱼ uⱼ
+/// W uᵢ = γh·( f(tₙ + cᵢh, Uᵢ) + Σⱼ (Cᵢⱼ/h) uⱼ + h dᵢ T )        i = 1 … 8
+/// yₙ₊₁ = U₈ + u₈,   err = u₈
+/// ```
+///
+/// Stiffly accurate (the last stages are the solution itself), so it keeps its order on stiff
+/// problems and differential-algebraic limits where other Rosenbrock methods lose it. The dense
+/// output (1 − θ)yₙ + θ(yₙ₊₁ + (1 − θ)(K₁ + θ(K₂ + θK₃))), Kᵣ = Σⱼ Hᵣⱼuⱼ, is of order 4 and free.
+/// One Jacobian, one ∂f/∂t (only when the model reads the time), one factorization, eight
+/// solves and eight evaluations of f a step (seven when a rejected step is retried: f(tₙ, yₙ),
+/// J and T are kept, W is refactorized for the new h). Coefficients: `tableaux/rodas5p.rs`,
+/// checked by `scripts/check_rosenbrock.py`.
+///
+/// - **Order** 5 (4 for the estimate and the dense output); 2 if J is not the exact Jacobian,
+///   which `#[system]` guarantees it is.
+/// - **Stability**: L-stable, R(∞) = 0: stiff components are damped in one step at any h.
+/// - **Step-size control**: the PI controller for an order-4 estimate
+///   ([`Controller::dopri5`]).
+///
+/// Reference: G. Steinebach, "Construction of Rosenbrock–Wanner method Rodas5P and numerical
+/// benchmarks within the Julia Differential Equations package", BIT Numer. Math. 63 (2023) 27.
+pub struct Rodas5P<M: Jacobian> {
+    linear: Linearization<M>,
+    /// u₁ … u₈ of the last attempt.
+    u: [M::State; STAGES],
+    /// f(tₙ, yₙ), kept across retries of one state.
+    f0: M::State,
+    have_f0: bool,
+    /// Uᵢ.
+    stage: M::State,
+    /// The right-hand side of stage i, solved into uᵢ.
+    rhs: M::State,
+}
+
+impl<M: Jacobian> Integrator<M> for Rodas5P<M> {
+    const METHOD: Method = Method::Rodas5P;
+    const CONTROLLER: Controller = Controller::dopri5(4);
+    const DENSE_DEGREE: usize = 4;
+
+    fn prepare(
+        model: &M,
+        _: f64,
+        y0: &M::State,
+        newton: &NewtonOptions,
+        _: &mut Stats,
+    ) -> Result<Self> {
+        let mut linear = Linearization::new(model, y0);
+        crate::NewtonMatrix::configure(&mut linear.jacobian, newton);
+        Ok(Rodas5P {
+            linear,
+            u: std::array::from_fn(|_| y0.clone()),
+            f0: y0.clone(),
+            have_f0: false,
+            stage: y0.clone(),
+            rhs: y0.clone(),
+        })
+    }
+
+    fn attempt(&mut self, model: &M, s: Step<'_, M::State>, y_new: &mut M::State) -> Result<f64> {
+        let (t, h, y) = (s.t, s.h, s.y);
+        if !self.have_f0 {
+            model.derivative(t, y, &mut self.f0);
+            s.stats.evaluations += 1;
+            self.have_f0 = true;
+        }
+        self.linear.evaluate(model, t, y, s.stats);
+        let gh = GAMMA * h;
+        self.linear.factorize(gh, t, h, s.stats)?;
+        for i in 0..STAGES {
+            let (done, rest) = self.u.split_at_mut(i);
+            let stage = self.stage.as_mut_slice();
+            stage.copy_from_slice(y.as_slice());
+            for (a, uj) in A[i].iter().zip(done.iter()) {
+                if *a != 0.0 {
+                    axpy(stage, *a, uj.as_slice());
+                }
+            }
+            if i == 0 {
+                self.rhs.clone_from(&self.f0);
+            } else {
+                model.derivative(t + C[i] * h, &self.stage, &mut self.rhs);
+                s.stats.evaluations += 1;
+            }
+            let rhs = self.rhs.as_mut_slice();
+            for (coupling, uj) in COUPLING[i].iter().zip(done.iter()) {
+                if *coupling != 0.0 {
+                    axpy(rhs, coupling / h, uj.as_slice());
+                }
+            }
+            if M::TIME_DEPENDENT && D[i] != 0.0 {
+                axpy(rhs, h * D[i], self.linear.dfdt.as_slice());
+            }
+            for r in rhs.iter_mut() {
+                *r *= gh;
+            }
+            self.linear.solve(rhs, t, h, s.stats)?;
+            rest[0].clone_from(&self.rhs);
+        }
+        // Stiffly accurate: yₙ₊₁ = U₈ + u₈, and u₈ is the error estimate.
+        let last = &self.u[STAGES - 1];
+        for ((o, stage), ui) in y_new
+            .as_mut_slice()
+            .iter_mut()
+            .zip(self.stage.as_slice())
+            .zip(last.as_slice())
+        {
+            *o = stage + ui;
+        }
+        Ok(s.tolerances.map_or(0.0, |tol| {
+            tol.norm(last.as_slice(), y.as_slice(), y_new.as_slice())
+        }))
+    }
+
+    fn accept(&mut self) {
+        self.have_f0 = false;
+        self.linear.invalidate();
+    }
+
+    fn restart(&mut self, _: &M, _: f64, _: &M::State, _: &mut Stats) {
+        self.have_f0 = false;
+        self.linear.invalidate();
+    }
+
+    /// (1 − θ)yₙ + θyₙ₊₁ + θ(1 − θ)(K₁ + θK₂ + θ²K₃) in powers of θ:
+    /// yₙ + θ(Δ + K₁) + θ²(K₂ − K₁) + θ³(K₃ − K₂) − θ⁴K₃, Δ = yₙ₊₁ − yₙ.
+    fn dense(
+        &mut self,
+        _: &M,
+        s: Step<'_, M::State>,
+        y_new: &M::State,
+        dense: &mut DenseStep<M::State>,
+    ) -> bool {
+        let coefficients = dense.fill(s.t, s.h, 4);
+        // K₁, K₂, K₃ into c₂, c₃, c₄ first.
+        for (r, k) in coefficients[2..].iter_mut().enumerate() {
+            let out = k.as_mut_slice();
+            out.fill(0.0);
+            for (hj, uj) in H[r].iter().zip(&self.u) {
+                if *hj != 0.0 {
+                    axpy(out, *hj, uj.as_slice());
+                }
+            }
+        }
+        let (low, high) = coefficients.split_at_mut(2);
+        let [c0, c1] = low else {
+            unreachable!("fill returns degree + 1 coefficients")
+        };
+        let [c2, c3, c4] = high else {
+            unreachable!("fill returns degree + 1 coefficients")
+        };
+        c0.clone_from(s.y);
+        let parts = c1
+            .as_mut_slice()
+            .iter_mut()
+            .zip(c2.as_mut_slice())
+            .zip(c3.as_mut_slice())
+            .zip(c4.as_mut_slice());
+        for ((((o1, o2), o3), o4), (y0, y1)) in
+            parts.zip(s.y.as_slice().iter().zip(y_new.as_slice()))
+        {
+            let (k1, k2, k3) = (*o2, *o3, *o4);
+            *o1 = y1 - y0 + k1;
+            *o2 = k2 - k1;
+            *o3 = k3 - k2;
+            *o4 = -k3;
+        }
+        true
+    }
+}

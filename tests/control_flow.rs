@@ -1,0 +1,311 @@
+//! The Jacobian through every control-flow form the macro accepts, and through every supported
+//! function, against central differences of the model's own derivative (common::check, 1e-6
+//! relative). Each model here once either failed to compile or, worse, compiled to a wrong
+//! Jacobian: an early `return` on a parameter was ignored, and a loop over parameters was
+//! dropped from the Jacobian's code.
+
+mod common;
+
+use common::{Rng, check};
+use odyn::prelude::*;
+use odyn::stability::predicted_limit;
+
+/// An early `return` on a parameter: the Jacobian must follow the branch the derivative takes.
+#[system]
+#[derive(Clone, Copy, Debug)]
+struct Cutoff {
+    #[position]
+    x: f64,
+    #[velocity]
+    v: f64,
+    k: f64,
+}
+
+#[system]
+impl Cutoff {
+    fn acceleration(&self) -> f64 {
+        if self.k > 10.0 {
+            return 0.0;
+        }
+        -self.k * self.x
+    }
+}
+
+#[test]
+fn an_early_return_on_a_parameter_is_differentiated() {
+    let draw = |r: &mut Rng| CutoffState {
+        x: r.uniform(-2.0, 2.0),
+        v: r.uniform(-2.0, 2.0),
+    };
+    for k in [5.0, 20.0] {
+        let model = Cutoff { x: 1.0, v: 0.0, k };
+        check(&model, 0.0, 20, draw);
+    }
+    // k = 20 returns 0: a free particle, for which RK4 has no stability limit (∞) — the wrong
+    // Jacobian [[0, 1], [−20, 0]] predicted 2√2/√20 = 0.632.
+    let free = Cutoff {
+        x: 1.0,
+        v: 0.0,
+        k: 20.0,
+    };
+    let limit = predicted_limit(&free, 0.0, &free.state(), Method::Rk4).unwrap();
+    assert_eq!(limit, f64::INFINITY);
+}
+
+/// Branches on parameters in every position: a value (`if` and `match`), a statement changing a
+/// state-dependent local, `if let`, a `match` with guards and bindings, nested returns.
+#[system]
+#[derive(Clone, Copy, Debug)]
+struct Branchy {
+    #[state]
+    a: f64,
+    #[state]
+    b: f64,
+    mode: u32,
+    gain: f64,
+    scale: Option<f64>,
+}
+
+#[system]
+impl Branchy {
+    fn derivative(&self) -> BranchyState {
+        let (m1, m2) = (1.0, 2.0);
+        let base = if self.gain > 1.0 {
+            self.a * self.a
+        } else {
+            self.a.sin()
+        };
+        let mut extra = self.b * m1;
+        if self.mode == 2 {
+            extra = extra * self.a + m2;
+        } else if self.mode == 3 {
+            extra *= 3.0;
+        }
+        let factor = match self.mode {
+            0 => 1.0,
+            n if n > 5 => 1.0 / f64::from(n),
+            _ => self.b.exp(),
+        };
+        if let Some(s) = self.scale {
+            if s < 0.0 {
+                return BranchyState {
+                    a: -self.a,
+                    b: s * self.b,
+                };
+            }
+            return BranchyState {
+                a: s * base + extra,
+                b: factor * self.a,
+            };
+        }
+        BranchyState {
+            a: base + extra * factor,
+            b: -self.b * factor,
+        }
+    }
+}
+
+#[test]
+fn branches_on_parameters_are_differentiated_on_every_path() {
+    let draw = |r: &mut Rng| BranchyState {
+        a: r.uniform(-1.5, 1.5),
+        b: r.uniform(-1.5, 1.5),
+    };
+    for mode in [0, 2, 3, 4, 7] {
+        for gain in [0.5, 2.0] {
+            for scale in [None, Some(0.7), Some(-0.3)] {
+                let model = Branchy {
+                    a: 0.0,
+                    b: 0.0,
+                    mode,
+                    gain,
+                    scale,
+                };
+                check(&model, 0.0, 10, draw);
+            }
+        }
+    }
+}
+
+/// A loop over parameters that changes a local the state-dependent code then reads: the
+/// Jacobian used to keep the local's value from before the loop (∂/∂x = −1 instead of −4).
+#[system]
+#[derive(Clone, Copy, Debug)]
+struct Looped {
+    #[state]
+    x: f64,
+    n: usize,
+    weights: [f64; 3],
+}
+
+#[system]
+impl Looped {
+    fn derivative(&self) -> LoopedState {
+        let mut c = 1.0;
+        for _ in 0..self.n {
+            c += 1.0;
+        }
+        let mut w = 0.0;
+        for k in 0..3 {
+            w += self.weights[k];
+        }
+        LoopedState {
+            x: -c * self.x + w * self.x.powi(2),
+        }
+    }
+}
+
+#[test]
+fn loops_over_parameters_reach_the_jacobian() {
+    let model = Looped {
+        x: 0.5,
+        n: 3,
+        weights: [0.1, 0.2, 0.3],
+    };
+    check(&model, 0.0, 20, |r| LoopedState {
+        x: r.uniform(-2.0, 2.0),
+    });
+    let mut jacobian = model.jacobian_matrix(&model.state());
+    model.jacobian(0.0, &LoopedState { x: 0.0 }, &mut jacobian);
+    // ∂/∂x (−4x + 0.6x²) at x = 0.
+    assert!((jacobian[(0, 0)] + 4.0).abs() < 1e-12, "{jacobian}");
+}
+
+/// Natural Rust: tuple destructuring of state-dependent values (`sin_cos`), a component
+/// assignment, and every supported function.
+#[system]
+#[derive(Clone, Copy, Debug)]
+struct Functions {
+    #[state]
+    p: f64,
+    #[state]
+    q: f64,
+    #[state]
+    r: Vector2<f64>,
+}
+
+#[system]
+impl Functions {
+    fn derivative(&self) -> FunctionsState {
+        let (s, c) = self.p.sin_cos();
+        let (u, w) = (0.3 * self.p, 0.2 * self.q);
+        let mut v = self.r;
+        v[0] *= s;
+        v.y += c;
+        let angles = u.atan2(w) + u.asin() + w.acos() + u.atan() + u.hypot(w);
+        let hyperbolic = u.sinh() + w.cosh() + u.tanh();
+        let logs = (1.0 + u * u).log10() + (2.0 + w).log2() + u.exp2() + w.ln_1p() + u.exp_m1();
+        let roots = (1.5 + w).cbrt() + u.abs() * 0.5 + (u - w).signum();
+        let kinks = u.min(w) + u.max(w) + self.q.clamp(-0.5, 0.5) + (2.0 * u).clamp(w, w + 1.0);
+        FunctionsState {
+            p: angles + hyperbolic * s,
+            q: logs * c + roots + kinks,
+            r: Vector2::new(v.x * v.y, v.x + u.recip()),
+        }
+    }
+}
+
+#[test]
+fn every_function_and_destructuring_is_differentiated() {
+    let model = Functions {
+        p: 0.1,
+        q: 0.2,
+        r: Vector2::new(0.3, 0.4),
+    };
+    check(&model, 0.0, 100, |r| FunctionsState {
+        // Away from the kinks' measure-zero sets: u ≠ w, |q| ≠ 0.5, u ≠ 0.
+        p: r.uniform(0.2, 2.0),
+        q: r.uniform(-2.0, -0.6),
+        r: Vector2::new(r.uniform(-1.0, 1.0), r.uniform(-1.0, 1.0)),
+    });
+}
+
+/// A forced oscillator: ẍ = −x + A·sin(ωt)·e^(−t/τ). Its ∂f/∂t is generated exactly; a model
+/// that reads the time through a function of the user's own gets the runtime's central
+/// difference; an autonomous one a constant zero.
+#[system]
+#[derive(Clone, Copy, Debug)]
+struct Forced {
+    #[position]
+    x: f64,
+    #[velocity]
+    v: f64,
+    amplitude: f64,
+    omega: f64,
+    tau: f64,
+}
+
+#[system]
+impl Forced {
+    fn acceleration(&self, t: f64) -> f64 {
+        let envelope = (-t / self.tau).exp();
+        let drive = if t < 10.0 {
+            (self.omega * t).sin()
+        } else {
+            0.0
+        };
+        -self.x + self.amplitude * drive * envelope * self.v.cos()
+    }
+}
+
+fn pulse(t: f64) -> f64 {
+    (-t * t).exp()
+}
+
+/// The time reaches f through `pulse`, a function odyn cannot see into.
+#[system]
+#[derive(Clone, Copy, Debug)]
+struct Pulsed {
+    #[state]
+    y: f64,
+}
+
+#[system]
+impl Pulsed {
+    fn derivative(&self, t: f64) -> PulsedState {
+        PulsedState {
+            y: -self.y + pulse(t),
+        }
+    }
+}
+
+#[test]
+fn the_time_derivative_is_exact_where_it_can_be() {
+    let forced = Forced {
+        x: 0.3,
+        v: -0.2,
+        amplitude: 1.5,
+        omega: 2.0,
+        tau: 4.0,
+    };
+    const { assert!(<Forced as odyn::Jacobian>::TIME_DEPENDENT) };
+    let y = forced.state();
+    for t in [0.0, 0.7, 3.1, 9.5, 12.0] {
+        let mut dfdt = y;
+        forced.time_derivative(t, &y, &mut dfdt);
+        // Central difference in t of f(t, y), h = 1e-6.
+        let (mut plus, mut minus) = (y, y);
+        forced.derivative(t + 1e-6, &y, &mut plus);
+        forced.derivative(t - 1e-6, &y, &mut minus);
+        let fd = (plus.v - minus.v) / 2e-6;
+        assert_eq!(dfdt.x, 0.0, "ẋ = v does not read t");
+        assert!(
+            (dfdt.v - fd).abs() < 1e-6 * (1.0 + fd.abs()),
+            "t = {t}: {} vs {fd}",
+            dfdt.v
+        );
+    }
+    // Exact: at t = 0, ∂/∂t [A·sin(ωt)·e^(−t/τ)·cos v] = A·ω·cos(v).
+    let mut dfdt = y;
+    forced.time_derivative(0.0, &y, &mut dfdt);
+    assert!((dfdt.v - 1.5 * 2.0 * (-0.2f64).cos()).abs() < 1e-15);
+
+    let pulsed = Pulsed { y: 1.0 };
+    let mut dfdt = pulsed.state();
+    pulsed.time_derivative(0.5, &pulsed.state(), &mut dfdt);
+    // d/dt e^(−t²) = −2t·e^(−t²).
+    let exact = -2.0 * 0.5 * (-0.25f64).exp();
+    assert!((dfdt.y - exact).abs() < 1e-8, "{} vs {exact}", dfdt.y);
+
+    const { assert!(!<common::Lorenz as odyn::Jacobian>::TIME_DEPENDENT) };
+}

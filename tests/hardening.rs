@@ -1,0 +1,483 @@
+//! Inputs that once crashed, hung, or returned a wrong number without an error: each is now a
+//! typed error or a correct result. One test per failure mode found by bad-input probing.
+
+mod common;
+
+use std::path::PathBuf;
+
+use common::{Oscillator, Spring};
+use odyn::integrators::{ImplicitEuler, SymplecticEuler};
+use odyn::plot::{Chart, Series, View, views};
+use odyn::prelude::*;
+use odyn::stability::{StabilityProbe, measured_limit};
+use odyn::{FixedTimestep, NewtonOptions, Stepper};
+
+fn spring() -> Spring {
+    Spring {
+        x: 1.0,
+        v: 0.0,
+        k: 50.0,
+        b: 0.5,
+        m: 1.0,
+    }
+}
+
+fn invalid_field<T: std::fmt::Debug>(result: odyn::Result<T>) -> String {
+    match result {
+        Err(Error::InvalidInput { field, .. }) => field,
+        other => panic!("expected InvalidInput, got {other:?}"),
+    }
+}
+
+/// A file in a directory of its own per test (tests run in parallel in one process, and one
+/// test lists its directory for leftover temporaries).
+fn scratch(test: &str, name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("odyn-hardening-{}-{test}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+/// `steps(u64::MAX)` on a model that diverges used to overflow the step counter; now it stops
+/// at the divergence with a typed error naming the step.
+#[test]
+fn a_huge_step_count_stops_at_the_divergence() {
+    let osc = Oscillator {
+        x: 1.0,
+        v: 0.0,
+        omega: 10.0,
+    };
+    let error = osc
+        .simulate()
+        .integrator(Method::SymplecticEuler)
+        .dt(0.25)
+        .steps(u64::MAX)
+        .run()
+        .unwrap_err();
+    assert!(
+        matches!(error, Error::Diverged { step, .. } if step < 100),
+        "{error}"
+    );
+}
+
+/// Newton options are checked up front: a NaN or non-positive tolerance, no iterations, or more
+/// halvings than the resolution of t allows (`u32::MAX` once recursed until the stack overflowed).
+#[test]
+fn newton_options_are_validated() {
+    let model = common::VanDerPol {
+        y1: 2.0,
+        y2: 0.0,
+        mu: 1000.0,
+    };
+    let run = |newton| model.simulate().dt(0.1).steps(5).newton(newton).run();
+    for (newton, field) in [
+        (
+            NewtonOptions {
+                tol: f64::NAN,
+                ..NewtonOptions::default()
+            },
+            "NewtonOptions::tol",
+        ),
+        (
+            NewtonOptions {
+                tol: 0.0,
+                ..NewtonOptions::default()
+            },
+            "NewtonOptions::tol",
+        ),
+        (
+            NewtonOptions {
+                max_iters: 0,
+                ..NewtonOptions::default()
+            },
+            "NewtonOptions::max_iters",
+        ),
+        (
+            NewtonOptions {
+                max_halvings: u32::MAX,
+                ..NewtonOptions::default()
+            },
+            "NewtonOptions::max_halvings",
+        ),
+    ] {
+        assert_eq!(invalid_field(run(newton)), field);
+    }
+}
+
+/// A NaN parameter with the most halvings allowed: every attempt fails at once, the halving is
+/// iterative and bounded, and the error says the model produced NaN (not "residual 0").
+#[test]
+fn newton_on_nan_input_fails_fast_and_says_why() {
+    let model = common::VanDerPol {
+        y1: 2.0,
+        y2: 0.0,
+        mu: f64::NAN,
+    };
+    let newton = NewtonOptions {
+        max_halvings: 52,
+        ..NewtonOptions::default()
+    };
+    let error = model
+        .simulate()
+        .dt(0.1)
+        .steps(5)
+        .newton(newton)
+        .run()
+        .unwrap_err();
+    match &error {
+        Error::NewtonDidNotConverge {
+            cause,
+            halvings,
+            residual,
+            ..
+        } => {
+            assert_eq!(*cause, odyn::NewtonFailure::NotFinite);
+            assert_eq!(*halvings, 52);
+            assert!(residual.is_nan());
+        }
+        other => panic!("{other}"),
+    }
+    assert!(error.to_string().contains("NaN"), "{error}");
+}
+
+/// Robertson at dt = 1e3: the default halving depth carries implicit Euler through; when the
+/// halvings are cut to 4 it fails, and the advice names `max_halvings`, which is what helps
+/// (raising `max_iters` does not).
+#[test]
+fn newton_advice_names_the_option_that_helps() {
+    let model = common::Robertson {
+        a: 1.0,
+        b: 0.0,
+        c: 0.0,
+    };
+    let run = |newton: NewtonOptions| model.simulate().dt(1e3).steps(100).newton(newton).run();
+    let ok = run(NewtonOptions::default()).unwrap();
+    assert!((ok.last().state.a + ok.last().state.b + ok.last().state.c - 1.0).abs() < 1e-12);
+    let shallow = NewtonOptions {
+        max_halvings: 4,
+        ..NewtonOptions::default()
+    };
+    let error = run(shallow).unwrap_err();
+    assert!(
+        error
+            .to_string()
+            .contains("raise `NewtonOptions::max_halvings`"),
+        "{error}"
+    );
+    let more_iterations = NewtonOptions {
+        max_iters: 100,
+        ..shallow
+    };
+    assert!(
+        run(more_iterations).is_err(),
+        "iterations are not what fails here"
+    );
+}
+
+/// The real-time accumulator caps the steps a frame takes (a 1e-12 s step and a 0.1 s frame
+/// once ran 1e11 steps), rejects a NaN or negative frame-time cap, and reports dropped time.
+#[test]
+fn the_frame_loop_cannot_spiral_or_hang() {
+    let model = spring();
+    let mut stepper =
+        Stepper::<_, SymplecticEuler<_>>::new(&model, model.state(), 0.0, 1e-12).unwrap();
+    let mut clock = FixedTimestep::new();
+    let tick = clock.advance(0.1, &mut stepper).unwrap();
+    assert_eq!(tick.steps, clock.max_steps_per_frame);
+    // What was neither stepped nor dropped is the leftover (less than one step).
+    let accounted = 1000.0 * 1e-12 + tick.dropped + clock.leftover();
+    assert!((accounted - 0.1).abs() < 1e-13, "{tick:?}");
+    assert!((0.0..1.0).contains(&tick.alpha));
+    // A long frame is cut to the cap, and the cut is reported.
+    let mut stepper =
+        Stepper::<_, SymplecticEuler<_>>::new(&model, model.state(), 0.0, 0.01).unwrap();
+    let tick = clock.advance(1e9, &mut stepper).unwrap();
+    assert_eq!(tick.steps, 10);
+    assert!((tick.dropped - (1e9 - 0.1)).abs() < 1e-3);
+    for cap in [f64::NAN, -1.0, 0.0, f64::INFINITY] {
+        let mut clock = FixedTimestep::new();
+        clock.max_frame_time = cap;
+        assert_eq!(
+            invalid_field(clock.advance(0.016, &mut stepper)),
+            "max_frame_time"
+        );
+    }
+}
+
+/// Driving an integrator by hand goes through the same start-up checks as a run: a particle
+/// model with a link to a particle that does not exist is a typed error, not an index panic.
+#[test]
+fn integrators_check_the_model_when_they_start() {
+    use odyn::Integrator;
+    use odyn::nalgebra::Vector2;
+    use odyn::particles::Spring as Link;
+    #[system(dt = 1e-3)]
+    struct Pair {
+        #[position]
+        x: Vec<Vector2<f64>>,
+        #[velocity]
+        v: Vec<Vector2<f64>>,
+        #[mass]
+        m: Vec<f64>,
+        links: Vec<Link>,
+    }
+    #[system]
+    impl Pair {
+        #[pair(links)]
+        fn spring(&self, link: &Link, xa: Vector2<f64>, xb: Vector2<f64>) -> Vector2<f64> {
+            let d = xb - xa;
+            link.stiffness * (d.norm() - link.rest) * d / d.norm()
+        }
+    }
+    let model = Pair {
+        x: vec![Vector2::zeros(), Vector2::new(1.0, 0.0)],
+        v: vec![Vector2::zeros(); 2],
+        m: vec![1.0, 1.0],
+        links: vec![Link {
+            a: 0,
+            b: 7,
+            rest: 1.0,
+            stiffness: 10.0,
+            damping: 0.0,
+        }],
+    };
+    let mut stats = odyn::Stats::default();
+    let started = ImplicitEuler::start(
+        &model,
+        0.0,
+        &model.state(),
+        &NewtonOptions::default(),
+        &mut stats,
+    );
+    let error = started.err();
+    assert!(matches!(error, Some(Error::BadModel { .. })), "{error:?}");
+    // A NaN divergence limit on a bare stepper is refused too.
+    let s = spring();
+    let limit = Stepper::<_, SymplecticEuler<_>>::with_limit(
+        &s,
+        s.state(),
+        0.0,
+        0.01,
+        &NewtonOptions::default(),
+        Some(f64::NAN),
+    );
+    assert_eq!(invalid_field(limit), "divergence_limit");
+}
+
+/// An initial state already beyond the divergence limit is an input error, not a divergence
+/// that advises reducing dt.
+#[test]
+fn an_initial_state_beyond_the_limit_is_an_input_error() {
+    let field = invalid_field(spring().simulate().divergence_limit(0.5).steps(10).run());
+    assert_eq!(field, "initial state `x`");
+}
+
+/// Charts refuse what they cannot draw with typed errors, never a panic or a hang: empty or
+/// all-NaN data, values near ±1e308 (padding used to overflow to ±∞ and hang), views with
+/// infinite or NaN bounds (a NaN bound used to panic and leave the temporary file behind).
+#[test]
+fn charts_refuse_what_they_cannot_draw() {
+    let path = scratch("charts", "chart.png");
+    let chart = |points: Vec<(f64, f64)>| Chart {
+        series: vec![Series::line("s", points)],
+        ..Chart::default()
+    };
+    assert!(matches!(
+        chart(vec![]).write(&path, (400, 300)),
+        Err(Error::InvalidInput { .. })
+    ));
+    assert!(matches!(
+        chart(vec![(f64::NAN, f64::NAN)]).write(&path, (400, 300)),
+        Err(Error::InvalidInput { .. })
+    ));
+    assert!(matches!(
+        chart(vec![(0.0, -1.7e308), (1.0, 1.7e308)]).write(&path, (400, 300)),
+        Err(Error::InvalidInput { .. })
+    ));
+    // A constant series is fine: its axis is widened around the value.
+    chart(vec![(0.0, 3.0), (1.0, 3.0)])
+        .write(&path, (400, 300))
+        .unwrap();
+    for bounds in [
+        ((0.0, f64::INFINITY), (0.0, 1.0)),
+        ((0.0, 1.0), (f64::NAN, 1.0)),
+        ((1.0, 0.0), (0.0, 1.0)),
+    ] {
+        let view = View {
+            bounds,
+            segments: vec![[(0.0, 0.0), (1.0, 1.0)]],
+            ..View::default()
+        };
+        let file = scratch("charts", "view.png");
+        assert!(matches!(
+            views(&file, "t", &[view], (400, 300)),
+            Err(Error::InvalidInput { .. })
+        ));
+        assert!(!file.exists());
+    }
+    assert!(matches!(
+        views(scratch("charts", "none.png"), "t", &[], (400, 300)),
+        Err(Error::InvalidInput { .. })
+    ));
+    let leftovers: Vec<_> = std::fs::read_dir(path.parent().unwrap())
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.file_name().to_string_lossy().contains(".tmp"))
+        .collect();
+    assert!(leftovers.is_empty(), "{leftovers:?}");
+}
+
+/// Writing a trajectory whose samples were emptied is a typed error (it was an index panic).
+#[test]
+fn an_emptied_trajectory_is_a_typed_error() {
+    let mut run = spring().simulate().steps(3).run().unwrap();
+    run.samples.clear();
+    assert_eq!(
+        invalid_field(run.write_csv(scratch("emptied", "empty.csv"))),
+        "trajectory"
+    );
+    assert!(run.at(0.0).is_err());
+}
+
+/// A write that cannot happen is a clean `Io` error for a PNG as for a CSV; a read-only target
+/// is refused rather than replaced; a symlink is followed (the file it points to is replaced,
+/// the link stays); no temporary survives.
+#[cfg(unix)]
+#[test]
+fn output_files_respect_permissions_and_links() {
+    use std::os::unix::fs::PermissionsExt;
+    let run = spring().simulate().steps(3).run().unwrap();
+    let dir = scratch("outputs", "locked");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::set_permissions(&dir, std::fs::Permissions::from_mode(0o555)).unwrap();
+    let root = std::fs::File::create(dir.join("probe")).is_ok();
+    if !root {
+        // (As root every write succeeds, so only an unprivileged run can see the refusal.)
+        let png = odyn::plot::energy(dir.join("e.png"), &[("s", &run)]);
+        assert!(matches!(png, Err(Error::Io { .. })), "{png:?}");
+        assert!(matches!(
+            run.write_csv(dir.join("e.csv")),
+            Err(Error::Io { .. })
+        ));
+    }
+    std::fs::set_permissions(&dir, std::fs::Permissions::from_mode(0o755)).unwrap();
+    let readonly = scratch("outputs", "readonly.csv");
+    std::fs::write(&readonly, "keep me").unwrap();
+    std::fs::set_permissions(&readonly, std::fs::Permissions::from_mode(0o444)).unwrap();
+    assert!(matches!(run.write_csv(&readonly), Err(Error::Io { .. })));
+    assert_eq!(std::fs::read_to_string(&readonly).unwrap(), "keep me");
+    let target = scratch("outputs", "target.csv");
+    std::fs::write(&target, "old").unwrap();
+    let link = scratch("outputs", "link.csv");
+    let _ = std::fs::remove_file(&link);
+    std::os::unix::fs::symlink(&target, &link).unwrap();
+    run.write_csv(&link).unwrap();
+    assert!(
+        std::fs::symlink_metadata(&link)
+            .unwrap()
+            .file_type()
+            .is_symlink()
+    );
+    assert!(
+        std::fs::read_to_string(&target)
+            .unwrap()
+            .starts_with("method,")
+    );
+}
+
+/// Every stability-explorer setting is validated: `max_doublings: u32::MAX` used to wrap to a
+/// negative exponent and report ∞ (the true limit is 0.4), `steps: 0` reported ∞, `growth: NaN`
+/// reported 0, `precision: 0` bisected forever.
+#[test]
+fn stability_probe_settings_are_validated() {
+    let osc = Oscillator {
+        x: 1.0,
+        v: 0.0,
+        omega: 5.0,
+    };
+    let measure =
+        |probe: StabilityProbe| measured_limit(&osc, &osc.state(), Method::Leapfrog, 0.2, &probe);
+    for (probe, field) in [
+        (
+            StabilityProbe {
+                max_doublings: u32::MAX,
+                ..StabilityProbe::default()
+            },
+            "StabilityProbe::max_doublings",
+        ),
+        (
+            StabilityProbe {
+                steps: 0,
+                ..StabilityProbe::default()
+            },
+            "StabilityProbe::steps",
+        ),
+        (
+            StabilityProbe {
+                growth: f64::NAN,
+                ..StabilityProbe::default()
+            },
+            "StabilityProbe::growth",
+        ),
+        (
+            StabilityProbe {
+                precision: 0.0,
+                ..StabilityProbe::default()
+            },
+            "StabilityProbe::precision",
+        ),
+    ] {
+        assert_eq!(invalid_field(measure(probe)), field);
+    }
+    // The limit itself: 2/ω = 0.4 for leapfrog.
+    let limit = measure(StabilityProbe::default()).unwrap();
+    assert!((limit - 0.4).abs() < 1e-5, "{limit}");
+}
+
+/// A Jacobian with a NaN entry (a NaN parameter) is refused before the eigenvalue solve, which
+/// never returned on NaN input; the prediction is an error, not a silent ∞.
+#[test]
+fn a_nan_jacobian_has_no_predicted_limit() {
+    let osc = Oscillator {
+        x: 1.0,
+        v: 0.0,
+        omega: f64::NAN,
+    };
+    let result = odyn::stability::predicted_limit(&osc, 0.0, &osc.state(), Method::Rk4);
+    assert_eq!(invalid_field(result), "jacobian");
+}
+
+/// An exploded explicit run is reported, not returned as success: the default divergence limit
+/// is relative to the initial state (RK4 on a stiff spring at ω·dt = 10 used to run to
+/// velocities of 1e12, under the old absolute 1e100, and return Ok).
+#[test]
+fn an_exploded_run_is_a_divergence() {
+    let stiff = Oscillator {
+        x: 1.0,
+        v: 0.0,
+        omega: 1000.0,
+    };
+    let error = stiff
+        .simulate()
+        .integrator(Method::Rk4)
+        .dt(0.01)
+        .steps(20)
+        .run()
+        .unwrap_err();
+    match error {
+        Error::Diverged { limit, value, .. } => {
+            assert_eq!(limit, 1e10);
+            assert!(value.abs() > limit && value.is_finite(), "{value}");
+        }
+        other => panic!("{other}"),
+    }
+}
+
+/// Numbers in error messages print in their shortest exact form (`1e-300`), never as hundreds of
+/// digits.
+#[test]
+fn error_messages_print_numbers_compactly() {
+    let error = spring().simulate().dt(-1e-300).steps(1).run().unwrap_err();
+    let text = error.to_string();
+    assert!(text.contains("-1e-300"), "{text}");
+    assert!(text.len() < 120, "{text}");
+}

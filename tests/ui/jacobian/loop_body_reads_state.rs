@@ -1,0 +1,23 @@
+use odyn::prelude::*;
+
+#[system()]
+pub struct Model {
+    #[position]
+    pub x: f64,
+    #[velocity]
+    pub v: f64,
+    pub k: f64,
+}
+
+#[system]
+impl Model {
+    fn acceleration(&self) -> f64 {
+        let mut a = 0.0;
+        for _ in 0..3 {
+            a -= self.x;
+        }
+        a
+    }
+}
+
+fn main() {}
