@@ -17,35 +17,79 @@ use crate::ir::{ExprId, Func, Func2, Graph, Node};
 /// Differentiates expressions of one graph, remembering what it has done.
 #[derive(Default)]
 pub(crate) struct Differentiator {
-    memo: HashMap<(ExprId, usize), ExprId>,
+    memo: HashMap<(ExprId, Wrt), ExprId>,
+}
+
+/// What a derivative is taken with respect to.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+enum Wrt {
+    /// One variable: ∂e/∂yₖ.
+    Var(usize),
+    /// The directional derivative Σₖ ∂e/∂yₖ·sₖ along a seed vector s, whose components are the
+    /// graph's variables `first_seed + k` for the state components k < `components`.
+    Direction {
+        first_seed: usize,
+        components: usize,
+    },
 }
 
 impl Differentiator {
-    /// ∂`e`/∂(state component `var`).
+    /// ∂`e`/∂(variable `var`): a state component, or the time.
     pub(crate) fn derivative(&mut self, g: &mut Graph, e: ExprId, var: usize) -> ExprId {
+        self.differentiate(g, e, Wrt::Var(var))
+    }
+
+    /// The forward-mode tangent of `e`, Σₖ ∂e/∂yₖ·sₖ, where the seed sₖ of state component
+    /// k < `components` is the graph's variable `first_seed + k` (the time is not seeded). One
+    /// tangent of each output gives a whole column group of the Jacobian per evaluation.
+    pub(crate) fn tangent(
+        &mut self,
+        g: &mut Graph,
+        e: ExprId,
+        first_seed: usize,
+        components: usize,
+    ) -> ExprId {
+        self.differentiate(
+            g,
+            e,
+            Wrt::Direction {
+                first_seed,
+                components,
+            },
+        )
+    }
+
+    fn differentiate(&mut self, g: &mut Graph, e: ExprId, var: Wrt) -> ExprId {
         if let Some(&d) = self.memo.get(&(e, var)) {
             return d;
         }
         let d = match g.node(e) {
             Node::Const(_) | Node::Opaque(_) => g.num(0.0),
-            Node::Var(k) => g.num(if k == var { 1.0 } else { 0.0 }),
+            Node::Var(k) => match var {
+                Wrt::Var(v) => g.num(if k == v { 1.0 } else { 0.0 }),
+                Wrt::Direction {
+                    first_seed,
+                    components,
+                } if k < components => g.var(first_seed + k),
+                Wrt::Direction { .. } => g.num(0.0),
+            },
             Node::Add(a, b) => {
-                let (da, db) = (self.derivative(g, a, var), self.derivative(g, b, var));
+                let (da, db) = (self.differentiate(g, a, var), self.differentiate(g, b, var));
                 g.add(da, db)
             }
             Node::Neg(a) => {
-                let da = self.derivative(g, a, var);
+                let da = self.differentiate(g, a, var);
                 g.neg(da)
             }
             Node::Mul(a, b) => {
                 // (ab)′ = a′b + ab′
-                let (da, db) = (self.derivative(g, a, var), self.derivative(g, b, var));
+                let (da, db) = (self.differentiate(g, a, var), self.differentiate(g, b, var));
                 let (left, right) = (g.mul(da, b), g.mul(a, db));
                 g.add(left, right)
             }
             Node::Div(a, b) => {
                 // (a/b)′ = a′/b − (a/b)·b′/b, reusing the quotient node e = a/b.
-                let (da, db) = (self.derivative(g, a, var), self.derivative(g, b, var));
+                let (da, db) = (self.differentiate(g, a, var), self.differentiate(g, b, var));
                 let first = g.div(da, b);
                 let ratio = g.div(db, b);
                 let second = g.mul(e, ratio);
@@ -53,7 +97,7 @@ impl Differentiator {
             }
             Node::Powi(a, n) => {
                 // (aⁿ)′ = n·aⁿ⁻¹·a′
-                let da = self.derivative(g, a, var);
+                let da = self.differentiate(g, a, var);
                 let n_f = g.num(f64::from(n));
                 let lower = g.powi(a, n - 1);
                 let scaled = g.mul(n_f, lower);
@@ -61,7 +105,7 @@ impl Differentiator {
             }
             Node::Powf(a, b) => {
                 // (aᵇ)′ = b·aᵇ⁻¹·a′ for a state-independent b (the lowering guarantees it).
-                let da = self.derivative(g, a, var);
+                let da = self.differentiate(g, a, var);
                 let one = g.num(1.0);
                 let b_minus_one = g.sub(b, one);
                 let lower = g.powf(a, b_minus_one);
@@ -69,7 +113,7 @@ impl Differentiator {
                 g.mul(scaled, da)
             }
             Node::Call(f, a) => {
-                let da = self.derivative(g, a, var);
+                let da = self.differentiate(g, a, var);
                 if g.is_zero(da) {
                     da
                 } else {
@@ -78,7 +122,7 @@ impl Differentiator {
                 }
             }
             Node::Call2(f, a, b) => {
-                let (da, db) = (self.derivative(g, a, var), self.derivative(g, b, var));
+                let (da, db) = (self.differentiate(g, a, var), self.differentiate(g, b, var));
                 match f {
                     // atan2(a, b)′ = (b·a′ − a·b′)/(a² + b²)
                     Func2::Atan2 => {
@@ -103,8 +147,8 @@ impl Differentiator {
                 otherwise,
             } => {
                 let (dt, de) = (
-                    self.derivative(g, then, var),
-                    self.derivative(g, otherwise, var),
+                    self.differentiate(g, then, var),
+                    self.differentiate(g, otherwise, var),
                 );
                 g.select(selector, arm, dt, de)
             }
@@ -115,8 +159,8 @@ impl Differentiator {
                 otherwise,
             } => {
                 let (dt, de) = (
-                    self.derivative(g, then, var),
-                    self.derivative(g, otherwise, var),
+                    self.differentiate(g, then, var),
+                    self.differentiate(g, otherwise, var),
                 );
                 g.pick(a, b, dt, de)
             }

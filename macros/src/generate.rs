@@ -360,15 +360,45 @@ pub(crate) fn jacobian(
         exact_time,
     } = lowered;
     let mut differentiator = crate::derivative::Differentiator::default();
-    let mut entries = Vec::new();
-    for (row, &f) in outputs.iter().enumerate() {
-        for column in 0..model.len() {
-            let d = differentiator.derivative(&mut graph, f, column);
-            if !graph.is_zero(d) {
-                entries.push((row, column, d));
-            }
-        }
+    let mut components = component_tokens(model);
+    if let Some(t) = force.time.as_ref().and_then(|t| match &*t.pat {
+        syn::Pat::Ident(p) => Some(&p.ident),
+        _ => None,
+    }) {
+        components.push(t.to_token_stream());
     }
+    let jac = format_ident!("__odyn_jac", span = Span::mixed_site());
+    let n_usize = model.len();
+    let (matrix, body, nonzeros) = if n_usize <= SMALL {
+        let (body, nonzeros) = small_jacobian(
+            &mut graph,
+            &mut differentiator,
+            &outputs,
+            n_usize,
+            &components,
+            &jac,
+        );
+        (
+            quote!(::odyn::__private::nalgebra::SMatrix<f64, #n, #n>),
+            body,
+            nonzeros,
+        )
+    } else {
+        let mut extended = components.clone();
+        let body = crate::tangent::jacobian(
+            &mut graph,
+            &mut differentiator,
+            &outputs,
+            n_usize,
+            &mut extended,
+            &jac,
+        );
+        (
+            quote!(::odyn::FaerDense<#n>),
+            body.statements,
+            body.nonzeros,
+        )
+    };
     // ∂f/∂t: the time is one more variable of the graph.
     let mut time_entries: Vec<(usize, ExprId)> = Vec::new();
     if let Some(var) = time_var {
@@ -379,48 +409,8 @@ pub(crate) fn jacobian(
             }
         }
     }
-    let mut components = component_tokens(model);
-    if let Some(t) = force.time.as_ref().and_then(|t| match &*t.pat {
-        syn::Pat::Ident(p) => Some(&p.ident),
-        _ => None,
-    }) {
-        components.push(t.to_token_stream());
-    }
-    let roots: Vec<ExprId> = entries.iter().map(|e| e.2).collect();
-    let lets = straight_line(&graph, &roots, &components);
-    let operand = |id: ExprId, graph: &crate::ir::Graph| operand(graph, id, &components);
-    let jac = format_ident!("__odyn_jac", span = Span::mixed_site());
-    let n_usize = model.len();
-    let (matrix, store) = if n_usize <= SMALL {
-        // The whole matrix in one expression, column by column, structural zeros as literals:
-        // the optimiser keeps it in registers, as it would a hand-written `Matrix3::new(..)`.
-        let columns = (0..n_usize).map(|c| {
-            let rows = (0..n_usize).map(|r| match entries.iter().find(|e| e.0 == r && e.1 == c) {
-                Some(&(_, _, d)) => operand(d, &graph),
-                None => quote!(0.0f64),
-            });
-            quote!([#(#rows),*])
-        });
-        let store = quote! {
-            *#jac = ::odyn::__private::nalgebra::SMatrix::from_array_storage(
-                ::odyn::__private::nalgebra::ArrayStorage([#(#columns),*]),
-            );
-        };
-        (
-            quote!(::odyn::__private::nalgebra::SMatrix<f64, #n, #n>),
-            store,
-        )
-    } else {
-        let sets = entries.iter().map(|&(r, c, d)| {
-            let value = operand(d, &graph);
-            quote!(#jac.set(#r, #c, #value);)
-        });
-        (
-            quote!(::odyn::FaerDense<#n>),
-            quote!(#jac.fill_zero(); #(#sets)*),
-        )
-    };
-    let nonzeros = entries.iter().map(|&(r, c, _)| quote!((#r, #c)));
+    let count = nonzeros.len();
+    let nonzeros = nonzeros.iter().map(|&(r, c)| quote!((#r, #c)));
     let (time_derivative, time_derivative_impl) = time_derivative(
         model,
         &graph,
@@ -435,7 +425,6 @@ pub(crate) fn jacobian(
     let time = time_param(force);
     let params = state_params(model);
     let fields = model.states.iter().map(|f| f.ident);
-    let count = entries.len();
     let doc = format!(
         "The {count} structural non-zeros of ∂f/∂y, derived by `#[system]` from the model's code."
     );
@@ -454,8 +443,7 @@ pub(crate) fn jacobian(
             )]
             fn __odyn_jacobian(#receiver, #time, #(#params,)* #jac: &mut #matrix) {
                 #(#prologue)*
-                #(#lets)*
-                #store
+                #body
             }
             #time_derivative
         }
@@ -474,6 +462,44 @@ pub(crate) fn jacobian(
             #time_derivative_impl
         }
     }
+}
+
+/// The Jacobian body of a model small enough for a stack matrix: one expression per structural
+/// non-zero, the whole matrix stored in one expression column by column with structural zeros as
+/// literals, so the optimiser keeps it in registers as it would a hand-written `Matrix3::new(..)`.
+fn small_jacobian(
+    graph: &mut crate::ir::Graph,
+    differentiator: &mut crate::derivative::Differentiator,
+    outputs: &[ExprId],
+    n: usize,
+    components: &[TokenStream],
+    jac: &syn::Ident,
+) -> (TokenStream, Vec<(usize, usize)>) {
+    let mut entries = Vec::new();
+    for (row, &f) in outputs.iter().enumerate() {
+        for column in 0..n {
+            let d = differentiator.derivative(graph, f, column);
+            if !graph.is_zero(d) {
+                entries.push((row, column, d));
+            }
+        }
+    }
+    let roots: Vec<ExprId> = entries.iter().map(|e| e.2).collect();
+    let lets = straight_line(graph, &roots, components);
+    let columns = (0..n).map(|c| {
+        let rows = (0..n).map(|r| match entries.iter().find(|e| e.0 == r && e.1 == c) {
+            Some(&(_, _, d)) => operand(graph, d, components),
+            None => quote!(0.0f64),
+        });
+        quote!([#(#rows),*])
+    });
+    let body = quote! {
+        #(#lets)*
+        *#jac = ::odyn::__private::nalgebra::SMatrix::from_array_storage(
+            ::odyn::__private::nalgebra::ArrayStorage([#(#columns),*]),
+        );
+    };
+    (body, entries.iter().map(|&(r, c, _)| (r, c)).collect())
 }
 
 /// The hidden ∂f/∂t function and the `Jacobian` items that use it: exact straight-line code when
@@ -574,11 +600,18 @@ pub(crate) fn straight_line(
     roots: &[ExprId],
     components: &[TokenStream],
 ) -> Vec<TokenStream> {
+    lets(graph, &graph.reachable(roots.iter().copied()), components)
+}
+
+/// One `let` per operation node of `ids` (in arena order, so dependencies come first).
+pub(crate) fn lets(
+    graph: &crate::ir::Graph,
+    ids: &[ExprId],
+    components: &[TokenStream],
+) -> Vec<TokenStream> {
     let operand = |id| operand(graph, id, components);
-    graph
-        .reachable(roots.iter().copied())
-        .into_iter()
-        .filter_map(|id| {
+    ids.iter()
+        .filter_map(|&id| {
             let value = match graph.node(id) {
                 Node::Const(_) | Node::Var(_) | Node::Opaque(_) => return None,
                 Node::Add(a, b) => {

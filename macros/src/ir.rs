@@ -181,6 +181,31 @@ pub(crate) enum Node {
     },
 }
 
+impl Node {
+    /// The nodes this one reads, in a fixed order (at most four).
+    pub(crate) fn children(self) -> impl Iterator<Item = ExprId> {
+        let (list, len): ([ExprId; 4], usize) = match self {
+            Node::Const(_) | Node::Var(_) | Node::Opaque(_) => ([ExprId(0); 4], 0),
+            Node::Neg(a) | Node::Powi(a, _) | Node::Call(_, a) => ([a, a, a, a], 1),
+            Node::Add(a, b)
+            | Node::Mul(a, b)
+            | Node::Div(a, b)
+            | Node::Powf(a, b)
+            | Node::Call2(_, a, b) => ([a, b, b, b], 2),
+            Node::Select {
+                then, otherwise, ..
+            } => ([then, otherwise, otherwise, otherwise], 2),
+            Node::Pick {
+                a,
+                b,
+                then,
+                otherwise,
+            } => ([a, b, then, otherwise], 4),
+        };
+        list.into_iter().take(len)
+    }
+}
+
 /// The arena.
 #[derive(Default, Debug)]
 pub(crate) struct Graph {
@@ -367,26 +392,7 @@ impl Graph {
             if std::mem::replace(&mut seen[id.index()], true) {
                 continue;
             }
-            match self.node(id) {
-                Node::Const(_) | Node::Var(_) | Node::Opaque(_) => {}
-                Node::Neg(a) | Node::Powi(a, _) | Node::Call(_, a) => stack.push(a),
-                Node::Add(a, b)
-                | Node::Mul(a, b)
-                | Node::Div(a, b)
-                | Node::Powf(a, b)
-                | Node::Call2(_, a, b) => {
-                    stack.extend([a, b]);
-                }
-                Node::Select {
-                    then, otherwise, ..
-                } => stack.extend([then, otherwise]),
-                Node::Pick {
-                    a,
-                    b,
-                    then,
-                    otherwise,
-                } => stack.extend([a, b, then, otherwise]),
-            }
+            stack.extend(self.node(id).children());
         }
         (0..self.nodes.len())
             .filter(|&i| seen[i])

@@ -20,6 +20,8 @@ mod limits;
 mod lower;
 mod model;
 mod particles;
+mod sparsity;
+mod tangent;
 
 use proc_macro::TokenStream;
 
