@@ -20,6 +20,7 @@ pub mod plot;
 pub mod reference;
 mod simulation;
 pub mod stability;
+mod stack;
 mod stepper;
 mod trajectory;
 pub mod work_precision;

@@ -269,6 +269,11 @@ impl<'m, M: Model> Simulation<'m, M> {
     /// Runs and returns the trajectory up to the last good step, with the failure that stopped
     /// it, if any. Input and capability errors are still `Err`: nothing ran.
     pub fn run_partial(&self) -> Result<(Trajectory<M::State>, Option<Error>)> {
+        crate::stack::with_room::<M::State, _>(|| self.run_here())
+    }
+
+    /// [`Simulation::run_partial`] on the current stack.
+    fn run_here(&self) -> Result<(Trajectory<M::State>, Option<Error>)> {
         let plan = self.plan()?;
         // Exhaustive: a new method must be given its integrator here, never another's.
         match self.options.method {

@@ -12,7 +12,8 @@ use crate::{Error, Integrator, Model, NewtonOptions, Result, Stats};
 /// test — without recording. Time is computed as t₀ + n·dt, never accumulated, so two steppers
 /// that have taken the same number of steps are at bit-identical times.
 pub struct Stepper<'m, M: Model, I: Integrator<M>> {
-    driver: Driver<'static, 'm, M, I>,
+    // Boxed: the driver holds the integrator's scratch states, dozens for big models.
+    driver: Box<Driver<'static, 'm, M, I>>,
     dt: f64,
     steps: u64,
 }
@@ -70,7 +71,12 @@ impl<'m, M: Model, I: Integrator<M>> Stepper<'m, M, I> {
             dense: false,
             progress: None,
         };
-        let driver = Driver::new(model, t0, state, newton, limit, Vec::new(), 0.0, quiet)?;
+        // The closure captures the state boxed: a megabyte state captured by value is copied
+        // into each frame on the way to the bigger stack.
+        let state = Box::new(state);
+        let driver = crate::stack::with_room::<M::State, _>(move || {
+            Driver::new(model, t0, *state, newton, limit, Vec::new(), 0.0, quiet).map(Box::new)
+        })?;
         Ok(Stepper {
             driver,
             dt,
@@ -90,7 +96,9 @@ impl<'m, M: Model, I: Integrator<M>> Stepper<'m, M, I> {
     /// fails even after halving; the state is then the last good one.
     #[inline]
     pub fn step(&mut self) -> Result<()> {
-        let stepped = self.driver.run_fixed(self.dt, self.steps, 1);
+        let (dt, steps) = (self.dt, self.steps);
+        let stepped =
+            crate::stack::with_room::<M::State, _>(|| self.driver.run_fixed(dt, steps, 1));
         if stepped.is_ok() {
             self.steps += 1;
         }
