@@ -46,7 +46,7 @@ impl Chain {
             -self.q * self.k - self.p.component_mul(&self.p).component_mul(&self.q) * self.c;
         dp[0] = dp[0].min(self.q[0]);
         ChainState {
-            q: self.p.clone(),
+            q: self.p,
             p: dp,
         }
     }
@@ -87,7 +87,7 @@ fn forward_mode_jacobians_match_finite_differences() {
 fn big_models_have_an_exact_time_derivative() {
     let model = dense();
     let (t, y) = (0.7, model.state());
-    let mut exact = y.clone();
+    let mut exact = y;
     model.time_derivative(t, &y, &mut exact);
     let expected = y.y.normalize() * t.cos();
     assert!(
@@ -222,5 +222,5 @@ fn stepped(model: &Decay) -> Box<DecayState> {
     for _ in 0..10 {
         stepper.step().unwrap();
     }
-    Box::new(stepper.state().clone())
+    Box::new(*stepper.state())
 }
