@@ -8,6 +8,8 @@
 //! dt = 1e-3), `height.png` (height against time, sampled on the dense output) and
 //! `convergence.csv` (each fixed-step method's worst bounce-time error at three steps).
 
+#![forbid(unsafe_code)]
+
 use std::path::Path;
 
 use odyn::output::{number, write_table};

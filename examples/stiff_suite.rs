@@ -118,7 +118,11 @@ fn study<M: Model>(
     study.newton.max_halvings = 30;
     let set = measure(model, &study)?;
     set.write_csv(dir.join(format!("{name}.csv")))?;
-    set.plot(dir.join(format!("{name}.png")), Accuracy::FinalState, Cost::Seconds)?;
+    set.plot(
+        dir.join(format!("{name}.png")),
+        Accuracy::FinalState,
+        Cost::Seconds,
+    )?;
     println!("\n{name} to t = {horizon}:");
     println!(
         "  {:<13} {:>9} {:>9} {:>7} {:>9} {:>9} {:>8} {:>10}",
@@ -209,6 +213,9 @@ fn main() -> odyn::Result<()> {
         vec![0.1, 0.01, 0.001],
         dir,
     )?;
-    println!("\nwrote {}/{{robertson,hires,van_der_pol}}.{{csv,png}}", dir.display());
+    println!(
+        "\nwrote {}/{{robertson,hires,van_der_pol}}.{{csv,png}}",
+        dir.display()
+    );
     Ok(())
 }

@@ -1,5 +1,6 @@
-//! Models above the stack-matrix size (32 components) get their Jacobian by coloured forward
-//! mode (`macros/src/sparsity.rs`): checked here against central differences, with the
+//! Models above the stack-matrix size (32 components): with few structural non-zeros their
+//! Jacobian is one expression per entry, with many (over 4096) it comes from coloured forward mode
+//! (`macros/src/sparsity.rs`). Both checked here against central differences, with the
 //! structural non-zeros the colouring relies on, and end to end through the implicit methods.
 #![allow(missing_docs)]
 
@@ -9,12 +10,12 @@ use common::*;
 use odyn::nalgebra::SVector;
 use odyn::prelude::*;
 
-/// ẏ = −k·y·|y|² + sin(t)·y/|y|: every component couples to every other (40² non-zeros), and f
-/// reads the time.
+/// ẏ = −k·y·|y|² + sin(t)·y/|y|: every component couples to every other (72² = 5184 non-zeros:
+/// forward mode, one column per group), and f reads the time.
 #[system(integrator = Rodas5P)]
 pub struct Dense {
     #[state]
-    pub y: SVector<f64, 40>,
+    pub y: SVector<f64, 72>,
     pub k: f64,
 }
 
@@ -28,7 +29,7 @@ impl Dense {
 }
 
 /// 24 damped oscillators with a cubic friction, q̇ = p, ṗ = −k·q − c·p∘p∘q, plus one `min` on a
-/// component: a sparse Jacobian (two column groups) of 72 non-zeros.
+/// component: a sparse Jacobian of 72 non-zeros, one expression each.
 #[system(integrator = Rodas5P)]
 pub struct Chain {
     #[state]
@@ -45,9 +46,44 @@ impl Chain {
         let mut dp =
             -self.q * self.k - self.p.component_mul(&self.p).component_mul(&self.q) * self.c;
         dp[0] = dp[0].min(self.q[0]);
-        ChainState {
-            q: self.p,
-            p: dp,
+        ChainState { q: self.p, p: dp }
+    }
+}
+
+/// Eight independent blocks ȧ = −a·|a|², each dense within itself: 8·24² = 4608 non-zeros, so
+/// forward mode, and the colouring seeds one column of every block together (24 groups).
+#[system(integrator = Rodas5P)]
+pub struct Blocks {
+    #[state]
+    pub a: SVector<f64, 24>,
+    #[state]
+    pub b: SVector<f64, 24>,
+    #[state]
+    pub c: SVector<f64, 24>,
+    #[state]
+    pub d: SVector<f64, 24>,
+    #[state]
+    pub e: SVector<f64, 24>,
+    #[state]
+    pub f: SVector<f64, 24>,
+    #[state]
+    pub g: SVector<f64, 24>,
+    #[state]
+    pub h: SVector<f64, 24>,
+}
+
+#[system]
+impl Blocks {
+    fn derivative(&self) -> BlocksState {
+        BlocksState {
+            a: -self.a * self.a.norm_squared(),
+            b: -self.b * self.b.norm_squared(),
+            c: -self.c * self.c.norm_squared(),
+            d: -self.d * self.d.norm_squared(),
+            e: -self.e * self.e.norm_squared(),
+            f: -self.f * self.f.norm_squared(),
+            g: -self.g * self.g.norm_squared(),
+            h: -self.h * self.h.norm_squared(),
         }
     }
 }
@@ -56,6 +92,22 @@ fn dense() -> Dense {
     Dense {
         y: SVector::from_fn(|i, _| 0.1 + 0.01 * i as f64),
         k: 2.0,
+    }
+}
+
+impl Blocks {
+    fn default_state() -> Blocks {
+        let v = SVector::from_element(0.1);
+        Blocks {
+            a: v,
+            b: v,
+            c: v,
+            d: v,
+            e: v,
+            f: v,
+            g: v,
+            h: v,
+        }
     }
 }
 
@@ -73,7 +125,19 @@ fn forward_mode_jacobians_match_finite_differences() {
     check(&dense(), 0.7, 5, |r| DenseState {
         y: SVector::from_fn(|_, _| r.uniform(-1.0, 1.0)),
     });
-    assert_eq!(Dense::NONZEROS.len(), 40 * 40);
+    assert_eq!(Dense::NONZEROS.len(), 72 * 72);
+    let draw = |r: &mut Rng| SVector::<f64, 24>::from_fn(|_, _| r.uniform(-1.0, 1.0));
+    check(&Blocks::default_state(), 0.0, 3, |r| BlocksState {
+        a: draw(r),
+        b: draw(r),
+        c: draw(r),
+        d: draw(r),
+        e: draw(r),
+        f: draw(r),
+        g: draw(r),
+        h: draw(r),
+    });
+    assert_eq!(Blocks::NONZEROS.len(), 8 * 24 * 24);
     check(&chain(), 0.0, 5, |r| ChainState {
         q: SVector::from_fn(|_, _| r.uniform(-1.0, 1.0)),
         p: SVector::from_fn(|_, _| r.uniform(-1.0, 1.0)),

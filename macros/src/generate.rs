@@ -342,6 +342,11 @@ fn hidden_fn(model: &Model<'_>, name: &syn::Ident, f: &Function, with_time: bool
 /// heap `FaerDense`, solved with faer.
 const SMALL: usize = 32;
 
+/// Bigger models with at most this many structural non-zeros get one expression per entry; more
+/// than that, and the Jacobian comes from coloured forward mode (see [`crate::sparsity`]): a
+/// banded 1000-component model stays symbolic, a dense 65-component one does not.
+const SYMBOLIC_LIMIT: usize = 4096;
+
 /// The `Jacobian` impl: the derivatives of the lowered force, emitted as straight-line code.
 pub(crate) fn jacobian(
     model: &Model<'_>,
@@ -370,29 +375,43 @@ pub(crate) fn jacobian(
     let jac = format_ident!("__odyn_jac", span = Span::mixed_site());
     let n_usize = model.len();
     let (matrix, body, nonzeros) = if n_usize <= SMALL {
-        let (body, nonzeros) = small_jacobian(
-            &mut graph,
-            &mut differentiator,
-            &outputs,
-            n_usize,
-            &components,
-            &jac,
-        );
+        let entries = symbolic_entries(&mut graph, &mut differentiator, &outputs, |_| 0..n_usize);
         (
             quote!(::odyn::__private::nalgebra::SMatrix<f64, #n, #n>),
-            body,
-            nonzeros,
+            small_store(&graph, &entries, n_usize, &components, &jac),
+            entries.iter().map(|&(r, c, _)| (r, c)).collect(),
         )
     } else {
-        let mut extended = components.clone();
-        let body = crate::tangent::jacobian(
-            &mut graph,
-            &mut differentiator,
-            &outputs,
-            n_usize,
-            &mut extended,
-            &jac,
-        );
+        let rows = crate::sparsity::pattern(&graph, &outputs, n_usize);
+        let count: usize = rows.iter().map(Vec::len).sum();
+        let body = if count <= SYMBOLIC_LIMIT {
+            let entries = symbolic_entries(&mut graph, &mut differentiator, &outputs, |row| {
+                rows[row].iter().copied()
+            });
+            let lets = straight_line(
+                &graph,
+                &entries.iter().map(|e| e.2).collect::<Vec<_>>(),
+                &components,
+            );
+            let sets = entries.iter().map(|&(r, c, d)| {
+                let value = operand(&graph, d, &components);
+                quote!(#jac.set(#r, #c, #value);)
+            });
+            crate::tangent::Body {
+                statements: quote!(#(#lets)* #jac.fill_zero(); #(#sets)*),
+                nonzeros: entries.iter().map(|&(r, c, _)| (r, c)).collect(),
+            }
+        } else {
+            let mut extended = components.clone();
+            crate::tangent::jacobian(
+                &mut graph,
+                &mut differentiator,
+                &outputs,
+                rows,
+                &mut extended,
+                &jac,
+            )
+        };
         (
             quote!(::odyn::FaerDense<#n>),
             body.statements,
@@ -464,26 +483,35 @@ pub(crate) fn jacobian(
     }
 }
 
-/// The Jacobian body of a model small enough for a stack matrix: one expression per structural
-/// non-zero, the whole matrix stored in one expression column by column with structural zeros as
-/// literals, so the optimiser keeps it in registers as it would a hand-written `Matrix3::new(..)`.
-fn small_jacobian(
+/// The derivative of each output by each of its `columns`, the structural zeros dropped.
+fn symbolic_entries<C: IntoIterator<Item = usize>>(
     graph: &mut crate::ir::Graph,
     differentiator: &mut crate::derivative::Differentiator,
     outputs: &[ExprId],
-    n: usize,
-    components: &[TokenStream],
-    jac: &syn::Ident,
-) -> (TokenStream, Vec<(usize, usize)>) {
+    columns: impl Fn(usize) -> C,
+) -> Vec<(usize, usize, ExprId)> {
     let mut entries = Vec::new();
     for (row, &f) in outputs.iter().enumerate() {
-        for column in 0..n {
+        for column in columns(row) {
             let d = differentiator.derivative(graph, f, column);
             if !graph.is_zero(d) {
                 entries.push((row, column, d));
             }
         }
     }
+    entries
+}
+
+/// The Jacobian body of a model small enough for a stack matrix: one expression per structural
+/// non-zero, the whole matrix stored in one expression column by column with structural zeros as
+/// literals, so the optimiser keeps it in registers as it would a hand-written `Matrix3::new(..)`.
+fn small_store(
+    graph: &crate::ir::Graph,
+    entries: &[(usize, usize, ExprId)],
+    n: usize,
+    components: &[TokenStream],
+    jac: &syn::Ident,
+) -> TokenStream {
     let roots: Vec<ExprId> = entries.iter().map(|e| e.2).collect();
     let lets = straight_line(graph, &roots, components);
     let columns = (0..n).map(|c| {
@@ -493,13 +521,12 @@ fn small_jacobian(
         });
         quote!([#(#rows),*])
     });
-    let body = quote! {
+    quote! {
         #(#lets)*
         *#jac = ::odyn::__private::nalgebra::SMatrix::from_array_storage(
             ::odyn::__private::nalgebra::ArrayStorage([#(#columns),*]),
         );
-    };
-    (body, entries.iter().map(|&(r, c, _)| (r, c)).collect())
+    }
 }
 
 /// The hidden ∂f/∂t function and the `Jacobian` items that use it: exact straight-line code when

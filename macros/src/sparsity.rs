@@ -1,9 +1,9 @@
 //! Stage 5c: the Jacobian's structure without differentiating — which state components each
 //! output can depend on — and a colouring of its columns for forward-mode evaluation.
 //!
-//! Big models (more than [`crate::generate`]'s stack-matrix size) do not get one expression per
-//! Jacobian entry: a dense 200-component model has 40 000 of them, and rustc needed 52 s and
-//! 4.6 GB to compile that. They get one forward-mode tangent of the force instead, evaluated once
+//! Models with many structural non-zeros (more than `generate::SYMBOLIC_LIMIT`) do not get one
+//! expression per Jacobian entry: a dense 200-component model has 40 000 of them, and rustc
+//! needed 52 s and 4.6 GB to compile that. They get one forward-mode tangent of the force instead, evaluated once
 //! per column group: columns that share no row are seeded together (Curtis, Powell & Reid, "On
 //! the estimation of sparse Jacobian matrices", IMA J. Appl. Math. 13, 1974), so a tridiagonal
 //! Jacobian costs three evaluations whatever its size, a dense one n. The code emitted scales

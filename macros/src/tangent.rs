@@ -13,7 +13,7 @@ use quote::{format_ident, quote};
 use crate::derivative::Differentiator;
 use crate::generate::{lets, operand};
 use crate::ir::{ExprId, Graph, Node};
-use crate::sparsity::{column_groups, pattern};
+use crate::sparsity::column_groups;
 
 /// The Jacobian body of a big model: its statements (with `jacobian` the matrix) and its
 /// structural non-zeros in group order.
@@ -22,18 +22,18 @@ pub(crate) struct Body {
     pub(crate) nonzeros: Vec<(usize, usize)>,
 }
 
-/// Emits the forward-mode Jacobian of `outputs` over `n` state components. `components` names
-/// each graph variable in generated code (the n components, then the time if f reads it); it is
-/// extended with the seed vector's components.
+/// Emits the forward-mode Jacobian of `outputs`, whose dependencies on the state are `rows`
+/// ([`crate::sparsity::pattern`]). `components` names each graph variable in generated code (the
+/// state's, then the time if f reads it); it is extended with the seed vector's components.
 pub(crate) fn jacobian(
     graph: &mut Graph,
     differentiator: &mut Differentiator,
     outputs: &[ExprId],
-    n: usize,
+    rows: Vec<Vec<usize>>,
     components: &mut Vec<TokenStream>,
     jacobian: &syn::Ident,
 ) -> Body {
-    let rows = pattern(graph, outputs, n);
+    let n = outputs.len();
     let groups = column_groups(&rows, n);
     let mut columns: Vec<Vec<usize>> = vec![Vec::new(); n];
     for (i, row) in rows.iter().enumerate() {

@@ -4,7 +4,7 @@
 use crate::{Error, Model, Result, State, Tolerances};
 
 /// Options of an adaptive run beyond its tolerances. Every field has a documented default, and
-/// [`Controller`] settings default per method (see [`Controller::for_method`]).
+/// [`Controller`] settings default per method (each integrator's `Integrator::CONTROLLER`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct StepControl {
     /// The first step; `None` (the default) picks one by Hairer's algorithm (see
