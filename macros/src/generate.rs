@@ -393,12 +393,21 @@ pub(crate) fn jacobian(
                 &entries.iter().map(|e| e.2).collect::<Vec<_>>(),
                 &components,
             );
-            let sets = entries.iter().map(|&(r, c, d)| {
-                let value = operand(&graph, d, &components);
-                quote!(#jac.set(#r, #c, #value);)
-            });
+            // The values in one array and one loop to store them: a `set` call per entry
+            // costs the compiler more than the entry's arithmetic.
+            let values = entries
+                .iter()
+                .map(|&(_, _, d)| operand(&graph, d, &components));
+            let count = entries.len();
             crate::tangent::Body {
-                statements: quote!(#(#lets)* #jac.fill_zero(); #(#sets)*),
+                statements: quote! {
+                    #(#lets)*
+                    let __odyn_values: [f64; #count] = [#(#values),*];
+                    #jac.fill_zero();
+                    for (&(i, j), &value) in <Self as ::odyn::Jacobian>::NONZEROS.iter().zip(&__odyn_values) {
+                        #jac.set(i, j, value);
+                    }
+                },
                 nonzeros: entries.iter().map(|&(r, c, _)| (r, c)).collect(),
             }
         } else {
