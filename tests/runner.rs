@@ -341,3 +341,57 @@ fn time_argument_and_tuple_accelerations_reach_the_right_fields() {
         driven.last().state.a
     );
 }
+
+/// The same runs in four threads at once give results bit-identical to a serial run: nothing in
+/// a run depends on shared state or on timing (adaptive Lorenz with DOP853 and events, a stiff
+/// Rodas5P run, a fixed-step RK4 run).
+#[test]
+fn runs_in_parallel_threads_match_a_serial_run_bit_for_bit() {
+    let lorenz = common::Lorenz::classic();
+    let runs = || -> Vec<Vec<f64>> {
+        let watch = Event::crossing("x = 0", |_, s: &common::LorenzState| s.x).record();
+        let adaptive = lorenz
+            .simulate()
+            .integrator(Method::Dop853)
+            .tolerances(1e-10, 1e-10)
+            .duration(10.0)
+            .event(watch)
+            .run()
+            .unwrap();
+        let stiff = lorenz
+            .simulate()
+            .integrator(Method::Rodas5P)
+            .tolerances(1e-6, 1e-8)
+            .duration(5.0)
+            .run()
+            .unwrap();
+        let fixed = lorenz
+            .simulate()
+            .integrator(Method::Rk4)
+            .dt(1e-3)
+            .steps(5000)
+            .run()
+            .unwrap();
+        [adaptive, stiff, fixed]
+            .iter()
+            .map(|run| {
+                run.samples
+                    .iter()
+                    .flat_map(|s| std::iter::once(s.t).chain(s.state.as_slice().iter().copied()))
+                    .chain(run.events.iter().map(|e| e.t))
+                    .collect()
+            })
+            .collect()
+    };
+    let serial = runs();
+    let parallel: Vec<_> = std::thread::scope(|scope| {
+        let handles: Vec<_> = (0..4).map(|_| scope.spawn(runs)).collect();
+        handles.into_iter().map(|h| h.join().unwrap()).collect()
+    });
+    for result in parallel {
+        for (a, b) in result.iter().zip(&serial) {
+            assert_eq!(a.len(), b.len());
+            assert!(a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits()));
+        }
+    }
+}
