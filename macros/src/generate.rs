@@ -318,6 +318,16 @@ pub(crate) fn attribute_defaults(args: &Args) -> TokenStream {
     }
 }
 
+/// The inlining of a hidden function of `model`: a hint when small, never when big, so a big
+/// body is compiled once rather than into every stage of every integrator.
+fn inline_hint(model: &Model<'_>, small: TokenStream) -> TokenStream {
+    if model.len() <= SMALL {
+        small
+    } else {
+        quote!(#[inline(never)])
+    }
+}
+
 /// A user function re-emitted as `fn __odyn_<name>(&self, t, <state fields>) -> Output`.
 fn hidden_fn(model: &Model<'_>, name: &syn::Ident, f: &Function, with_time: bool) -> TokenStream {
     let receiver = &f.receiver;
@@ -330,9 +340,13 @@ fn hidden_fn(model: &Model<'_>, name: &syn::Ident, f: &Function, with_time: bool
     } else {
         TokenStream::new()
     };
+    // Inlined into every stage of every integrator when small (as a hand-written loop would be);
+    // a big model's body is compiled once, or a 1000-component stencil is copied into dozens of
+    // stages and compiles for minutes.
+    let inline = inline_hint(model, quote!(#[inline(always)]));
     quote_spanned! {Span::call_site()=>
         #[doc(hidden)]
-        #[inline(always)]
+        #inline
         #[allow(unused_variables, non_snake_case, clippy::too_many_arguments)]
         fn #name(#receiver, #time #(#params),*) -> #output #body
     }
@@ -456,11 +470,12 @@ pub(crate) fn jacobian(
     let doc = format!(
         "The {count} structural non-zeros of ∂f/∂y, derived by `#[system]` from the model's code."
     );
+    let inline = inline_hint(model, quote!(#[inline]));
     quote! {
         #[automatically_derived]
         impl #self_ty {
             #[doc(hidden)]
-            #[inline]
+            #inline
             #[allow(
                 unused_variables,
                 unused_assignments,
@@ -584,9 +599,10 @@ fn time_derivative(
     let time = time_param(force);
     let params = state_params(model);
     let out = format_ident!("__odyn_dfdt", span = Span::mixed_site());
+    let inline = inline_hint(model, quote!(#[inline]));
     let hidden = quote! {
         #[doc(hidden)]
-        #[inline]
+        #inline
         #[allow(
             unused_variables,
             unused_assignments,
