@@ -239,30 +239,103 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
         let mut until_record = self.recording.every;
         let last = first.saturating_add(steps);
         let mut n = first;
+        // Steps before this grid index go through the checked path (a block being retaken).
+        let mut checked_until = first;
+        let recording = !self.quiet && self.recording.save_at.is_none();
         while n < last {
-            // Time as t₀ + n·dt, never accumulated: two runs that took the same steps are at
-            // bit-identical times.
-            let target = self.t0 + (n + 1) as f64 * dt;
-            self.grid = Some(n + 1);
-            loop {
-                match self.advance_to(target)? {
-                    Flow::Continue => break,
-                    Flow::Changed => continue,
-                    Flow::Stopped => return Ok(()),
+            let block = (last - n)
+                .min(BLOCK)
+                .min(if recording { until_record } else { BLOCK });
+            let taken = if n >= checked_until && block > 1 && self.plain() {
+                if !self.run_block(dt, n, block) {
+                    checked_until = n + block;
+                    continue;
                 }
-            }
-            n += 1;
-            if !self.quiet && self.recording.save_at.is_none() {
-                until_record -= 1;
+                block
+            } else {
+                // Time as t₀ + n·dt, never accumulated: two runs that took the same steps are at
+                // bit-identical times.
+                let target = self.t0 + (n + 1) as f64 * dt;
+                self.grid = Some(n + 1);
+                loop {
+                    match self.advance_to(target)? {
+                        Flow::Continue => break,
+                        Flow::Changed => continue,
+                        Flow::Stopped => return Ok(()),
+                    }
+                }
+                1
+            };
+            n += taken;
+            if recording {
+                until_record -= taken;
                 if until_record == 0 || n == last {
                     self.push_sample();
                     until_record = self.recording.every;
-                    self.report(target);
+                    self.report(self.t);
                 }
             }
         }
         self.finish();
         Ok(())
+    }
+
+    /// Whether steps need none of the per-step machinery: no events, no save times, no dense
+    /// output, no change from outside pending.
+    fn plain(&self) -> bool {
+        self.watch.is_empty()
+            && self.recording.save_at.is_none()
+            && self.record.dense.is_none()
+            && !self.dirty
+    }
+
+    /// Takes `count` grid steps from index `n` as a bare loop — the same attempts at the same
+    /// (t, h) as the checked path, with the divergence test folded branch-free into each step
+    /// rather than a call per step. Returns false when a step failed or left the limit: the
+    /// state, time and counts are then back at the block's start (the method restarted there)
+    /// and the caller retakes the block on the checked path, which halves the failing step or
+    /// names the diverging one.
+    fn run_block(&mut self, dt: f64, n: u64, count: u64) -> bool {
+        self.at.clone_from(&self.y);
+        let stats = self.stats;
+        let mut inside = true;
+        for i in n..n + count {
+            let t = self.t0 + i as f64 * dt;
+            let h = (self.t0 + (i + 1) as f64 * dt) - t;
+            let step = Step {
+                t,
+                h,
+                y: &self.y,
+                tolerances: None,
+                stats: &mut self.stats,
+            };
+            if self
+                .integrator
+                .attempt(self.model, step, &mut self.y_new)
+                .is_err()
+            {
+                inside = false;
+                break;
+            }
+            inside &= within(&self.y_new, self.limit);
+            self.integrator.accept();
+            std::mem::swap(&mut self.y, &mut self.y_new);
+            if !inside {
+                break;
+            }
+        }
+        if inside {
+            self.stats.steps += count;
+            self.t = self.t0 + (n + count) as f64 * dt;
+            self.grid = Some(n + count);
+            self.f_start = false;
+            return true;
+        }
+        std::mem::swap(&mut self.y, &mut self.at);
+        self.stats = stats;
+        self.integrator
+            .restart(self.model, self.t, &self.y, &mut self.stats);
+        false
     }
 
     /// Steps from the current time to `target`, halving a step whose implicit solve fails and
@@ -608,6 +681,19 @@ fn ulp(t: f64) -> f64 {
     } else {
         f64::from_bits(t.to_bits() + 1) - t
     }
+}
+
+/// Grid steps a fixed-step run takes per block between the driver's per-step work (see
+/// [`Driver::run_block`]).
+const BLOCK: u64 = 64;
+
+/// Whether every component is within `limit` (NaN is not): one branch-free pass.
+#[inline]
+fn within<S: State>(state: &S, limit: f64) -> bool {
+    state
+        .as_slice()
+        .iter()
+        .fold(true, |ok, x| ok & (x.abs() <= limit))
 }
 
 /// The first component that is NaN or whose magnitude exceeds `limit`.
