@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::{Lorenz, Oscillator, Pair, Spring};
+use common::{Lorenz, Oscillator, OscillatorState, Pair, Spring};
 use odyn::prelude::*;
 use odyn::{Error, FixedTimestep, Stepper, integrators};
 
@@ -392,6 +392,75 @@ fn runs_in_parallel_threads_match_a_serial_run_bit_for_bit() {
         for (a, b) in result.iter().zip(&serial) {
             assert_eq!(a.len(), b.len());
             assert!(a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits()));
+        }
+    }
+}
+
+/// A fixed-step `Simulation` without events, save times or dense output takes its steps in
+/// blocks (the divergence test folded into each step); a `Stepper` takes them one checked step
+/// at a time. Both must agree bit for bit — on the states of a run that stays finite, and on the
+/// step a diverging run stops at (the block that diverged is retaken on the checked path).
+#[test]
+fn blocked_and_checked_steps_agree_bit_for_bit() {
+    fn stepped<I: odyn::Integrator<Oscillator>>(
+        osc: &Oscillator,
+        dt: f64,
+        steps: u64,
+    ) -> (OscillatorState, Option<u64>) {
+        let mut stepper = Stepper::<_, I>::new(osc, osc.state(), 0.0, dt).unwrap();
+        for n in 1..=steps {
+            if let Err(Error::Diverged { step, .. }) = stepper.step() {
+                assert_eq!(step, n);
+                return (*stepper.state(), Some(step));
+            }
+        }
+        (*stepper.state(), None)
+    }
+    let osc = Oscillator {
+        x: 1.0,
+        v: 0.0,
+        omega: 10.0,
+    };
+    // ω·dt = 0.1: finite for every method over 1000 steps (explicit Euler grows ×1.005 a step).
+    for (method, stepper) in [
+        (
+            Method::Rk4,
+            stepped::<integrators::Rk4<_>> as fn(&Oscillator, f64, u64) -> _,
+        ),
+        (Method::Leapfrog, stepped::<integrators::Leapfrog<_>>),
+        (
+            Method::ImplicitEuler,
+            stepped::<integrators::ImplicitEuler<_>>,
+        ),
+        (
+            Method::ExplicitEuler,
+            stepped::<integrators::ExplicitEuler<_>>,
+        ),
+    ] {
+        let run = osc
+            .simulate()
+            .integrator(method)
+            .dt(0.01)
+            .steps(1000)
+            .record_every(u64::MAX)
+            .run()
+            .unwrap();
+        let (state, diverged) = stepper(&osc, 0.01, 1000);
+        assert_eq!(diverged, None);
+        assert_eq!(run.last().state, state, "{method}");
+        // ω·dt = 3 (beyond 2√2 and 2): RK4 and leapfrog diverge; the step named is the stepper's.
+        if matches!(method, Method::Rk4 | Method::Leapfrog) {
+            let Err(Error::Diverged { step, .. }) = osc
+                .simulate()
+                .integrator(method)
+                .dt(0.3)
+                .steps(1000)
+                .record_every(u64::MAX)
+                .run()
+            else {
+                panic!("{method} should diverge at ω·dt = 3")
+            };
+            assert_eq!(Some(step), stepper(&osc, 0.3, 1000).1, "{method}");
         }
     }
 }
