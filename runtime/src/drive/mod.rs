@@ -298,32 +298,14 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
     fn run_block(&mut self, dt: f64, n: u64, count: u64) -> bool {
         self.at.clone_from(&self.y);
         let stats = self.stats;
-        let mut inside = true;
-        for i in n..n + count {
-            let t = self.t0 + i as f64 * dt;
-            let h = (self.t0 + (i + 1) as f64 * dt) - t;
-            let step = Step {
-                t,
-                h,
-                y: &self.y,
-                tolerances: None,
-                stats: &mut self.stats,
-            };
-            if self
-                .integrator
-                .attempt(self.model, step, &mut self.y_new)
-                .is_err()
-            {
-                inside = false;
-                break;
-            }
-            inside &= within(&self.y_new, self.limit);
-            self.integrator.accept();
-            std::mem::swap(&mut self.y, &mut self.y_new);
-            if !inside {
-                break;
-            }
-        }
+        let inside = bare_steps(
+            &mut self.integrator,
+            self.model,
+            (self.t0, dt, n, count),
+            (&mut self.y, &mut self.y_new),
+            &mut self.stats,
+            self.limit,
+        );
         if inside {
             self.stats.steps += count;
             self.t = self.t0 + (n + count) as f64 * dt;
@@ -681,6 +663,62 @@ fn ulp(t: f64) -> f64 {
     } else {
         f64::from_bits(t.to_bits() + 1) - t
     }
+}
+
+/// `count` steps of `integrator` from grid index `n` (t = t₀ + i·dt), as a bare loop; false as
+/// soon as a step fails or leaves `limit`. Small plain states (no heap parts, at most 256 bytes)
+/// are stepped in local copies the optimiser keeps in registers, as a hand-written loop's would
+/// be; the others in place. A function of its own, one call per block.
+#[inline(never)]
+fn bare_steps<M: Model, I: Integrator<M>>(
+    integrator: &mut I,
+    model: &M,
+    grid: (f64, f64, u64, u64),
+    (y, y_new): (&mut M::State, &mut M::State),
+    stats: &mut Stats,
+    limit: f64,
+) -> bool {
+    if std::mem::needs_drop::<M::State>() || std::mem::size_of::<M::State>() > 256 {
+        return steps_in(integrator, model, grid, y, y_new, stats, limit);
+    }
+    let (mut a, mut b) = (y.clone(), y_new.clone());
+    let mut counts = *stats;
+    let inside = steps_in(integrator, model, grid, &mut a, &mut b, &mut counts, limit);
+    (*y, *y_new, *stats) = (a, b, counts);
+    inside
+}
+
+#[inline(always)]
+fn steps_in<M: Model, I: Integrator<M>>(
+    integrator: &mut I,
+    model: &M,
+    (t0, dt, n, count): (f64, f64, u64, u64),
+    y: &mut M::State,
+    y_new: &mut M::State,
+    stats: &mut Stats,
+    limit: f64,
+) -> bool {
+    for i in n..n + count {
+        let t = t0 + i as f64 * dt;
+        let h = (t0 + (i + 1) as f64 * dt) - t;
+        let step = Step {
+            t,
+            h,
+            y,
+            tolerances: None,
+            stats,
+        };
+        if integrator.attempt(model, step, y_new).is_err() {
+            return false;
+        }
+        let inside = within(y_new, limit);
+        integrator.accept();
+        std::mem::swap(y, y_new);
+        if !inside {
+            return false;
+        }
+    }
+    true
 }
 
 /// Grid steps a fixed-step run takes per block between the driver's per-step work (see
