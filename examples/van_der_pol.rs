@@ -1,5 +1,6 @@
 //! Van der Pol at μ = 1000, y1′ = y2, y2′ = μ(1 − y1²)y2 − y1, from (2, 0) to t = 3000: a stiff
-//! relaxation oscillation, integrated with implicit Euler and the generated Jacobian.
+//! relaxation oscillation, integrated with implicit Euler and the generated Jacobian, and with
+//! Rosenbrock23 and Rodas5P at two tolerances to each reference time (printed).
 //!
 //! `cargo run --release --example van_der_pol` writes, under `out/van_der_pol/`:
 //! `trajectory.csv` (`method,step,t,y1,y2`) and `trajectory.png` at dt = 5e-4;
@@ -127,6 +128,33 @@ fn run() -> odyn::Result<()> {
         series,
     }
     .write(dir.join("convergence.png"), (960, 600))?;
+
+    // The Rosenbrock methods to each reference time, choosing their own steps.
+    println!("\nRosenbrock methods, rtol = atol·10³:");
+    println!(
+        "  {:<13} {:>6} {:>7} {:>7} {:>12}",
+        "method", "rtol", "t", "steps", "max error"
+    );
+    for method in [Method::Rosenbrock23, Method::Rodas5P] {
+        for rtol in [1e-5, 1e-8] {
+            for (t_end, reference) in REFERENCE {
+                let run = model
+                    .simulate()
+                    .integrator(method)
+                    .tolerances(rtol, rtol * 1e-3)
+                    .duration(t_end)
+                    .record_every(u64::MAX)
+                    .run()?;
+                let y = run.last().state;
+                let error = (y.y1 - reference[0]).abs().max((y.y2 - reference[1]).abs());
+                println!(
+                    "  {:<13} {rtol:>6.0e} {t_end:>7} {:>7} {error:>12.3e}",
+                    method.label(),
+                    run.steps()
+                );
+            }
+        }
+    }
 
     let run = model
         .simulate()
