@@ -7,6 +7,7 @@
 //!   `robertson_1e11` to t = 1e11 (the test set's reference), Rosenbrock methods only;
 //! - `hires`: the 8-species HIRES photomorphogenesis model to t = 321.8122 (the test set's
 //!   reference);
+//! - `pollu`: Verwer's 20-species air-pollution model to t = 60 (the test set's reference);
 //! - `van_der_pol`: van der Pol with μ = 1000 to t = 2000 (problem VDPOLM; the test set's
 //!   reference).
 //!
@@ -73,6 +74,71 @@ impl Hires {
                 -bind + 0.69 * y[3] + 1.71 * y[4] - 0.43 * y[5] + 0.69 * y[6],
                 bind - 1.81 * y[6],
                 -bind + 1.81 * y[6],
+            ],
+        }
+    }
+}
+
+/// POLLU, the air-pollution model of Verwer (SIAM J. Sci. Comput. 15, 1994): 20 species, 25
+/// reactions, as in the test set's `pollu.f` (transcribed through `scripts/reference_stiff.py`).
+#[system]
+pub struct Pollu {
+    /// The twenty concentrations.
+    #[state]
+    pub y: [f64; 20],
+}
+
+#[system]
+impl Pollu {
+    fn derivative(&self) -> PolluState {
+        let y = self.y;
+        let r1 = 0.35 * y[0];
+        let r2 = 26.6 * y[1] * y[3];
+        let r3 = 12300.0 * y[4] * y[1];
+        let r4 = 0.00086 * y[6];
+        let r5 = 0.00082 * y[6];
+        let r6 = 15000.0 * y[6] * y[5];
+        let r7 = 0.00013 * y[8];
+        let r8 = 24000.0 * y[8] * y[5];
+        let r9 = 16500.0 * y[10] * y[1];
+        let r10 = 9000.0 * y[10] * y[0];
+        let r11 = 0.022 * y[12];
+        let r12 = 12000.0 * y[9] * y[1];
+        let r13 = 1.88 * y[13];
+        let r14 = 16300.0 * y[0] * y[5];
+        let r15 = 4800000.0 * y[2];
+        let r16 = 0.00035 * y[3];
+        let r17 = 0.0175 * y[3];
+        let r18 = 100000000.0 * y[15];
+        let r19 = 444000000000.0 * y[15];
+        let r20 = 1240.0 * y[16] * y[5];
+        let r21 = 2.1 * y[18];
+        let r22 = 5.78 * y[18];
+        let r23 = 0.0474 * y[0] * y[3];
+        let r24 = 1780.0 * y[18] * y[0];
+        let r25 = 3.12 * y[19];
+        PolluState {
+            y: [
+                -r1 - r10 - r14 - r23 - r24 + r2 + r3 + r9 + r11 + r12 + r22 + r25,
+                -r2 - r3 - r9 - r12 + r1 + r21,
+                -r15 + r1 + r17 + r19 + r22,
+                -r2 - r16 - r17 - r23 + r15,
+                -r3 + r4 + r4 + r6 + r7 + r13 + r20,
+                -r6 - r8 - r14 - r20 + r3 + r18 + r18,
+                -r4 - r5 - r6 + r13,
+                r4 + r5 + r6 + r7,
+                -r7 - r8,
+                -r12 + r7 + r9,
+                -r9 - r10 + r8 + r11,
+                r9,
+                -r11 + r10,
+                -r13 + r12,
+                r14,
+                -r18 - r19 + r16,
+                -r20,
+                r20,
+                -r21 - r22 - r24 + r23 + r25,
+                -r25 + r24,
             ],
         }
     }
@@ -225,6 +291,45 @@ fn main() -> odyn::Result<()> {
         dir,
     )?;
 
+    let pollu = Pollu {
+        y: [
+            0.0, 0.2, 0.0, 0.04, 0.0, 0.0, 0.1, 0.3, 0.01, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+            0.007, 0.0, 0.0, 0.0,
+        ],
+    };
+    // pollu.f of the Bari test set (RADAU5 in quadruple precision).
+    let reference = vec![
+        0.564_625_548_002_276_9e-1,
+        0.134_248_413_042_233_9,
+        0.413_973_433_109_942_7e-8,
+        0.552_314_020_748_435_9e-2,
+        0.201_897_726_230_219_6e-6,
+        0.146_454_186_349_396_6e-6,
+        0.778_424_911_899_796_4e-1,
+        0.324_507_535_339_601_8,
+        0.749_401_338_388_040_6e-2,
+        0.162_229_315_730_156_1e-7,
+        0.113_586_383_325_707_5e-7,
+        0.223_050_597_572_135_9e-2,
+        0.208_716_288_279_863e-3,
+        0.139_692_101_684_015_8e-4,
+        0.896_488_485_689_829_5e-2,
+        0.435_284_636_933_010_3e-17,
+        0.689_921_969_626_340_5e-2,
+        0.100_780_303_736_594_6e-3,
+        0.177_214_651_396_998_4e-5,
+        0.568_294_329_231_639_2e-4,
+    ];
+    study(
+        "pollu",
+        &pollu,
+        60.0,
+        reference,
+        (10, 1e-4),
+        vec![0.06, 0.006, 0.0006],
+        dir,
+    )?;
+
     let vdp = VanDerPol {
         x: 2.0,
         v: 0.0,
@@ -242,7 +347,7 @@ fn main() -> odyn::Result<()> {
         dir,
     )?;
     println!(
-        "\nwrote {}/{{robertson,robertson_1e11,hires,van_der_pol}}.{{csv,png}}",
+        "\nwrote {}/{{robertson,robertson_1e11,hires,pollu,van_der_pol}}.{{csv,png}}",
         dir.display()
     );
     Ok(())
