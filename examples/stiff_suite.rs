@@ -1,4 +1,4 @@
-//! Three problems of the Bari stiff test set (Mazzia & Magherini, *Test Set for Initial Value
+//! Four problems of the Bari stiff test set (Mazzia & Magherini, *Test Set for Initial Value
 //! Problem Solvers*, release 2.4, 2008), each solved by the Rosenbrock methods over a sweep of
 //! tolerances and by implicit Euler over a sweep of steps, against a reference final state:
 //!
