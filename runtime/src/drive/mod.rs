@@ -683,7 +683,17 @@ fn bare_steps<M: Model, I: Integrator<M>>(
     }
     let (mut a, mut b) = (y.clone(), y_new.clone());
     let mut counts = *stats;
-    let inside = steps_in(integrator, model, grid, &mut a, &mut b, &mut counts, limit);
+    let local = (!std::mem::needs_drop::<I>() && std::mem::size_of::<I>() <= 1024)
+        .then(|| integrator.duplicate())
+        .flatten();
+    let inside = match local {
+        Some(mut copy) => {
+            let inside = steps_in(&mut copy, model, grid, &mut a, &mut b, &mut counts, limit);
+            *integrator = copy;
+            inside
+        }
+        None => steps_in(integrator, model, grid, &mut a, &mut b, &mut counts, limit),
+    };
     (*y, *y_new, *stats) = (a, b, counts);
     inside
 }

@@ -55,6 +55,11 @@ impl<M: Model> Integrator<M> for Dop853<M::State> {
         })
     }
 
+    #[inline]
+    fn duplicate(&self) -> Option<Self> {
+        Some(self.clone())
+    }
+
     fn attempt(&mut self, model: &M, s: Step<'_, M::State>, y_new: &mut M::State) -> Result<f64> {
         let (t, h, y) = (s.t, s.h, s.y);
         if self.fsal {

@@ -29,6 +29,11 @@ impl<M: Model> Integrator<M> for ExplicitEuler<M::State> {
     }
 
     #[inline]
+    fn duplicate(&self) -> Option<Self> {
+        Some(self.clone())
+    }
+
+    #[inline]
     fn attempt(&mut self, model: &M, s: Step<'_, M::State>, y_new: &mut M::State) -> Result<f64> {
         model.derivative(s.t, s.y, &mut self.dydt);
         s.stats.evaluations += 1;

@@ -48,6 +48,11 @@ impl<M: SecondOrder> Integrator<M> for Leapfrog<M::State> {
     }
 
     #[inline]
+    fn duplicate(&self) -> Option<Self> {
+        Some(self.clone())
+    }
+
+    #[inline]
     fn attempt(&mut self, model: &M, s: Step<'_, M::State>, y_new: &mut M::State) -> Result<f64> {
         let (h, half) = (s.h, 0.5 * s.h);
         let (_, a) = split(self.accel.as_slice());

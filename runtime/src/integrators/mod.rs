@@ -124,6 +124,14 @@ pub trait Integrator<M: Model>: Sized {
     #[inline]
     fn accept(&mut self) {}
 
+    /// A copy of this integrator, if it can be copied cheaply (`None`, the default, when not).
+    /// Fixed-step runs step small plain integrators in a local copy, which the optimiser keeps in
+    /// registers as it would a hand-written loop's variables.
+    #[inline]
+    fn duplicate(&self) -> Option<Self> {
+        None
+    }
+
     /// Takes one step of size `h` from (`t`, `y`) in place and accepts it whatever its error
     /// estimate, `scratch` holding the new state while it is computed: a bare fixed-step loop,
     /// for code that drives a method by hand ([`crate::Stepper`] adds step halving and the

@@ -63,6 +63,11 @@ impl<M: SecondOrder> Integrator<M> for PositionVerlet<M::State> {
     }
 
     #[inline]
+    fn duplicate(&self) -> Option<Self> {
+        Some(self.clone())
+    }
+
+    #[inline]
     fn attempt(&mut self, model: &M, s: Step<'_, M::State>, y_new: &mut M::State) -> Result<f64> {
         let h = s.h;
         self.current.clone_from(s.y);

@@ -31,6 +31,11 @@ impl<M: Model> Integrator<M> for Rk4<M::State> {
     }
 
     #[inline]
+    fn duplicate(&self) -> Option<Self> {
+        Some(self.clone())
+    }
+
+    #[inline]
     fn attempt(&mut self, model: &M, s: Step<'_, M::State>, y_new: &mut M::State) -> Result<f64> {
         let (t, h, y) = (s.t, s.h, s.y);
         let [k1, k2, k3, k4] = &mut self.k;

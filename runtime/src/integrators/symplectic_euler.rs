@@ -29,6 +29,11 @@ impl<M: SecondOrder> Integrator<M> for SymplecticEuler<M::State> {
     }
 
     #[inline]
+    fn duplicate(&self) -> Option<Self> {
+        Some(self.clone())
+    }
+
+    #[inline]
     fn attempt(&mut self, model: &M, s: Step<'_, M::State>, y_new: &mut M::State) -> Result<f64> {
         model.acceleration(s.t, s.y, &mut self.accel);
         s.stats.evaluations += 1;

@@ -49,6 +49,11 @@ impl<M: SecondOrder> Integrator<M> for VelocityVerlet<M::State> {
     }
 
     #[inline]
+    fn duplicate(&self) -> Option<Self> {
+        Some(self.clone())
+    }
+
+    #[inline]
     fn attempt(&mut self, model: &M, s: Step<'_, M::State>, y_new: &mut M::State) -> Result<f64> {
         let h = s.h;
         let (_, a) = split(self.accel.as_slice());
