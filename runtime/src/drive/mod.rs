@@ -708,9 +708,14 @@ fn steps_in<M: Model, I: Integrator<M>>(
     stats: &mut Stats,
     limit: f64,
 ) -> bool {
-    for i in n..n + count {
-        let t = t0 + i as f64 * dt;
-        let h = (t0 + (i + 1) as f64 * dt) - t;
+    // The grid index as a float, exact below 2⁵³ (the same values as `i as f64`, without a
+    // conversion per step); each step's end is the next one's start.
+    let mut index = n as f64;
+    let mut t = t0 + index * dt;
+    for _ in 0..count {
+        index += 1.0;
+        let end = t0 + index * dt;
+        let h = end - t;
         let step = Step {
             t,
             h,
@@ -727,6 +732,7 @@ fn steps_in<M: Model, I: Integrator<M>>(
         if !inside {
             return false;
         }
+        t = end;
     }
     true
 }
