@@ -388,12 +388,11 @@ pub(crate) fn jacobian(
     }
     let jac = format_ident!("__odyn_jac", span = Span::mixed_site());
     let n_usize = model.len();
-    let (matrix, body, nonzeros) = if n_usize <= SMALL {
+    let (matrix, body) = if n_usize <= SMALL {
         let entries = symbolic_entries(&mut graph, &mut differentiator, &outputs, |_| 0..n_usize);
         (
             quote!(::odyn::__private::nalgebra::SMatrix<f64, #n, #n>),
             small_store(&graph, &entries, n_usize, &components, &jac),
-            entries.iter().map(|&(r, c, _)| (r, c)).collect(),
         )
     } else {
         let rows = crate::sparsity::pattern(&graph, &outputs, n_usize);
@@ -402,28 +401,7 @@ pub(crate) fn jacobian(
             let entries = symbolic_entries(&mut graph, &mut differentiator, &outputs, |row| {
                 rows[row].iter().copied()
             });
-            let lets = straight_line(
-                &graph,
-                &entries.iter().map(|e| e.2).collect::<Vec<_>>(),
-                &components,
-            );
-            // The values in one array and one loop to store them: a `set` call per entry
-            // costs the compiler more than the entry's arithmetic.
-            let values = entries
-                .iter()
-                .map(|&(_, _, d)| operand(&graph, d, &components));
-            let count = entries.len();
-            crate::tangent::Body {
-                statements: quote! {
-                    #(#lets)*
-                    let __odyn_values: [f64; #count] = [#(#values),*];
-                    #jac.fill_zero();
-                    for (&(i, j), &value) in <Self as ::odyn::Jacobian>::NONZEROS.iter().zip(&__odyn_values) {
-                        #jac.set(i, j, value);
-                    }
-                },
-                nonzeros: entries.iter().map(|&(r, c, _)| (r, c)).collect(),
-            }
+            listed_store(&graph, &entries, &components, &jac)
         } else {
             let mut extended = components.clone();
             crate::tangent::jacobian(
@@ -435,12 +413,12 @@ pub(crate) fn jacobian(
                 &jac,
             )
         };
-        (
-            quote!(::odyn::FaerDense<#n>),
-            body.statements,
-            body.nonzeros,
-        )
+        (quote!(::odyn::FaerDense<#n>), body)
     };
+    let JacobianBody {
+        statements: body,
+        nonzeros,
+    } = body;
     // ∂f/∂t: the time is one more variable of the graph.
     let mut time_entries: Vec<(usize, ExprId)> = Vec::new();
     if let Some(var) = time_var {
@@ -526,6 +504,13 @@ fn symbolic_entries<C: IntoIterator<Item = usize>>(
     entries
 }
 
+/// A Jacobian's generated body: its statements (writing the matrix) and its structural
+/// non-zeros, in the order the statements rely on.
+pub(crate) struct JacobianBody {
+    pub(crate) statements: TokenStream,
+    pub(crate) nonzeros: Vec<(usize, usize)>,
+}
+
 /// The Jacobian body of a model small enough for a stack matrix: one expression per structural
 /// non-zero, the whole matrix stored in one expression column by column with structural zeros as
 /// literals, so the optimiser keeps it in registers as it would a hand-written `Matrix3::new(..)`.
@@ -535,7 +520,7 @@ fn small_store(
     n: usize,
     components: &[TokenStream],
     jac: &syn::Ident,
-) -> TokenStream {
+) -> JacobianBody {
     let roots: Vec<ExprId> = entries.iter().map(|e| e.2).collect();
     let lets = straight_line(graph, &roots, components);
     let columns = (0..n).map(|c| {
@@ -545,11 +530,42 @@ fn small_store(
         });
         quote!([#(#rows),*])
     });
-    quote! {
-        #(#lets)*
-        *#jac = ::odyn::__private::nalgebra::SMatrix::from_array_storage(
-            ::odyn::__private::nalgebra::ArrayStorage([#(#columns),*]),
-        );
+    JacobianBody {
+        statements: quote! {
+            #(#lets)*
+            *#jac = ::odyn::__private::nalgebra::SMatrix::from_array_storage(
+                ::odyn::__private::nalgebra::ArrayStorage([#(#columns),*]),
+            );
+        },
+        nonzeros: entries.iter().map(|&(r, c, _)| (r, c)).collect(),
+    }
+}
+
+/// The Jacobian body of a bigger model with few non-zeros: one expression per entry, the values
+/// in one array stored by one loop over `NONZEROS` (a `set` call per entry costs the compiler
+/// more than the entry's arithmetic).
+fn listed_store(
+    graph: &crate::ir::Graph,
+    entries: &[(usize, usize, ExprId)],
+    components: &[TokenStream],
+    jac: &syn::Ident,
+) -> JacobianBody {
+    let roots: Vec<ExprId> = entries.iter().map(|e| e.2).collect();
+    let lets = straight_line(graph, &roots, components);
+    let values = entries
+        .iter()
+        .map(|&(_, _, d)| operand(graph, d, components));
+    let count = entries.len();
+    JacobianBody {
+        statements: quote! {
+            #(#lets)*
+            let __odyn_values: [f64; #count] = [#(#values),*];
+            #jac.fill_zero();
+            for (&(i, j), &value) in <Self as ::odyn::Jacobian>::NONZEROS.iter().zip(&__odyn_values) {
+                #jac.set(i, j, value);
+            }
+        },
+        nonzeros: entries.iter().map(|&(r, c, _)| (r, c)).collect(),
     }
 }
 

@@ -11,16 +11,9 @@ use proc_macro2::{Span, TokenStream};
 use quote::{format_ident, quote};
 
 use crate::derivative::Differentiator;
-use crate::generate::{lets, operand};
+use crate::generate::{JacobianBody, lets, operand};
 use crate::ir::{ExprId, Graph, Node};
 use crate::sparsity::column_groups;
-
-/// The Jacobian body of a big model: its statements (with `jacobian` the matrix) and its
-/// structural non-zeros in group order.
-pub(crate) struct Body {
-    pub(crate) statements: TokenStream,
-    pub(crate) nonzeros: Vec<(usize, usize)>,
-}
 
 /// Emits the forward-mode Jacobian of `outputs`, whose dependencies on the state are `rows`
 /// ([`crate::sparsity::pattern`]). `components` names each graph variable in generated code (the
@@ -32,7 +25,7 @@ pub(crate) fn jacobian(
     rows: Vec<Vec<usize>>,
     components: &mut Vec<TokenStream>,
     jacobian: &syn::Ident,
-) -> Body {
+) -> JacobianBody {
     let n = outputs.len();
     let groups = column_groups(&rows, n);
     let mut columns: Vec<Vec<usize>> = vec![Vec::new(); n];
@@ -101,7 +94,7 @@ pub(crate) fn jacobian(
             }
         }
     };
-    Body {
+    JacobianBody {
         statements,
         nonzeros,
     }
