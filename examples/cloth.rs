@@ -277,11 +277,11 @@ fn run(cli: Cli) -> odyn::Result<()> {
             None => {
                 let last = &trajectory.samples[trajectory.samples.len() - 1];
                 println!(
-                    "  {label:<48} stable: {} steps in {seconds:.2} s ({:.1} ms/step, {} \
+                    "  {label:<48} finished: {} steps in {seconds:.2} s ({:.1} ms/step, {} \
                      factorizations), kinetic energy at {} s: {:.3e} J",
                     trajectory.steps(),
                     1e3 * seconds / trajectory.steps().max(1) as f64,
-                    trajectory.stats.jacobian_evaluations,
+                    trajectory.stats.factorizations,
                     cli.duration,
                     cloth.kinetic_energy(&last.state)
                 );
