@@ -72,6 +72,8 @@ fn a_longer_run_allocates_no_more() {
         (Method::Tsit5, true),
         (Method::Rk4, true),
         (Method::Leapfrog, true),
+        (Method::Yoshida4, true),
+        (Method::KahanLi6, true),
         (Method::ImplicitEuler, true),
         (Method::Rodas5P, false),
         (Method::Rosenbrock23, false),

@@ -40,12 +40,15 @@ const fn method(name: &'static str, needs: Needs, adaptive: bool) -> MethodInfo 
 
 /// The methods an attribute may name, mirroring `odyn::Method::info` (the integration test
 /// `tests/methods.rs` checks that the two tables agree).
-const METHODS: [MethodInfo; 11] = [
+const METHODS: [MethodInfo; 14] = [
     method("ExplicitEuler", Needs::F, false),
     method("SymplecticEuler", Needs::Split, false),
     method("PositionVerlet", Needs::VelocityFree, false),
     method("VelocityVerlet", Needs::Split, false),
     method("Leapfrog", Needs::Split, false),
+    method("Yoshida4", Needs::VelocityFree, false),
+    method("Yoshida6", Needs::VelocityFree, false),
+    method("KahanLi6", Needs::VelocityFree, false),
     method("Rk4", Needs::F, false),
     method("ImplicitEuler", Needs::Jacobian, false),
     method("Tsit5", Needs::F, true),

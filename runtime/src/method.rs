@@ -23,6 +23,15 @@ pub enum Method {
     VelocityVerlet,
     /// Leapfrog, kick-drift-kick, order 2; bounded energy (HLW 2006, §I.3.1).
     Leapfrog,
+    /// Yoshida's composition of three leapfrog substeps, order 4; bounded energy (Yoshida 1990).
+    /// Needs velocity-free forces.
+    Yoshida4,
+    /// Yoshida's composition of seven leapfrog substeps (solution A), order 6; bounded energy
+    /// (Yoshida 1990). Needs velocity-free forces.
+    Yoshida6,
+    /// Kahan & Li's optimised composition of nine leapfrog substeps, order 6; bounded energy
+    /// (Kahan & Li 1997). Needs velocity-free forces.
+    KahanLi6,
     /// Classical fourth-order Runge–Kutta, order 4; slow secular energy drift (Kutta 1901).
     Rk4,
     /// Implicit (backward) Euler with Newton's method, order 1; A-stable, loses energy
@@ -90,15 +99,19 @@ const fn row(
 const NOTHING: (bool, bool, bool) = (false, false, false);
 const SPLIT: (bool, bool, bool) = (true, false, false);
 const JACOBIAN: (bool, bool, bool) = (false, true, false);
+const VELOCITY_FREE: (bool, bool, bool) = (true, false, true);
 
 impl Method {
     /// Every method, in the order of the comparison table.
-    pub const ALL: [Method; 11] = [
+    pub const ALL: [Method; 14] = [
         Method::ExplicitEuler,
         Method::SymplecticEuler,
         Method::PositionVerlet,
         Method::VelocityVerlet,
         Method::Leapfrog,
+        Method::Yoshida4,
+        Method::Yoshida6,
+        Method::KahanLi6,
         Method::Rk4,
         Method::ImplicitEuler,
         Method::Tsit5,
@@ -143,6 +156,9 @@ impl Method {
                 SPLIT,
             ),
             Method::Leapfrog => row("leapfrog", "Leapfrog", "Leapfrog", 2, false, SPLIT),
+            Method::Yoshida4 => row("yoshida4", "Yoshida4", "Yoshida 4", 4, false, VELOCITY_FREE),
+            Method::Yoshida6 => row("yoshida6", "Yoshida6", "Yoshida 6", 6, false, VELOCITY_FREE),
+            Method::KahanLi6 => row("kahan_li6", "KahanLi6", "Kahan–Li 6", 6, false, VELOCITY_FREE),
             Method::Rk4 => row("rk4", "Rk4", "RK4", 4, false, NOTHING),
             Method::ImplicitEuler => row(
                 "implicit_euler",

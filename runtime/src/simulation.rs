@@ -2,7 +2,7 @@
 
 use crate::drive::{Driver, Progress, Recording, StepControl};
 use crate::integrators::{
-    Dop853, ExplicitEuler, ImplicitEuler, Integrator, Leapfrog, PositionVerlet, Rk4, Rodas5P,
+    Dop853, ExplicitEuler, ImplicitEuler, Integrator, KahanLi6, Leapfrog, Yoshida4, Yoshida6, PositionVerlet, Rk4, Rodas5P,
     Rosenbrock23, SymplecticEuler, Tsit5, VelocityVerlet,
 };
 use crate::stepper::check_dt;
@@ -285,6 +285,9 @@ impl<'m, M: Model> Simulation<'m, M> {
             Method::PositionVerlet => plan.drive::<_, PositionVerlet<_>>(self.split()?),
             Method::VelocityVerlet => plan.drive::<_, VelocityVerlet<_>>(self.split()?),
             Method::Leapfrog => plan.drive::<_, Leapfrog<_>>(self.split()?),
+            Method::Yoshida4 => plan.drive::<_, Yoshida4<_>>(self.split()?),
+            Method::Yoshida6 => plan.drive::<_, Yoshida6<_>>(self.split()?),
+            Method::KahanLi6 => plan.drive::<_, KahanLi6<_>>(self.split()?),
             Method::ImplicitEuler => plan.drive::<_, ImplicitEuler<_>>(self.jacobian()?),
             Method::Rosenbrock23 => plan.drive::<_, Rosenbrock23<_>>(self.jacobian()?),
             Method::Rodas5P => plan.drive::<_, Rodas5P<_>>(self.jacobian()?),

@@ -76,6 +76,10 @@ impl Default for StabilityProbe {
 ///
 /// The energy is the model's own when it defines one, else the squared norm of the state.
 ///
+/// Bisection finds *an* edge between a stable and an unstable dt: for a method whose stable set
+/// has gaps (the sixth-order compositions, stable again past their first limit) it may be a
+/// later edge than the first one [`predicted_limit`] reports.
+///
 /// Errors: [`Error::InvalidInput`] for a guess that is not finite and positive or a `probe`
 /// setting out of range (see [`StabilityProbe::check`]); the run's own input errors.
 pub fn measured_limit<M: Model>(
@@ -230,6 +234,9 @@ where
         | Method::PositionVerlet
         | Method::VelocityVerlet
         | Method::Leapfrog => 2.0 / fastest,
+        Method::Yoshida4 | Method::Yoshida6 | Method::KahanLi6 => {
+            crate::integrators::composition_limit(method) / fastest
+        }
         Method::ExplicitEuler | Method::Rk4 | Method::Tsit5 | Method::Dop853 => {
             let polynomial = crate::integrators::stability_polynomial(method);
             lambdas

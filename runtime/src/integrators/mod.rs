@@ -7,6 +7,9 @@
 //! | [`PositionVerlet`] | 2 | 1 | — | Hermite (3) | bounded, E/E₀ ∈ [1 − ω²dt²/4, 1] | split, forces free of v |
 //! | [`VelocityVerlet`] | 2 | 1 (reused) | — | Hermite (3) | bounded, as position Verlet | split |
 //! | [`Leapfrog`] | 2 | 1 (reused) | — | Hermite (3) | bounded, as position Verlet | split |
+//! | [`Yoshida4`] | 4 | 3 (reused) | — | Hermite (3) | bounded | split, forces free of v |
+//! | [`Yoshida6`] | 6 | 7 (reused) | — | Hermite (3) | bounded | split, forces free of v |
+//! | [`KahanLi6`] | 6 | 9 (reused) | — | Hermite (3) | bounded | split, forces free of v |
 //! | [`Rk4`] | 4 | 4 | — | Hermite (3) | slow secular decay | f(t, y) |
 //! | [`ImplicitEuler`] | 1 | Newton: ≥ 2 f and 2 ∂f/∂y | — | Hermite (3) | decays ×1/(1 + ω²dt²) per step | ∂f/∂y |
 //! | [`Tsit5`] | 5 | 6 (FSAL) | order 4 | own, order 4 | slow drift, set by the tolerance | f(t, y) |
@@ -32,9 +35,11 @@
 //! An integrator is created once per run by [`Integrator::start`], which allocates its scratch
 //! states; attempts then allocate nothing.
 
+mod composition;
 mod dop853;
 mod explicit_euler;
 mod implicit_euler;
+mod kahan_li6;
 mod leapfrog;
 mod linearization;
 mod position_verlet;
@@ -45,10 +50,14 @@ mod symplectic_euler;
 mod tableaux;
 mod tsit5;
 mod velocity_verlet;
+mod yoshida4;
+mod yoshida6;
 
+pub use composition::{Composition, Weights};
 pub use dop853::Dop853;
 pub use explicit_euler::ExplicitEuler;
 pub use implicit_euler::ImplicitEuler;
+pub use kahan_li6::{KahanLi6, KahanLi6Weights};
 pub use leapfrog::Leapfrog;
 pub use position_verlet::PositionVerlet;
 pub use rk4::Rk4;
@@ -57,6 +66,8 @@ pub use rosenbrock23::Rosenbrock23;
 pub use symplectic_euler::SymplecticEuler;
 pub use tsit5::Tsit5;
 pub use velocity_verlet::VelocityVerlet;
+pub use yoshida4::{Yoshida4, Yoshida4Weights};
+pub use yoshida6::{Yoshida6, Yoshida6Weights};
 
 use crate::drive::DenseStep;
 use crate::{Controller, Method, Model, NewtonOptions, Result, State, Stats, Tolerances};
@@ -233,6 +244,9 @@ pub(crate) fn stability_polynomial(method: Method) -> Vec<f64> {
         | Method::PositionVerlet
         | Method::VelocityVerlet
         | Method::Leapfrog
+        | Method::Yoshida4
+        | Method::Yoshida6
+        | Method::KahanLi6
         | Method::ImplicitEuler
         | Method::Rosenbrock23
         | Method::Rodas5P => Vec::new(),
@@ -277,4 +291,15 @@ fn stage<S: crate::State>(out: &mut S, y: &S, h: f64, a: &[f64], k: &[S]) {
 #[inline(always)]
 fn weighted<S: crate::State>(w: &[f64], k: &[S], i: usize) -> f64 {
     w.iter().zip(k).map(|(wj, kj)| wj * kj.as_slice()[i]).sum()
+}
+
+/// The largest ω·h for which a composition method is stable on ẍ = −ω²x (0 for other methods).
+pub(crate) fn composition_limit(method: Method) -> f64 {
+    let weights = match method {
+        Method::Yoshida4 => Yoshida4Weights::WEIGHTS,
+        Method::Yoshida6 => Yoshida6Weights::WEIGHTS,
+        Method::KahanLi6 => KahanLi6Weights::WEIGHTS,
+        _ => return 0.0,
+    };
+    composition::oscillator_limit(weights)
 }
