@@ -93,15 +93,30 @@ fn compositions_bound_the_energy_and_conserve_angular_momentum() {
             .record_every(997)
             .run()
             .unwrap();
-        let energies: Vec<f64> = run.samples.iter().map(|s| s.energy.unwrap() + 0.5).collect();
+        let energies: Vec<f64> = run
+            .samples
+            .iter()
+            .map(|s| s.energy.unwrap() + 0.5)
+            .collect();
         let tenth = energies.len() / 10;
         let band = |e: &[f64]| e.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        let (first, last) = (band(&energies[..tenth]), band(&energies[energies.len() - tenth..]));
+        let (first, last) = (
+            band(&energies[..tenth]),
+            band(&energies[energies.len() - tenth..]),
+        );
         eprintln!("{method}: |E − E₀| ≤ {first:e} (first tenth), {last:e} (last tenth)");
-        assert!(first < 1e-5 && last <= 1.5 * first + 1e-14, "{method}: {first:e}, {last:e}");
+        assert!(
+            first < 1e-5 && last <= 1.5 * first + 1e-14,
+            "{method}: {first:e}, {last:e}"
+        );
         for s in &run.samples {
             let l = s.state.r.x * s.state.v.y - s.state.r.y * s.state.v.x;
-            assert!((l - l0).abs() <= 1e-11, "{method}: ΔL = {:e} at step {}", l - l0, s.step);
+            assert!(
+                (l - l0).abs() <= 1e-11,
+                "{method}: ΔL = {:e} at step {}",
+                l - l0,
+                s.step
+            );
         }
     }
 }

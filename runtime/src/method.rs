@@ -158,7 +158,14 @@ impl Method {
             Method::Leapfrog => row("leapfrog", "Leapfrog", "Leapfrog", 2, false, SPLIT),
             Method::Yoshida4 => row("yoshida4", "Yoshida4", "Yoshida 4", 4, false, VELOCITY_FREE),
             Method::Yoshida6 => row("yoshida6", "Yoshida6", "Yoshida 6", 6, false, VELOCITY_FREE),
-            Method::KahanLi6 => row("kahan_li6", "KahanLi6", "Kahan–Li 6", 6, false, VELOCITY_FREE),
+            Method::KahanLi6 => row(
+                "kahan_li6",
+                "KahanLi6",
+                "Kahan–Li 6",
+                6,
+                false,
+                VELOCITY_FREE,
+            ),
             Method::Rk4 => row("rk4", "Rk4", "RK4", 4, false, NOTHING),
             Method::ImplicitEuler => row(
                 "implicit_euler",

@@ -2,8 +2,8 @@
 
 use crate::drive::{Driver, Progress, Recording, StepControl};
 use crate::integrators::{
-    Dop853, ExplicitEuler, ImplicitEuler, Integrator, KahanLi6, Leapfrog, Yoshida4, Yoshida6, PositionVerlet, Rk4, Rodas5P,
-    Rosenbrock23, SymplecticEuler, Tsit5, VelocityVerlet,
+    Dop853, ExplicitEuler, ImplicitEuler, Integrator, KahanLi6, Leapfrog, PositionVerlet, Rk4,
+    Rodas5P, Rosenbrock23, SymplecticEuler, Tsit5, VelocityVerlet, Yoshida4, Yoshida6,
 };
 use crate::stepper::check_dt;
 use crate::{

@@ -1,4 +1,8 @@
 //! Kahan and Li's optimised sixth-order composition of leapfrog.
+#![allow(
+    clippy::excessive_precision,
+    reason = "the weights are quoted with the 20 digits their source prints"
+)]
 
 use super::composition::{Composition, Weights};
 use crate::Method;

@@ -1,4 +1,8 @@
 //! Yoshida's sixth-order composition of leapfrog ("solution A").
+#![allow(
+    clippy::excessive_precision,
+    reason = "the weights are quoted with the 20 digits their source prints"
+)]
 
 use super::composition::{Composition, Weights};
 use crate::Method;

@@ -283,7 +283,11 @@ fn axis_label(v: f64, log: bool) -> String {
             format!("{:.1e}", 10f64.powf(v))
         }
     } else if v != 0.0 && (v.abs() >= 1e5 || v.abs() < 1e-3) {
-        format!("{v:.0e}")
+        // Six significant digits with trailing zeros dropped, so 1.2e5 and 1.4e5 stay apart.
+        let text = format!("{v:.5e}");
+        let (mantissa, exponent) = text.split_once('e').unwrap_or((&text, "0"));
+        let mantissa = mantissa.trim_end_matches('0').trim_end_matches('.');
+        format!("{mantissa}e{exponent}")
     } else {
         // Six significant digits, so 0.6000000000000001 reads 0.6.
         let scale = 10f64.powi(5 - v.abs().max(1e-300).log10().floor() as i32);
@@ -447,6 +451,20 @@ mod tests {
         // Both extremes are drawn, not averaged away.
         assert!(f64::from(rows_hit.0) <= row_of(1.0) + 1.0, "{rows_hit:?}");
         assert!(f64::from(rows_hit.1) >= row_of(0.0) - 1.0, "{rows_hit:?}");
+    }
+
+    /// Ticks 2·10⁴ apart past 10⁵ used to print as `1e5 1e5 1e5 2e5`: every label must name its
+    /// own value.
+    #[test]
+    fn large_tick_labels_stay_distinct() {
+        let labels: Vec<String> = [1e5, 1.2e5, 1.4e5, 2e5, 2.5e-4, -3.75e6]
+            .iter()
+            .map(|&v| axis_label(v, false))
+            .collect();
+        assert_eq!(
+            labels,
+            ["1e5", "1.2e5", "1.4e5", "2e5", "2.5e-4", "-3.75e6"]
+        );
     }
 
     #[test]

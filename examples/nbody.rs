@@ -1,0 +1,421 @@
+//! N-body orbits: the outer solar system over 2·10⁵ days and the Chenciner–Montgomery
+//! figure-eight, integrated by leapfrog, the leapfrog compositions (Yoshida 4, Yoshida 6,
+//! Kahan–Li 6) and RK4 at fixed steps, and by DOP853 with tolerances.
+//!
+//! - **Outer solar system** (Hairer, Lubich & Wanner, *Geometric Numerical Integration*, 2nd ed.,
+//!   2006, §I.2.4, Table 2.1): the Sun (with the inner planets' mass), Jupiter, Saturn, Uranus,
+//!   Neptune and Pluto on 5 September 1994, moved to the barycentric frame; masses relative to the Sun, distances in AU, time in
+//!   days, G = 2.95912208286·10⁻⁴. Run for 2·10⁵ days (17 Jupiter years, 2.2 Pluto years) at
+//!   dt = 10 days. The symplectic methods keep the energy error bounded; RK4's drifts secularly.
+//! - **Figure-eight** (A. Chenciner & R. Montgomery, Ann. of Math. 152 (2000) 881; initial data
+//!   and period T = 6.32591398 from C. Simó's computation as quoted there): three equal masses,
+//!   G = 1, chase each other along one curve; after one period each returns to its start. The
+//!   distance from the start after one period measures each method's error.
+//!
+//! `cargo run --release --example nbody` writes under `out/nbody/`: `solar_system.csv` (time,
+//! relative energy error and relative angular-momentum error per method), `solar_energy.png`,
+//! `solar_momentum.png` (log plots), `solar_orbits.png` (the orbits projected on the ecliptic
+//! plane, from the Kahan–Li run) and `figure_eight.csv` (return error against steps per period).
+
+use std::path::Path;
+
+use odyn::output::write_table;
+use odyn::plot::{Chart, Series, View, views};
+use odyn::prelude::*;
+
+/// Bodies of the outer solar system (the state arrays spell the length out: `#[system]` needs a
+/// literal).
+const N: usize = 6;
+
+/// Newtonian gravity between `N` bodies in 3-D.
+#[system(jacobian = false)]
+#[derive(Clone, Copy)]
+pub struct SolarSystem {
+    /// x coordinates (AU).
+    #[position]
+    pub x: [f64; 6],
+    /// y coordinates (AU).
+    #[position]
+    pub y: [f64; 6],
+    /// z coordinates (AU).
+    #[position]
+    pub z: [f64; 6],
+    /// x velocities (AU/day).
+    #[velocity]
+    pub u: [f64; 6],
+    /// y velocities (AU/day).
+    #[velocity]
+    pub v: [f64; 6],
+    /// z velocities (AU/day).
+    #[velocity]
+    pub w: [f64; 6],
+    /// Masses (solar masses).
+    pub m: [f64; 6],
+    /// Gravitational constant.
+    pub g: f64,
+}
+
+#[system]
+impl SolarSystem {
+    /// Each pair once: the force is computed for i < j and applied to both bodies.
+    fn acceleration(&self) -> ([f64; N], [f64; N], [f64; N]) {
+        let mut ax = [0.0; N];
+        let mut ay = [0.0; N];
+        let mut az = [0.0; N];
+        for i in 0..N {
+            for j in (i + 1)..N {
+                let dx = self.x[j] - self.x[i];
+                let dy = self.y[j] - self.y[i];
+                let dz = self.z[j] - self.z[i];
+                let r2 = dx * dx + dy * dy + dz * dz;
+                let s = self.g / (r2 * r2.sqrt());
+                ax[i] += self.m[j] * s * dx;
+                ay[i] += self.m[j] * s * dy;
+                az[i] += self.m[j] * s * dz;
+                ax[j] -= self.m[i] * s * dx;
+                ay[j] -= self.m[i] * s * dy;
+                az[j] -= self.m[i] * s * dz;
+            }
+        }
+        (ax, ay, az)
+    }
+
+    fn energy(&self) -> f64 {
+        let mut e = 0.0;
+        for i in 0..N {
+            e += 0.5
+                * self.m[i]
+                * (self.u[i] * self.u[i] + self.v[i] * self.v[i] + self.w[i] * self.w[i]);
+            for j in (i + 1)..N {
+                let dx = self.x[j] - self.x[i];
+                let dy = self.y[j] - self.y[i];
+                let dz = self.z[j] - self.z[i];
+                e -= self.g * self.m[i] * self.m[j] / (dx * dx + dy * dy + dz * dz).sqrt();
+            }
+        }
+        e
+    }
+}
+
+/// Three equal masses in the plane, G = m = 1.
+#[system(jacobian = false)]
+#[derive(Clone, Copy)]
+pub struct ThreeBodies {
+    /// x coordinates.
+    #[position]
+    pub x: [f64; 3],
+    /// y coordinates.
+    #[position]
+    pub y: [f64; 3],
+    /// x velocities.
+    #[velocity]
+    pub u: [f64; 3],
+    /// y velocities.
+    #[velocity]
+    pub v: [f64; 3],
+}
+
+#[system]
+impl ThreeBodies {
+    fn acceleration(&self) -> ([f64; 3], [f64; 3]) {
+        let mut ax = [0.0; 3];
+        let mut ay = [0.0; 3];
+        for i in 0..3 {
+            for j in (i + 1)..3 {
+                let dx = self.x[j] - self.x[i];
+                let dy = self.y[j] - self.y[i];
+                let r2 = dx * dx + dy * dy;
+                let s = 1.0 / (r2 * r2.sqrt());
+                ax[i] += s * dx;
+                ay[i] += s * dy;
+                ax[j] -= s * dx;
+                ay[j] -= s * dy;
+            }
+        }
+        (ax, ay)
+    }
+}
+
+/// The outer solar system of HLW Table 2.1, moved to its barycentric frame (the table's data are
+/// heliocentric, so the whole system would drift by ~1.4 AU over the run and smear the orbits).
+fn solar_system() -> SolarSystem {
+    let mut system = SolarSystem {
+        x: [
+            0.0,
+            -3.5023653,
+            9.0755314,
+            8.3101420,
+            11.4707666,
+            -15.5387357,
+        ],
+        y: [
+            0.0,
+            -3.8169847,
+            -3.0458353,
+            -16.2901086,
+            -25.7294829,
+            -25.2225594,
+        ],
+        z: [
+            0.0,
+            -1.5507963,
+            -1.6483708,
+            -7.2521278,
+            -10.8169456,
+            -3.1902382,
+        ],
+        u: [
+            0.0, 0.00565429, 0.00168318, 0.00354178, 0.00288930, 0.00276725,
+        ],
+        v: [
+            0.0,
+            -0.00412490,
+            0.00483525,
+            0.00137102,
+            0.00114527,
+            -0.00170702,
+        ],
+        w: [
+            0.0,
+            -0.00190589,
+            0.00192462,
+            0.00055029,
+            0.00039677,
+            -0.00136504,
+        ],
+        m: [
+            1.00000597682,
+            0.000954786104043,
+            0.000285583733151,
+            0.0000437273164546,
+            0.0000517759138449,
+            1.0 / 1.3e8,
+        ],
+        g: 2.95912208286e-4,
+    };
+    let total: f64 = system.m.iter().sum();
+    for field in [
+        &mut system.x,
+        &mut system.y,
+        &mut system.z,
+        &mut system.u,
+        &mut system.v,
+        &mut system.w,
+    ] {
+        let centre = field.iter().zip(&system.m).map(|(q, m)| q * m).sum::<f64>() / total;
+        field.iter_mut().for_each(|q| *q -= centre);
+    }
+    system
+}
+
+/// Total angular momentum Σ mᵢ qᵢ × vᵢ.
+fn angular_momentum(model: &SolarSystem, s: &SolarSystemState) -> [f64; 3] {
+    let mut l = [0.0; 3];
+    for i in 0..N {
+        let m = model.m[i];
+        l[0] += m * (s.y[i] * s.w[i] - s.z[i] * s.v[i]);
+        l[1] += m * (s.z[i] * s.u[i] - s.x[i] * s.w[i]);
+        l[2] += m * (s.x[i] * s.v[i] - s.y[i] * s.u[i]);
+    }
+    l
+}
+
+/// The methods compared at a fixed step.
+const FIXED: [Method; 5] = [
+    Method::Leapfrog,
+    Method::Yoshida4,
+    Method::Yoshida6,
+    Method::KahanLi6,
+    Method::Rk4,
+];
+
+fn main() -> odyn::Result<()> {
+    let dir = Path::new("out/nbody");
+    let model = solar_system();
+    let (days, dt) = (2e5, 10.0);
+    let e0 = Model::energy(&model, &model.state()).expect("the model defines its energy");
+    let l0 = angular_momentum(&model, &model.state());
+    let norm = |l: [f64; 3]| (l[0] * l[0] + l[1] * l[1] + l[2] * l[2]).sqrt();
+
+    println!("Outer solar system, {days:e} days (HLW Table 2.1); |ΔE/E₀| and |ΔL|/|L₀|:");
+    println!(
+        "  {:<18}{:>4}{:>10}{:>14}{:>18}{:>12}",
+        "method", "dt", "steps", "max |ΔE/E₀|", "final |ΔL|/|L₀|", "f-evals"
+    );
+    let mut runs = Vec::new();
+    for method in FIXED {
+        let run = model
+            .simulate()
+            .integrator(method)
+            .dt(dt)
+            .duration(days)
+            .record_every(20)
+            .run()?;
+        runs.push((method.label().to_string(), run));
+    }
+    let adaptive = model
+        .simulate()
+        .integrator(Method::Dop853)
+        .tolerances(1e-10, 1e-10)
+        .duration(days)
+        .run()?;
+    runs.push(("DOP853, tol 1e-10".to_string(), adaptive));
+
+    let mut energy_series = Vec::new();
+    let mut momentum_series = Vec::new();
+    let mut rows = Vec::new();
+    for (label, run) in &runs {
+        let energy: Vec<(f64, f64)> = run
+            .samples
+            .iter()
+            .map(|s| (s.t, (s.energy.unwrap_or(f64::NAN) - e0).abs() / e0.abs()))
+            .collect();
+        let momentum: Vec<(f64, f64)> = run
+            .samples
+            .iter()
+            .map(|s| {
+                let l = angular_momentum(&model, &s.state);
+                (
+                    s.t,
+                    norm([l[0] - l0[0], l[1] - l0[1], l[2] - l0[2]]) / norm(l0),
+                )
+            })
+            .collect();
+        let max_energy = energy.iter().map(|p| p.1).fold(0.0, f64::max);
+        println!(
+            "  {:<18}{:>4}{:>10}{:>14.2e}{:>18.2e}{:>12}",
+            label,
+            if label.starts_with("DOP") {
+                "—".to_string()
+            } else {
+                format!("{dt}")
+            },
+            run.stats.steps,
+            max_energy,
+            momentum.last().map_or(f64::NAN, |p| p.1),
+            run.stats.evaluations
+        );
+        for (e, l) in energy.iter().zip(&momentum) {
+            rows.push(vec![
+                label.clone(),
+                format!("{}", e.0),
+                format!("{:e}", e.1),
+                format!("{:e}", l.1),
+            ]);
+        }
+        energy_series.push(Series::line(label.clone(), energy));
+        momentum_series.push(Series::line(label.clone(), momentum));
+    }
+    write_table(
+        dir.join("solar_system.csv"),
+        &[
+            "method",
+            "t_days",
+            "relative_energy_error",
+            "relative_angular_momentum_error",
+        ],
+        &rows,
+    )?;
+    Chart {
+        title: format!("Outer solar system: energy error, dt = {dt} days"),
+        x_label: "t [days]".into(),
+        y_label: "|E − E₀| / |E₀|".into(),
+        log_y: true,
+        series: energy_series,
+        ..Chart::default()
+    }
+    .write(dir.join("solar_energy.png"), (1000, 600))?;
+    Chart {
+        title: "Outer solar system: angular-momentum error".into(),
+        x_label: "t [days]".into(),
+        y_label: "|L − L₀| / |L₀|".into(),
+        log_y: true,
+        series: momentum_series,
+        ..Chart::default()
+    }
+    .write(dir.join("solar_momentum.png"), (1000, 600))?;
+
+    // The orbits on the ecliptic (x–y), from the Kahan–Li run.
+    let (_, orbit_run) = &runs[3];
+    let mut segments = Vec::new();
+    for pair in orbit_run.samples.windows(2) {
+        for i in 1..N {
+            segments.push([
+                (pair[0].state.x[i], pair[0].state.y[i]),
+                (pair[1].state.x[i], pair[1].state.y[i]),
+            ]);
+        }
+    }
+    let last = &orbit_run.last().state;
+    views(
+        dir.join("solar_orbits.png"),
+        "Outer solar system, 2·10⁵ days (Kahan–Li 6, dt = 10 days)",
+        &[View {
+            title: "ecliptic (x–y), AU".into(),
+            x_label: "x".into(),
+            y_label: "y".into(),
+            segments,
+            points: (0..N).map(|i| (last.x[i], last.y[i])).collect(),
+            bounds: ((-50.0, 50.0), (-50.0, 50.0)),
+        }],
+        (800, 800),
+    )?;
+
+    figure_eight(dir)?;
+    println!("wrote out/nbody/");
+    Ok(())
+}
+
+/// The figure-eight after one period at several step counts: max-norm distance from the start.
+fn figure_eight(dir: &Path) -> odyn::Result<()> {
+    // Chenciner & Montgomery (2000), Simó's initial data: x₁ = −x₂, x₃ = 0, v₁ = v₂ = −v₃/2.
+    let (px, py) = (0.97000436, -0.24308753);
+    let (vx, vy) = (-0.93240737, -0.86473146);
+    let bodies = ThreeBodies {
+        x: [px, -px, 0.0],
+        y: [py, -py, 0.0],
+        u: [-vx / 2.0, -vx / 2.0, vx],
+        v: [-vy / 2.0, -vy / 2.0, vy],
+    };
+    let period = 6.32591398;
+    println!("\nFigure-eight, one period T = {period}: max distance from the start");
+    println!(
+        "  {:<12}{:>10}{:>12}{:>12}",
+        "method", "steps", "error", "f-evals"
+    );
+    let start = bodies.state();
+    let mut rows = Vec::new();
+    for method in FIXED {
+        for steps in [100u64, 1000, 10000] {
+            let run = bodies
+                .simulate()
+                .integrator(method)
+                .dt(period / steps as f64)
+                .steps(steps)
+                .record_every(u64::MAX)
+                .run()?;
+            let end = &run.last().state;
+            let error = end
+                .as_slice()
+                .iter()
+                .zip(start.as_slice())
+                .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+            println!(
+                "  {:<12}{steps:>10}{error:>12.2e}{:>12}",
+                method.label(),
+                run.stats.evaluations
+            );
+            rows.push(vec![
+                method.name().to_string(),
+                steps.to_string(),
+                format!("{error:e}"),
+                run.stats.evaluations.to_string(),
+            ]);
+        }
+    }
+    write_table(
+        dir.join("figure_eight.csv"),
+        &["method", "steps", "error", "evaluations"],
+        &rows,
+    )
+}
