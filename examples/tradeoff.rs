@@ -297,6 +297,9 @@ fn run(quick: bool) -> odyn::Result<()> {
         Method::PositionVerlet,
         Method::VelocityVerlet,
         Method::Leapfrog,
+        Method::Yoshida4,
+        Method::Yoshida6,
+        Method::KahanLi6,
         Method::Rk4,
         Method::ImplicitEuler,
         Method::Tsit5,
@@ -546,6 +549,8 @@ fn kepler_invariants(
         Method::SymplecticEuler,
         Method::VelocityVerlet,
         Method::Leapfrog,
+        Method::Yoshida4,
+        Method::KahanLi6,
         Method::Rk4,
         Method::ImplicitEuler,
     ] {
