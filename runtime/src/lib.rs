@@ -8,6 +8,7 @@
 pub mod clock;
 mod dense;
 pub mod drive;
+pub mod ensemble;
 mod error;
 pub mod integrators;
 mod method;
@@ -37,6 +38,9 @@ pub use method::{Method, MethodInfo};
 pub use model::{Jacobian, Model, SecondOrder, State, Unavailable};
 pub use nalgebra;
 pub use newton::NewtonOptions;
+/// The `rand` crate, for ensemble members' generators ([`ensemble::MemberRng`] implements its
+/// `Rng`).
+pub use rand;
 pub use simulation::{Length, RunOptions, Simulation, Stepping};
 pub use stepper::Stepper;
 pub use trajectory::{Sample, Trajectory};

@@ -1,0 +1,178 @@
+//! Ensembles: bit-identical on any thread count and any split into shards, typed errors for
+//! shards that do not add up, reductions checked against closed forms, and Monte Carlo error
+//! falling as 1/√N.
+
+use std::f64::consts::PI;
+
+use odyn::ensemble::{Ensemble, MemberRng, Members, Shard};
+use odyn::rand::Rng;
+
+/// π by hit-or-miss with `n` points in the unit square: 4·(hits / n).
+fn pi_estimate(n: u64, rng: &mut MemberRng) -> f64 {
+    let hits = (0..n)
+        .filter(|_| {
+            let (x, y): (f64, f64) = (rng.random(), rng.random());
+            x * x + y * y <= 1.0
+        })
+        .count();
+    4.0 * hits as f64 / n as f64
+}
+
+fn pi_ensemble(members: u64, shard: Shard) -> Members {
+    let ensemble = Ensemble {
+        members,
+        seed: 2026,
+        shard,
+        ..Ensemble::default()
+    };
+    ensemble
+        .run(|_, rng| Ok(vec![pi_estimate(1000, rng), rng.random()]))
+        .unwrap()
+}
+
+fn in_pool<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap()
+        .install(f)
+}
+
+#[test]
+fn results_are_bit_identical_on_any_thread_count() {
+    let one = in_pool(1, || pi_ensemble(64, Shard::WHOLE));
+    for threads in [2, 3, 7] {
+        let many = in_pool(threads, || pi_ensemble(64, Shard::WHOLE));
+        assert_eq!(one, many, "{threads} threads");
+    }
+    let (a, b) = (
+        one.statistics().unwrap(),
+        pi_ensemble(64, Shard::WHOLE).statistics().unwrap(),
+    );
+    assert_eq!(a.mean[0].to_bits(), b.mean[0].to_bits());
+    assert_eq!(a.variance[0].to_bits(), b.variance[0].to_bits());
+}
+
+#[test]
+fn shards_merge_bit_identical_to_one_run_through_files() {
+    let whole = pi_ensemble(23, Shard::WHOLE);
+    let dir = std::env::temp_dir().join(format!("odyn-ensemble-{}", std::process::id()));
+    for count in [1, 2, 5, 23] {
+        let parts: Vec<Members> = (0..count)
+            .map(|index| {
+                let part = pi_ensemble(23, Shard { index, count });
+                let path = dir.join(format!("shard-{index}-of-{count}.csv"));
+                part.write_csv(&path).unwrap();
+                Members::read_csv(&path).unwrap()
+            })
+            .rev() // any order
+            .collect();
+        let merged = Members::merge(parts).unwrap();
+        assert_eq!(merged, whole, "{count} shards");
+        let (m, w) = (merged.statistics().unwrap(), whole.statistics().unwrap());
+        assert_eq!(m, w);
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn shards_that_do_not_add_up_are_typed_errors() {
+    let part = |index| pi_ensemble(10, Shard { index, count: 3 });
+    let missing = Members::merge(vec![part(0), part(2)]).unwrap_err();
+    assert!(
+        missing.to_string().contains("member 3 is missing"),
+        "{missing}"
+    );
+    let twice = Members::merge(vec![part(0), part(1), part(1), part(2)]).unwrap_err();
+    assert!(twice.to_string().contains("appears twice"), "{twice}");
+    let mut other = part(1);
+    other.seed += 1;
+    let mixed = Members::merge(vec![part(0), other, part(2)]).unwrap_err();
+    assert!(mixed.to_string().contains("different ensembles"), "{mixed}");
+    assert!(part(0).statistics().is_err(), "statistics of one shard");
+    for bad in ["3/3", "1", "a/2", "-1/2", "1/0"] {
+        assert!(Shard::parse(bad).is_err(), "{bad}");
+    }
+    assert_eq!(Shard::parse(" 2/5").unwrap(), Shard { index: 2, count: 5 });
+    let too_many = Ensemble {
+        members: 3,
+        shard: Shard { index: 0, count: 4 },
+        ..Ensemble::default()
+    };
+    assert!(too_many.run(|_, _| Ok(vec![0.0])).is_err());
+    let ragged = Ensemble::default().run(|i, _| Ok(vec![0.0; 1 + (i == 7) as usize]));
+    assert!(ragged.unwrap_err().to_string().contains("member 7"));
+    // The lowest-numbered failing member's error, whatever the threads did.
+    let failing = Ensemble::default().run(|i, _| {
+        if i % 10 == 9 {
+            Err(odyn::Error::Diverged {
+                method: odyn::Method::Rk4,
+                step: i,
+                t: 0.0,
+                component: String::new(),
+                value: f64::NAN,
+                limit: 1.0,
+            })
+        } else {
+            Ok(vec![0.0])
+        }
+    });
+    assert!(
+        matches!(failing, Err(odyn::Error::Diverged { step: 9, .. })),
+        "{failing:?}"
+    );
+}
+
+/// Members that return their own index: mean (M − 1)/2, sample variance M(M + 1)/12, median
+/// (M − 1)/2, quantile q at position (M − 1)q exactly (definition 7 of Hyndman & Fan 1996).
+#[test]
+fn reductions_match_closed_forms() {
+    let m = 101u64;
+    let ensemble = Ensemble {
+        members: m,
+        ..Ensemble::default()
+    };
+    let stats = ensemble
+        .run(|i, _| Ok(vec![i as f64]))
+        .unwrap()
+        .statistics()
+        .unwrap();
+    let mf = m as f64;
+    assert_eq!(stats.mean[0], (mf - 1.0) / 2.0);
+    assert!((stats.variance[0] - mf * (mf + 1.0) / 12.0).abs() < 1e-9);
+    assert_eq!(stats.quantile(0, 0.5).unwrap(), 50.0);
+    assert_eq!(stats.quantile(0, 0.05).unwrap(), 5.0);
+    assert!((stats.quantile(0, 0.333).unwrap() - 33.3).abs() < 1e-12);
+    assert!(stats.quantile(0, 1.5).is_err() && stats.quantile(1, 0.5).is_err());
+}
+
+/// Hit-or-miss π: each point lands in the quarter disc with probability p = π/4, so the estimate
+/// 4·hits/N has standard deviation exactly 4·√(p(1 − p)/N) = √(π(4 − π)/N). Over 400 members the
+/// measured RMS error at N = 10⁴ must lie within 10 % of it (the relative standard error of an
+/// RMS over 400 samples is ≈ 1/√(2·400) = 3.5 %, so 10 % is ~3σ), and the mean within 4σ/√400.
+#[test]
+fn monte_carlo_pi_error_is_sqrt_pi_4_minus_pi_over_n() {
+    let n = 10_000;
+    let ensemble = Ensemble {
+        members: 400,
+        seed: 7,
+        ..Ensemble::default()
+    };
+    let members = ensemble
+        .run(|_, rng| Ok(vec![pi_estimate(n, rng)]))
+        .unwrap();
+    let rms = (members
+        .rows
+        .iter()
+        .map(|(_, v)| (v[0] - PI).powi(2))
+        .sum::<f64>()
+        / 400.0)
+        .sqrt();
+    let theory = (PI * (4.0 - PI) / n as f64).sqrt();
+    assert!(
+        (rms / theory - 1.0).abs() < 0.10,
+        "rms {rms:e}, theory {theory:e}"
+    );
+    let mean = members.statistics().unwrap().mean[0];
+    assert!((mean - PI).abs() < 4.0 * theory / 20.0, "mean {mean}");
+}
