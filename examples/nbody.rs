@@ -15,12 +15,13 @@
 //! `cargo run --release --example nbody` writes under `out/nbody/`: `solar_system.csv` (time,
 //! relative energy error and relative angular-momentum error per method), `solar_energy.png`,
 //! `solar_momentum.png` (log plots), `solar_orbits.png` (the orbits projected on the ecliptic
-//! plane, from the Kahan–Li run) and `figure_eight.csv` (return error against steps per period).
+//! plane, from the Kahan–Li run), `figure_eight.csv` (return error against steps per period) and
+//! `figure_eight.gif` (one period, animated).
 
 use std::path::Path;
 
 use odyn::output::write_table;
-use odyn::plot::{Chart, Series, View, views};
+use odyn::plot::{Chart, Frame, Series, View, animation, views};
 use odyn::prelude::*;
 
 /// Bodies of the outer solar system (the state arrays spell the length out: `#[system]` needs a
@@ -413,6 +414,43 @@ fn figure_eight(dir: &Path) -> odyn::Result<()> {
             ]);
         }
     }
+    // One period as an animation: the bodies with 40-sample trails (Kahan–Li 6, 600 steps).
+    let run = bodies
+        .simulate()
+        .integrator(Method::KahanLi6)
+        .dt(period / 600.0)
+        .steps(600)
+        .record_every(5)
+        .run()?;
+    let frames: Vec<Frame> = (0..run.samples.len())
+        .map(|k| {
+            let trail = &run.samples[k.saturating_sub(40)..=k];
+            let segments = trail
+                .windows(2)
+                .flat_map(|w| {
+                    (0..3).map(move |i| {
+                        [
+                            (w[0].state.x[i], w[0].state.y[i]),
+                            (w[1].state.x[i], w[1].state.y[i]),
+                        ]
+                    })
+                })
+                .collect();
+            let now = &run.samples[k].state;
+            Frame {
+                title: format!("Figure-eight, t = {:.2} of T = {period}", run.samples[k].t),
+                views: vec![View {
+                    title: "three equal masses (Kahan–Li 6)".into(),
+                    x_label: "x".into(),
+                    y_label: "y".into(),
+                    segments,
+                    points: (0..3).map(|i| (now.x[i], now.y[i])).collect(),
+                    bounds: ((-1.2, 1.2), (-0.6, 0.6)),
+                }],
+            }
+        })
+        .collect();
+    animation(dir.join("figure_eight.gif"), &frames, (640, 400), 40)?;
     write_table(
         dir.join("figure_eight.csv"),
         &["method", "steps", "error", "evaluations"],

@@ -321,6 +321,80 @@ pub struct View {
 pub fn views(path: impl AsRef<Path>, title: &str, views: &[View], size: (u32, u32)) -> Result<()> {
     let path = path.as_ref();
     draw::image_kind(path)?;
+    let regions = regions(views)?;
+    draw::write_image(
+        path,
+        size,
+        |root| draw_views(root, title, views, &regions),
+        |root| draw_views(root, title, views, &regions),
+    )
+}
+
+/// One frame of an [`animation`]: a title over views drawn as [`views`] draws them.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Frame {
+    /// Title above the panels (`t = 1.25 s`).
+    pub title: String,
+    /// The panels, side by side.
+    pub views: Vec<View>,
+}
+
+/// Draws each frame as [`views`] would and writes them atomically to `path` as an animated GIF
+/// that loops forever, `delay_ms` milliseconds a frame (pure Rust: the `image` crate's encoder).
+///
+/// Errors: [`Error::InvalidInput`] for a path not ending in `.gif`, no frames, a frame [`views`]
+/// would refuse, or a size outside 16–16384 pixels; [`Error::Plot`] when drawing or encoding
+/// fails; [`Error::Io`] when the file cannot be written.
+pub fn animation(
+    path: impl AsRef<Path>,
+    frames: &[Frame],
+    size: (u32, u32),
+    delay_ms: u32,
+) -> Result<()> {
+    use image::codecs::gif::{GifEncoder, Repeat};
+    let path = path.as_ref();
+    if path.extension().and_then(|e| e.to_str()) != Some("gif") {
+        return Err(Error::invalid(
+            "animation path",
+            format!("`{}` must end in .gif", path.display()),
+        ));
+    }
+    if frames.is_empty() {
+        return Err(Error::invalid("frames", "nothing to animate"));
+    }
+    draw::check_size(size)?;
+    draw::register_bundled_font(path)?;
+    let fail = |reason: String| draw::plot_error(path, reason);
+    let mut bytes = Vec::new();
+    {
+        let mut encoder = GifEncoder::new_with_speed(&mut bytes, 30);
+        encoder
+            .set_repeat(Repeat::Infinite)
+            .map_err(|e| fail(e.to_string()))?;
+        for (k, frame) in frames.iter().enumerate() {
+            let regions = regions(&frame.views)
+                .map_err(|e| Error::invalid(format!("frames[{k}]"), e.to_string()))?;
+            let rgb = draw::render_rgb(size, |root| {
+                draw_views(root, &frame.title, &frame.views, &regions)
+            })
+            .map_err(fail)?;
+            let rgba: Vec<u8> = rgb
+                .chunks_exact(3)
+                .flat_map(|p| [p[0], p[1], p[2], 255])
+                .collect();
+            let buffer = image::RgbaImage::from_raw(size.0, size.1, rgba)
+                .ok_or_else(|| fail("frame buffer of the wrong size".into()))?;
+            let delay = image::Delay::from_numer_denom_ms(delay_ms, 1);
+            encoder
+                .encode_frame(image::Frame::from_parts(buffer, 0, 0, delay))
+                .map_err(|e| fail(e.to_string()))?;
+        }
+    }
+    crate::output::write_atomic(path, &bytes)
+}
+
+/// The axes of each view, after checking its bounds and data are finite.
+fn regions(views: &[View]) -> Result<Vec<(Axis, Axis)>> {
     if views.is_empty() {
         return Err(Error::invalid("views", "nothing to draw"));
     }
@@ -340,12 +414,7 @@ pub fn views(path: impl AsRef<Path>, title: &str, views: &[View], size: (u32, u3
         }
         regions.push((x, y));
     }
-    draw::write_image(
-        path,
-        size,
-        |root| draw_views(root, title, views, &regions),
-        |root| draw_views(root, title, views, &regions),
-    )
+    Ok(regions)
 }
 
 fn draw_views<DB: DrawingBackend>(
@@ -465,6 +534,42 @@ mod tests {
             labels,
             ["1e5", "1.2e5", "1.4e5", "2e5", "2.5e-4", "-3.75e6"]
         );
+    }
+
+    /// An animation is a looping GIF with one frame per [`Frame`], and bad input is refused.
+    #[test]
+    fn animations_are_gifs_with_every_frame() {
+        use image::AnimationDecoder;
+        let dir = std::env::temp_dir().join(format!("odyn-gif-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let frame = |k: usize| Frame {
+            title: format!("frame {k}"),
+            views: vec![View {
+                title: "square".into(),
+                segments: vec![[(0.0, 0.0), (k as f64, 1.0)]],
+                points: vec![(k as f64, 1.0)],
+                bounds: ((0.0, 3.0), (0.0, 2.0)),
+                ..View::default()
+            }],
+        };
+        let frames: Vec<Frame> = (0..3).map(frame).collect();
+        let path = dir.join("a.gif");
+        animation(&path, &frames, (120, 80), 50).unwrap();
+        let file = std::fs::File::open(&path).unwrap();
+        let decoded = image::codecs::gif::GifDecoder::new(std::io::BufReader::new(file))
+            .unwrap()
+            .into_frames()
+            .collect_frames()
+            .unwrap();
+        assert_eq!(decoded.len(), 3);
+        assert_eq!(decoded[0].buffer().dimensions(), (120, 80));
+        assert_eq!(decoded[1].delay().numer_denom_ms(), (50, 1));
+        assert!(animation(dir.join("a.png"), &frames, (120, 80), 50).is_err());
+        assert!(animation(&path, &[], (120, 80), 50).is_err());
+        let mut bad = frame(0);
+        bad.views[0].points[0].0 = f64::NAN;
+        assert!(animation(&path, &[bad], (120, 80), 50).is_err());
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]
