@@ -391,6 +391,7 @@ fn write_frames(dir: &Path, cloth: &Cloth, structural: &[usize], run: &Run) -> o
                 .collect(),
             points: cloth.pinned.iter().map(|&p| (x[p][h], x[p].y)).collect(),
             bounds: (range(h), range(1)),
+            ..View::default()
         };
         views(
             dir.join(format!("frame_{k}.png")),

@@ -358,6 +358,7 @@ fn main() -> odyn::Result<()> {
             segments,
             points: (0..N).map(|i| (last.x[i], last.y[i])).collect(),
             bounds: ((-50.0, 50.0), (-50.0, 50.0)),
+            ..View::default()
         }],
         (800, 800),
     )?;
@@ -446,6 +447,7 @@ fn figure_eight(dir: &Path) -> odyn::Result<()> {
                     segments,
                     points: (0..3).map(|i| (now.x[i], now.y[i])).collect(),
                     bounds: ((-1.2, 1.2), (-0.6, 0.6)),
+                    ..View::default()
                 }],
             }
         })

@@ -302,6 +302,7 @@ fn run(cli: Cli) -> odyn::Result<()> {
             segments,
             points: vec![(0.0, 0.0)],
             bounds: ((-2.2, 2.2), (-2.3, 0.2)),
+            ..View::default()
         }
     };
     views(

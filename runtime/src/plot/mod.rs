@@ -307,6 +307,8 @@ pub struct View {
     pub y_label: String,
     /// Segments to draw, end to end.
     pub segments: Vec<[(f64, f64); 2]>,
+    /// More segments, drawn over `segments` in the second colour (a second trajectory).
+    pub highlighted: Vec<[(f64, f64); 2]>,
     /// Points drawn as red dots over the segments.
     pub points: Vec<(f64, f64)>,
     /// The region shown, ((x₀, x₁), (y₀, y₁)); keep it fixed across frames so motion shows.
@@ -404,7 +406,13 @@ fn regions(views: &[View]) -> Result<Vec<(Axis, Axis)>> {
         let x = Axis::fixed(&format!("views[{i}].bounds x"), x0, x1)?;
         let y = Axis::fixed(&format!("views[{i}].bounds y"), y0, y1)?;
         let finite = |(a, b): (f64, f64)| a.is_finite() && b.is_finite();
-        if !view.segments.iter().flatten().copied().all(finite)
+        if !view
+            .segments
+            .iter()
+            .chain(&view.highlighted)
+            .flatten()
+            .copied()
+            .all(finite)
             || !view.points.iter().copied().all(finite)
         {
             return Err(Error::invalid(
@@ -457,6 +465,14 @@ fn draw_views<DB: DrawingBackend>(
                 view.segments
                     .iter()
                     .map(|&[a, b]| PathElement::new([a, b], line)),
+            )
+            .map_err(e)?;
+        let second = ShapeStyle::from(draw::colour(1)).stroke_width(1);
+        chart
+            .draw_series(
+                view.highlighted
+                    .iter()
+                    .map(|&[a, b]| PathElement::new([a, b], second)),
             )
             .map_err(e)?;
         chart
