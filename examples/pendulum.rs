@@ -241,6 +241,7 @@ fn swing(
         segments: vec![[(0.0, 0.0), (theta.sin(), -theta.cos())]],
         points: vec![(theta.sin(), -theta.cos())],
         bounds: ((-1.2, 1.2), (-1.2, 1.2)),
+        line_width: 3,
         ..View::default()
     };
     let frames: Vec<Frame> = run

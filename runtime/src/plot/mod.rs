@@ -309,6 +309,9 @@ pub struct View {
     pub segments: Vec<[(f64, f64); 2]>,
     /// More segments, drawn over `segments` in the second colour (a second trajectory).
     pub highlighted: Vec<[(f64, f64); 2]>,
+    /// Stroke width of the segments in pixels (0, the default, draws 1: right for dense
+    /// trajectories; rods and links read better at 3).
+    pub line_width: u32,
     /// Points drawn as red dots over the segments.
     pub points: Vec<(f64, f64)>,
     /// The region shown, ((x₀, x₁), (y₀, y₁)); keep it fixed across frames so motion shows.
@@ -435,8 +438,9 @@ fn draw_views<DB: DrawingBackend>(
     root.fill(&WHITE).map_err(e)?;
     let root = root.titled(title, ("sans-serif", 24)).map_err(e)?;
     let panels = root.split_evenly((1, views.len()));
-    let line = ShapeStyle::from(draw::colour(0)).stroke_width(1);
     for ((panel, view), (x, y)) in panels.iter().zip(views).zip(regions) {
+        let width = view.line_width.max(1);
+        let line = ShapeStyle::from(draw::colour(0)).stroke_width(width);
         // Equal scale: widen the shorter side of the region to the panel's aspect ratio.
         let (w, h) = panel.dim_in_pixel();
         let (w, h) = (
@@ -467,7 +471,7 @@ fn draw_views<DB: DrawingBackend>(
                     .map(|&[a, b]| PathElement::new([a, b], line)),
             )
             .map_err(e)?;
-        let second = ShapeStyle::from(draw::colour(1)).stroke_width(1);
+        let second = ShapeStyle::from(draw::colour(1)).stroke_width(width);
         chart
             .draw_series(
                 view.highlighted
