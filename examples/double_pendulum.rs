@@ -202,7 +202,7 @@ fn fit(points: &[(f64, f64)]) -> (f64, f64) {
 fn benettin(model: &DoublePendulum) -> odyn::Result<f64> {
     let (d0, tau, rounds) = (1e-9, 0.5, 400);
     let mut reference = model.state();
-    let mut other = reference.clone();
+    let mut other = reference;
     other.theta1 += d0;
     let mut sum = 0.0;
     for round in 0..rounds {
@@ -213,11 +213,11 @@ fn benettin(model: &DoublePendulum) -> odyn::Result<f64> {
                 .integrator(Method::Dop853)
                 .tolerances(1e-12, 1e-12)
                 .start_time(start)
-                .initial_state(state.clone())
+                .initial_state(*state)
                 .duration(tau)
                 .record_every(u64::MAX)
                 .run()?;
-            Ok(run.last().state.clone())
+            Ok(run.last().state)
         };
         reference = advance(&reference)?;
         other = advance(&other)?;
