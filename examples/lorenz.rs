@@ -257,6 +257,7 @@ fn attractor(
                         xz(&other.samples[now].state),
                     ],
                     bounds: ((-22.0, 22.0), (0.0, 52.0)),
+                    ..View::default()
                 }],
             }
         })
