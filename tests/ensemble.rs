@@ -176,3 +176,38 @@ fn monte_carlo_pi_error_is_sqrt_pi_4_minus_pi_over_n() {
     let mean = members.statistics().unwrap().mean[0];
     assert!((mean - PI).abs() < 4.0 * theory / 20.0, "mean {mean}");
 }
+
+/// The RMS error over 400 members at N = 10², 10³, 10⁴ falls with a fitted log-log slope of
+/// −½ ± 0.05 (the exact law above).
+#[test]
+fn monte_carlo_error_falls_as_one_over_sqrt_n() {
+    let sizes = [100u64, 1000, 10_000];
+    let ensemble = Ensemble {
+        members: 400,
+        seed: 11,
+        ..Ensemble::default()
+    };
+    let members = ensemble
+        .run(|_, rng| Ok(sizes.iter().map(|&n| pi_estimate(n, rng)).collect()))
+        .unwrap();
+    let points: Vec<(f64, f64)> = sizes
+        .iter()
+        .enumerate()
+        .map(|(k, &n)| {
+            let mean_square = members
+                .rows
+                .iter()
+                .map(|(_, v)| (v[k] - PI).powi(2))
+                .sum::<f64>()
+                / 400.0;
+            ((n as f64).ln(), 0.5 * mean_square.ln())
+        })
+        .collect();
+    let (mx, my) = (
+        points.iter().map(|p| p.0).sum::<f64>() / 3.0,
+        points.iter().map(|p| p.1).sum::<f64>() / 3.0,
+    );
+    let slope = points.iter().map(|(x, y)| (x - mx) * (y - my)).sum::<f64>()
+        / points.iter().map(|(x, _)| (x - mx) * (x - mx)).sum::<f64>();
+    assert!((slope + 0.5).abs() <= 0.05, "slope {slope}");
+}
