@@ -10,6 +10,7 @@ mod dense;
 pub mod drive;
 pub mod ensemble;
 mod error;
+pub mod fluids;
 pub mod integrators;
 mod method;
 mod model;

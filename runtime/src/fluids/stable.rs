@@ -1,0 +1,370 @@
+//! Stable Fluids (Stam 1999) on a staggered grid.
+
+use super::spd::SpdSolver;
+use crate::{Error, Result};
+
+/// The grid and the fluid's constants: plain data with a [`Default`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct FluidOptions {
+    /// Cells across (x), at least 3.
+    pub nx: usize,
+    /// Cells up (y), at least 3.
+    pub ny: usize,
+    /// Cell size h (the domain is nx·h by ny·h).
+    pub cell: f64,
+    /// Kinematic viscosity ν ≥ 0 (0 skips the diffusion solve).
+    pub viscosity: f64,
+    /// Upward acceleration per unit smoke density (a plume's buoyancy).
+    pub buoyancy: f64,
+}
+
+impl Default for FluidOptions {
+    fn default() -> Self {
+        FluidOptions {
+            nx: 64,
+            ny: 64,
+            cell: 1.0 / 64.0,
+            viscosity: 0.0,
+            buoyancy: 0.0,
+        }
+    }
+}
+
+/// An incompressible fluid in a closed box, with a passive smoke density, stepped by Stam's
+/// Stable Fluids: forces, semi-Lagrangian advection, implicit diffusion, pressure projection.
+///
+/// The grid is staggered (MAC, Harlow & Welch 1965): `u` lives on the vertical faces
+/// ((nx + 1)·ny values, face (i, j) at x = i·h, y = (j + ½)h), `v` on the horizontal faces
+/// (nx·(ny + 1), at ((i + ½)h, j·h)), pressure and `density` at the cell centres. The walls are
+/// solid: the normal velocity on the boundary faces is zero, and the tangential velocity is
+/// no-slip in the diffusion solve.
+///
+/// - **Advection** traces each sample point back along the flow with a second-order
+///   (midpoint) step and interpolates bilinearly: unconditionally stable, at any CFL number,
+///   and never creates new extrema.
+/// - **Diffusion** solves (I − νΔt·L)·u = u* (implicit Euler), stable for any νΔt.
+/// - **Projection** solves the Poisson equation L·p = ∇·u/Δt (Neumann walls; the pressure of
+///   cell 0 fixed at 0 to remove the constant null space) and subtracts Δt·∇p, then repeats the
+///   solve once on the remainder, so the discrete divergence of every cell is zero to rounding
+///   (≤ 1e-10 is tested).
+///
+/// Both matrices are SPD and factorized by faer's sparse Cholesky: the Poisson matrix once per
+/// grid, the diffusion matrices once per distinct Δt.
+///
+/// Reference: J. Stam, "Stable Fluids", SIGGRAPH 1999, 121–128; R. Bridson, *Fluid Simulation
+/// for Computer Graphics*, 2nd ed., 2015, chapters 2–5 (MAC grid and projection).
+pub struct StableFluids {
+    options: FluidOptions,
+    /// Horizontal velocity on the vertical faces, index i + j·(nx + 1).
+    pub u: Vec<f64>,
+    /// Vertical velocity on the horizontal faces, index i + j·nx.
+    pub v: Vec<f64>,
+    /// Smoke density at the cell centres, index i + j·nx.
+    pub density: Vec<f64>,
+    pressure: Vec<f64>,
+    poisson: SpdSolver,
+    /// (Δt, u solver, v solver) of the last diffusion.
+    diffusion: Option<(f64, SpdSolver, SpdSolver)>,
+}
+
+impl StableFluids {
+    /// A fluid at rest with no smoke; builds and factorizes the Poisson matrix.
+    ///
+    /// Errors: [`Error::InvalidInput`] for a grid under 3×3 cells, a cell size that is not
+    /// finite and positive, a negative or non-finite viscosity or a non-finite buoyancy.
+    pub fn new(options: FluidOptions) -> Result<StableFluids> {
+        let FluidOptions {
+            nx,
+            ny,
+            cell,
+            viscosity,
+            buoyancy,
+        } = options;
+        if nx < 3 || ny < 3 {
+            return Err(Error::invalid(
+                "grid",
+                format!("{nx}×{ny} cells is too small; at least 3×3"),
+            ));
+        }
+        if !(cell.is_finite() && cell > 0.0) {
+            return Err(Error::invalid("cell", format!("must be finite and positive, got {cell}")));
+        }
+        if !(viscosity.is_finite() && viscosity >= 0.0) {
+            return Err(Error::invalid(
+                "viscosity",
+                format!("must be finite and ≥ 0, got {viscosity}"),
+            ));
+        }
+        if !buoyancy.is_finite() {
+            return Err(Error::invalid("buoyancy", format!("must be finite, got {buoyancy}")));
+        }
+        let poisson = SpdSolver::new(nx * ny - 1, &poisson_entries(nx, ny, cell))?;
+        Ok(StableFluids {
+            u: vec![0.0; (nx + 1) * ny],
+            v: vec![0.0; nx * (ny + 1)],
+            density: vec![0.0; nx * ny],
+            pressure: vec![0.0; nx * ny],
+            poisson,
+            diffusion: None,
+            options,
+        })
+    }
+
+    /// The grid and constants.
+    pub fn options(&self) -> &FluidOptions {
+        &self.options
+    }
+
+    /// One step of size `dt`: buoyancy, advection of velocity and smoke, diffusion, projection.
+    ///
+    /// Errors: [`Error::InvalidInput`] for a `dt` that is not finite and positive, or a velocity
+    /// or density field that is not finite (a user-set source gone wrong).
+    pub fn step(&mut self, dt: f64) -> Result<()> {
+        if !(dt.is_finite() && dt > 0.0) {
+            return Err(Error::invalid("dt", format!("must be finite and positive, got {dt}")));
+        }
+        if let Some(bad) = [&self.u, &self.v, &self.density]
+            .iter()
+            .position(|f| f.iter().any(|x| !x.is_finite()))
+        {
+            return Err(Error::invalid(
+                ["u", "v", "density"][bad],
+                "has a value that is not finite",
+            ));
+        }
+        let FluidOptions {
+            nx,
+            ny,
+            cell: h,
+            viscosity,
+            buoyancy,
+        } = self.options;
+        // Buoyancy on the interior horizontal faces, from the two cells they separate.
+        if buoyancy != 0.0 {
+            for j in 1..ny {
+                for i in 0..nx {
+                    let s = 0.5 * (self.density[i + (j - 1) * nx] + self.density[i + j * nx]);
+                    self.v[i + j * nx] += dt * buoyancy * s;
+                }
+            }
+        }
+        let (u0, v0) = (self.u.clone(), self.v.clone());
+        let velocity = |x: f64, y: f64| {
+            (
+                sample(&u0, nx + 1, ny, 0.0, 0.5, x, y, h),
+                sample(&v0, nx, ny + 1, 0.5, 0.0, x, y, h),
+            )
+        };
+        let (width, height) = (nx as f64 * h, ny as f64 * h);
+        let back = |x: f64, y: f64| {
+            let (a, b) = velocity(x, y);
+            let (mx, my) = (x - 0.5 * dt * a, y - 0.5 * dt * b);
+            let (a, b) = velocity(mx, my);
+            ((x - dt * a).clamp(0.0, width), (y - dt * b).clamp(0.0, height))
+        };
+        for j in 0..ny {
+            for i in 1..nx {
+                let (x, y) = back(i as f64 * h, (j as f64 + 0.5) * h);
+                self.u[i + j * (nx + 1)] = sample(&u0, nx + 1, ny, 0.0, 0.5, x, y, h);
+            }
+        }
+        for j in 1..ny {
+            for i in 0..nx {
+                let (x, y) = back((i as f64 + 0.5) * h, j as f64 * h);
+                self.v[i + j * nx] = sample(&v0, nx, ny + 1, 0.5, 0.0, x, y, h);
+            }
+        }
+        let s0 = self.density.clone();
+        for j in 0..ny {
+            for i in 0..nx {
+                let (x, y) = back((i as f64 + 0.5) * h, (j as f64 + 0.5) * h);
+                self.density[i + j * nx] = sample(&s0, nx, ny, 0.5, 0.5, x, y, h);
+            }
+        }
+        if viscosity > 0.0 {
+            self.diffuse(dt)?;
+        }
+        self.project(dt);
+        Ok(())
+    }
+
+    /// Solves (I − νΔt·L)·u = u for each velocity component, no-slip at the walls.
+    fn diffuse(&mut self, dt: f64) -> Result<()> {
+        let FluidOptions {
+            nx, ny, cell: h, viscosity, ..
+        } = self.options;
+        if self.diffusion.as_ref().is_none_or(|(last, _, _)| *last != dt) {
+            let k = viscosity * dt / (h * h);
+            let u = SpdSolver::new((nx - 1) * ny, &diffusion_entries(nx - 1, ny, k))?;
+            let v = SpdSolver::new(nx * (ny - 1), &diffusion_entries_transposed(nx, ny - 1, k))?;
+            self.diffusion = Some((dt, u, v));
+        }
+        let Some((_, solve_u, solve_v)) = &mut self.diffusion else {
+            return Ok(());
+        };
+        let mut rhs: Vec<f64> = (0..ny)
+            .flat_map(|j| (1..nx).map(move |i| (i, j)))
+            .map(|(i, j)| self.u[i + j * (nx + 1)])
+            .collect();
+        solve_u.solve_in_place(&mut rhs);
+        for (k, value) in rhs.iter().enumerate() {
+            let (i, j) = (1 + k % (nx - 1), k / (nx - 1));
+            self.u[i + j * (nx + 1)] = *value;
+        }
+        let mut rhs: Vec<f64> = (1..ny)
+            .flat_map(|j| (0..nx).map(move |i| (i, j)))
+            .map(|(i, j)| self.v[i + j * nx])
+            .collect();
+        solve_v.solve_in_place(&mut rhs);
+        for (k, value) in rhs.iter().enumerate() {
+            let (i, j) = (k % nx, 1 + k / nx);
+            self.v[i + j * nx] = *value;
+        }
+        Ok(())
+    }
+
+    /// Makes the velocity divergence-free: solves L·p = ∇·u/Δt and subtracts Δt·∇p, then once
+    /// more on what is left (one step of iterative refinement: the Cholesky solve alone leaves a
+    /// divergence of ~1e-10 on a 33² grid, the refined one ~1e-14).
+    pub fn project(&mut self, dt: f64) {
+        self.correct(dt);
+        self.correct(dt);
+    }
+
+    /// One pressure correction.
+    fn correct(&mut self, dt: f64) {
+        let FluidOptions { nx, ny, cell: h, .. } = self.options;
+        let divergence = self.divergence();
+        // Unknowns: every cell but cell 0 (p₀ = 0); A = −L, so A·p = −∇·u/Δt.
+        let mut rhs: Vec<f64> = divergence[1..].iter().map(|d| -d / dt).collect();
+        self.poisson.solve_in_place(&mut rhs);
+        self.pressure[0] = 0.0;
+        self.pressure[1..].copy_from_slice(&rhs);
+        let p = &self.pressure;
+        for j in 0..ny {
+            for i in 1..nx {
+                self.u[i + j * (nx + 1)] -= dt * (p[i + j * nx] - p[i - 1 + j * nx]) / h;
+            }
+        }
+        for j in 1..ny {
+            for i in 0..nx {
+                self.v[i + j * nx] -= dt * (p[i + j * nx] - p[i + (j - 1) * nx]) / h;
+            }
+        }
+    }
+
+    /// The discrete divergence (u_{i+1,j} − u_{i,j} + v_{i,j+1} − v_{i,j})/h of every cell.
+    pub fn divergence(&self) -> Vec<f64> {
+        let FluidOptions { nx, ny, cell: h, .. } = self.options;
+        (0..ny)
+            .flat_map(|j| (0..nx).map(move |i| (i, j)))
+            .map(|(i, j)| {
+                (self.u[i + 1 + j * (nx + 1)] - self.u[i + j * (nx + 1)] + self.v[i + (j + 1) * nx]
+                    - self.v[i + j * nx])
+                    / h
+            })
+            .collect()
+    }
+
+    /// The largest face speed |u| or |v|.
+    pub fn max_speed(&self) -> f64 {
+        self.u.iter().chain(&self.v).fold(0.0, |m, x| m.max(x.abs()))
+    }
+
+    /// Kinetic energy ½·Σ (u² + v²)·h² over the faces (unit density).
+    pub fn kinetic_energy(&self) -> f64 {
+        let h = self.options.cell;
+        0.5 * h * h * self.u.iter().chain(&self.v).map(|x| x * x).sum::<f64>()
+    }
+}
+
+/// Bilinear interpolation of a grid whose point (i, j) sits at ((i + ox)h, (j + oy)h), clamped
+/// to the grid.
+#[allow(clippy::too_many_arguments, reason = "a grid, its offset and a point: all needed")]
+fn sample(f: &[f64], w: usize, hgt: usize, ox: f64, oy: f64, x: f64, y: f64, h: f64) -> f64 {
+    let fx = (x / h - ox).clamp(0.0, (w - 1) as f64);
+    let fy = (y / h - oy).clamp(0.0, (hgt - 1) as f64);
+    let (i, j) = ((fx as usize).min(w - 2), (fy as usize).min(hgt - 2));
+    let (a, b) = (fx - i as f64, fy - j as f64);
+    let at = |i: usize, j: usize| f[i + j * w];
+    (1.0 - a) * (1.0 - b) * at(i, j)
+        + a * (1.0 - b) * at(i + 1, j)
+        + (1.0 - a) * b * at(i, j + 1)
+        + a * b * at(i + 1, j + 1)
+}
+
+/// −L (the 5-point Neumann Laplacian times −1) on the cells, cell 0 removed: unknown k is cell
+/// k + 1.
+fn poisson_entries(nx: usize, ny: usize, h: f64) -> Vec<(usize, usize, f64)> {
+    let inv = 1.0 / (h * h);
+    let mut entries = Vec::with_capacity(5 * nx * ny);
+    for j in 0..ny {
+        for i in 0..nx {
+            let c = i + j * nx;
+            if c == 0 {
+                continue;
+            }
+            let mut neighbours = Vec::with_capacity(4);
+            if i > 0 {
+                neighbours.push(c - 1);
+            }
+            if i + 1 < nx {
+                neighbours.push(c + 1);
+            }
+            if j > 0 {
+                neighbours.push(c - nx);
+            }
+            if j + 1 < ny {
+                neighbours.push(c + nx);
+            }
+            entries.push((c - 1, c - 1, inv * neighbours.len() as f64));
+            for nb in neighbours.into_iter().filter(|&nb| nb != 0) {
+                entries.push((c - 1, nb - 1, -inv));
+            }
+        }
+    }
+    entries
+}
+
+/// I − k·L for an mx×my block of unknowns with zero (wall) values just past the x ends and
+/// no-slip ghosts (−u) just past the y ends: the u faces.
+fn diffusion_entries(mx: usize, my: usize, k: f64) -> Vec<(usize, usize, f64)> {
+    let mut entries = Vec::with_capacity(5 * mx * my);
+    for j in 0..my {
+        for i in 0..mx {
+            let c = i + j * mx;
+            let mut diagonal = 1.0 + 4.0 * k;
+            if i > 0 {
+                entries.push((c, c - 1, -k));
+            }
+            if i + 1 < mx {
+                entries.push((c, c + 1, -k));
+            }
+            for inside in [j > 0, j + 1 < my] {
+                if !inside {
+                    diagonal += k; // the ghost −u adds k to the diagonal
+                }
+            }
+            if j > 0 {
+                entries.push((c, c - mx, -k));
+            }
+            if j + 1 < my {
+                entries.push((c, c + mx, -k));
+            }
+            entries.push((c, c, diagonal));
+        }
+    }
+    entries
+}
+
+/// The same for the v faces: walls just past the y ends, ghosts just past the x ends.
+fn diffusion_entries_transposed(mx: usize, my: usize, k: f64) -> Vec<(usize, usize, f64)> {
+    let index = |i: usize, j: usize| i + j * mx;
+    diffusion_entries(my, mx, k)
+        .into_iter()
+        .map(|(r, c, v)| {
+            let swap = |n: usize| index(n / my, n % my);
+            (swap(r), swap(c), v)
+        })
+        .collect()
+}
