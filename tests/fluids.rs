@@ -53,7 +53,10 @@ fn projection_leaves_no_divergence() {
             .zip(&fluid.u)
             .chain(v.iter().zip(&fluid.v))
             .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-        assert!(moved <= 1e-12, "{n}²: a second projection moved the field by {moved:e}");
+        assert!(
+            moved <= 1e-12,
+            "{n}²: a second projection moved the field by {moved:e}"
+        );
     }
 }
 
@@ -72,7 +75,10 @@ fn stable_far_above_cfl_one() {
         let cfl = fluid.max_speed() * dt / h;
         fluid.step(dt).unwrap();
         let now = fluid.kinetic_energy();
-        assert!(now.is_finite() && now <= energy * (1.0 + 1e-12), "step {step}: {energy} → {now}");
+        assert!(
+            now.is_finite() && now <= energy * (1.0 + 1e-12),
+            "step {step}: {energy} → {now}"
+        );
         assert!(max_abs(&fluid.divergence()) <= 1e-10, "step {step}");
         if step == 0 {
             assert!(cfl >= 5.0 * (1.0 - 1e-12), "CFL {cfl}");
@@ -121,5 +127,11 @@ fn bad_settings_are_typed_errors() {
         assert!(fluid.step(dt).is_err(), "dt {dt}");
     }
     fluid.density[5] = f64::NAN;
-    assert!(fluid.step(0.01).unwrap_err().to_string().contains("density"));
+    assert!(
+        fluid
+            .step(0.01)
+            .unwrap_err()
+            .to_string()
+            .contains("density")
+    );
 }

@@ -36,15 +36,17 @@ impl SpdSolver {
                 _ => merged.push((r, c, v)),
             }
         }
-        let pairs: Vec<Pair<usize, usize>> = merged.iter().map(|&(r, c, _)| Pair::new(r, c)).collect();
+        let pairs: Vec<Pair<usize, usize>> =
+            merged.iter().map(|&(r, c, _)| Pair::new(r, c)).collect();
         let (pattern, order) = SymbolicSparseColMat::try_new_from_indices(n, n, &pairs)
             .map_err(|_| Error::invalid("matrix", "entries out of range"))?;
         let mut values = vec![0.0; pattern.compute_nnz()];
         let unsorted: Vec<f64> = merged.iter().map(|e| e.2).collect();
         // `order` maps the entries to the pattern's storage; the entries are distinct, so each
         // slot gets exactly one value.
-        let filled = faer::sparse::SparseColMat::new_from_argsort(pattern.clone(), &order, &unsorted)
-            .map_err(|_| Error::invalid("matrix", "entries could not be assembled"))?;
+        let filled =
+            faer::sparse::SparseColMat::new_from_argsort(pattern.clone(), &order, &unsorted)
+                .map_err(|_| Error::invalid("matrix", "entries could not be assembled"))?;
         values.copy_from_slice(filled.val());
         let symbolic = factorize_symbolic_cholesky(
             pattern.as_ref(),

@@ -87,7 +87,10 @@ impl StableFluids {
             ));
         }
         if !(cell.is_finite() && cell > 0.0) {
-            return Err(Error::invalid("cell", format!("must be finite and positive, got {cell}")));
+            return Err(Error::invalid(
+                "cell",
+                format!("must be finite and positive, got {cell}"),
+            ));
         }
         if !(viscosity.is_finite() && viscosity >= 0.0) {
             return Err(Error::invalid(
@@ -96,7 +99,10 @@ impl StableFluids {
             ));
         }
         if !buoyancy.is_finite() {
-            return Err(Error::invalid("buoyancy", format!("must be finite, got {buoyancy}")));
+            return Err(Error::invalid(
+                "buoyancy",
+                format!("must be finite, got {buoyancy}"),
+            ));
         }
         let poisson = SpdSolver::new(nx * ny - 1, &poisson_entries(nx, ny, cell))?;
         Ok(StableFluids {
@@ -121,7 +127,10 @@ impl StableFluids {
     /// or density field that is not finite (a user-set source gone wrong).
     pub fn step(&mut self, dt: f64) -> Result<()> {
         if !(dt.is_finite() && dt > 0.0) {
-            return Err(Error::invalid("dt", format!("must be finite and positive, got {dt}")));
+            return Err(Error::invalid(
+                "dt",
+                format!("must be finite and positive, got {dt}"),
+            ));
         }
         if let Some(bad) = [&self.u, &self.v, &self.density]
             .iter()
@@ -160,7 +169,10 @@ impl StableFluids {
             let (a, b) = velocity(x, y);
             let (mx, my) = (x - 0.5 * dt * a, y - 0.5 * dt * b);
             let (a, b) = velocity(mx, my);
-            ((x - dt * a).clamp(0.0, width), (y - dt * b).clamp(0.0, height))
+            (
+                (x - dt * a).clamp(0.0, width),
+                (y - dt * b).clamp(0.0, height),
+            )
         };
         for j in 0..ny {
             for i in 1..nx {
@@ -191,9 +203,17 @@ impl StableFluids {
     /// Solves (I − νΔt·L)·u = u for each velocity component, no-slip at the walls.
     fn diffuse(&mut self, dt: f64) -> Result<()> {
         let FluidOptions {
-            nx, ny, cell: h, viscosity, ..
+            nx,
+            ny,
+            cell: h,
+            viscosity,
+            ..
         } = self.options;
-        if self.diffusion.as_ref().is_none_or(|(last, _, _)| *last != dt) {
+        if self
+            .diffusion
+            .as_ref()
+            .is_none_or(|(last, _, _)| *last != dt)
+        {
             let k = viscosity * dt / (h * h);
             let u = SpdSolver::new((nx - 1) * ny, &diffusion_entries(nx - 1, ny, k))?;
             let v = SpdSolver::new(nx * (ny - 1), &diffusion_entries_transposed(nx, ny - 1, k))?;
@@ -233,7 +253,9 @@ impl StableFluids {
 
     /// One pressure correction.
     fn correct(&mut self, dt: f64) {
-        let FluidOptions { nx, ny, cell: h, .. } = self.options;
+        let FluidOptions {
+            nx, ny, cell: h, ..
+        } = self.options;
         let divergence = self.divergence();
         // Unknowns: every cell but cell 0 (p₀ = 0); A = −L, so A·p = −∇·u/Δt.
         let mut rhs: Vec<f64> = divergence[1..].iter().map(|d| -d / dt).collect();
@@ -255,7 +277,9 @@ impl StableFluids {
 
     /// The discrete divergence (u_{i+1,j} − u_{i,j} + v_{i,j+1} − v_{i,j})/h of every cell.
     pub fn divergence(&self) -> Vec<f64> {
-        let FluidOptions { nx, ny, cell: h, .. } = self.options;
+        let FluidOptions {
+            nx, ny, cell: h, ..
+        } = self.options;
         (0..ny)
             .flat_map(|j| (0..nx).map(move |i| (i, j)))
             .map(|(i, j)| {
@@ -268,7 +292,10 @@ impl StableFluids {
 
     /// The largest face speed |u| or |v|.
     pub fn max_speed(&self) -> f64 {
-        self.u.iter().chain(&self.v).fold(0.0, |m, x| m.max(x.abs()))
+        self.u
+            .iter()
+            .chain(&self.v)
+            .fold(0.0, |m, x| m.max(x.abs()))
     }
 
     /// Kinetic energy ½·Σ (u² + v²)·h² over the faces (unit density).
@@ -280,7 +307,10 @@ impl StableFluids {
 
 /// Bilinear interpolation of a grid whose point (i, j) sits at ((i + ox)h, (j + oy)h), clamped
 /// to the grid.
-#[allow(clippy::too_many_arguments, reason = "a grid, its offset and a point: all needed")]
+#[allow(
+    clippy::too_many_arguments,
+    reason = "a grid, its offset and a point: all needed"
+)]
 fn sample(f: &[f64], w: usize, hgt: usize, ox: f64, oy: f64, x: f64, y: f64, h: f64) -> f64 {
     let fx = (x / h - ox).clamp(0.0, (w - 1) as f64);
     let fy = (y / h - oy).clamp(0.0, (hgt - 1) as f64);

@@ -3,6 +3,9 @@
 
 mod axes;
 mod draw;
+mod field;
+
+pub use field::{Field, FieldStyle, field_animation, field_image};
 
 use std::path::Path;
 
