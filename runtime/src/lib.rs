@@ -26,6 +26,7 @@ mod stack;
 mod stepper;
 mod trajectory;
 pub mod work_precision;
+pub mod xpbd;
 
 pub use clock::{FixedTimestep, Tick};
 pub use dense::{DenseMatrix, FaerDense, NewtonMatrix};
