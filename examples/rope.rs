@@ -1,10 +1,11 @@
-//! A rope two ways: position Verlet with distance-constraint relaxation (T. Jakobsen, "Advanced
-//! Character Physics", GDC 2001), and the same rope as stiff springs stepped by implicit Euler.
+//! A rope two ways: rigid links solved by XPBD (`odyn::xpbd`: position-based dynamics with
+//! substeps, Macklin et al. 2016 and 2019), and the same rope as stiff springs stepped by
+//! implicit Euler.
 //!
 //! 40 particles, 2 m long, 0.2 kg, pinned at one end, released horizontal under gravity, 4 s at
-//! dt = 1/60 s. Jakobsen's rope keeps its length by projecting every link back to its rest
-//! length (`--iterations` sweeps per step); the spring rope (k = 10⁴ N/m per link, so ω·dt ≈ 100)
-//! is stable only because implicit Euler is.
+//! dt = 1/60 s. The XPBD rope keeps its length by projecting every link back to its rest length
+//! (`--substeps` substeps of `--iterations` sweeps per frame); the spring rope (k = 10⁴ N/m per
+//! link, so ω·dt ≈ 100) is stable only because implicit Euler is.
 //!
 //! `cargo run --release --example rope` writes `out/rope/rope.csv`
 //! (`method,step,t,tip_x,tip_y,stretch,energy`), `out/rope/rope.png` (the two ropes at several
@@ -18,6 +19,7 @@ use odyn::output::{number, write_table};
 use odyn::particles::Spring;
 use odyn::plot::{Chart, Series, View, views};
 use odyn::prelude::*;
+use odyn::xpbd::{Constraint, Xpbd, XpbdOptions};
 
 /// A rope of stiff springs under gravity.
 #[system(integrator = ImplicitEuler, dt = 1.0 / 60.0)]
@@ -81,7 +83,7 @@ impl Rope {
     }
 }
 
-/// A hanging rope: Verlet with constraints against implicit Euler with stiff springs.
+/// A hanging rope: XPBD constraints against implicit Euler with stiff springs.
 #[derive(Parser)]
 #[command(about)]
 struct Cli {
@@ -91,9 +93,12 @@ struct Cli {
     /// Spring stiffness of the spring rope (N/m per link).
     #[arg(long, default_value_t = 1e4)]
     k: f64,
-    /// Constraint relaxation sweeps per Verlet step.
+    /// XPBD substeps per frame.
     #[arg(long, default_value_t = 20)]
-    iterations: usize,
+    substeps: u32,
+    /// XPBD constraint sweeps per substep.
+    #[arg(long, default_value_t = 1)]
+    iterations: u32,
     /// Simulated seconds.
     #[arg(long, default_value_t = 4.0)]
     duration: f64,
@@ -125,53 +130,53 @@ struct Frame {
     energy: f64,
 }
 
-/// Position Verlet, xₙ₊₁ = 2xₙ − xₙ₋₁ + a·dt², then `iterations` sweeps that move each link's
-/// ends along the link until it has its rest length (the pinned end does not move).
-fn jakobsen(n: usize, iterations: usize, steps: u64) -> Vec<Frame> {
+/// The rope as XPBD particles: one rigid (zero-compliance) distance constraint per link,
+/// `substeps` substeps of `iterations` sweeps per frame (`odyn::xpbd`).
+fn xpbd_rope(n: usize, substeps: u32, iterations: u32, steps: u64) -> odyn::Result<Vec<Frame>> {
     let rest = LENGTH / (n - 1) as f64;
     let m = MASS / n as f64;
-    let mut x: Vec<_> = (0..n).map(|i| Vector2::new(i as f64 * rest, 0.0)).collect();
-    let mut previous = x.clone();
-    let gravity = Vector2::new(0.0, -G);
-    let energy = |x: &[Vector2<f64>], previous: &[Vector2<f64>]| -> f64 {
-        x.iter()
-            .zip(previous)
-            .map(|(a, b)| 0.5 * m * ((a - b) / DT).norm_squared() + m * G * a.y)
+    let x: Vec<_> = (0..n).map(|i| Vector2::new(i as f64 * rest, 0.0)).collect();
+    let mut rope = Xpbd::new(
+        x,
+        vec![Vector2::zeros(); n],
+        &vec![m; n],
+        &[0],
+        Vector2::new(0.0, -G),
+    )?;
+    rope.constraints = (0..n - 1)
+        .map(|i| Constraint::Distance {
+            ends: [i, i + 1],
+            rest,
+            compliance: 0.0,
+        })
+        .collect();
+    rope.options = XpbdOptions {
+        substeps,
+        iterations,
+    };
+    let energy = |rope: &Xpbd<2>| -> f64 {
+        rope.x
+            .iter()
+            .zip(&rope.v)
+            .map(|(x, v)| 0.5 * m * v.norm_squared() + m * G * x.y)
             .sum()
     };
     let mut frames = vec![Frame {
         step: 0,
         t: 0.0,
-        energy: energy(&x, &previous),
-        x: x.clone(),
+        energy: energy(&rope),
+        x: rope.x.clone(),
     }];
     for step in 1..=steps {
-        for i in 1..n {
-            let next = 2.0 * x[i] - previous[i] + gravity * DT * DT;
-            previous[i] = x[i];
-            x[i] = next;
-        }
-        for _ in 0..iterations {
-            for i in 0..n - 1 {
-                let d = x[i + 1] - x[i];
-                let length = d.norm();
-                let correction = d * ((length - rest) / length);
-                if i == 0 {
-                    x[i + 1] -= correction;
-                } else {
-                    x[i] += 0.5 * correction;
-                    x[i + 1] -= 0.5 * correction;
-                }
-            }
-        }
+        rope.step(DT)?;
         frames.push(Frame {
             step,
             t: step as f64 * DT,
-            energy: energy(&x, &previous),
-            x: x.clone(),
+            energy: energy(&rope),
+            x: rope.x.clone(),
         });
     }
-    frames
+    Ok(frames)
 }
 
 fn rope(n: usize, k: f64) -> Rope {
@@ -212,7 +217,7 @@ fn run(cli: Cli) -> odyn::Result<()> {
         "rope: {n} particles, {LENGTH} m, {MASS} kg, one end pinned, dt = 1/60 s, {steps} steps"
     );
 
-    let verlet = jakobsen(n, cli.iterations, steps);
+    let verlet = xpbd_rope(n, cli.substeps, cli.iterations, steps)?;
     let model = rope(n, cli.k);
     let omega = 2.0 * (cli.k / model.mass[0]).sqrt();
     let run = model.simulate().duration(cli.duration).run()?;
@@ -227,7 +232,8 @@ fn run(cli: Cli) -> odyn::Result<()> {
         })
         .collect();
     println!(
-        "  Verlet + {} constraint sweeps: max stretch {:.2e}, energy {:.4} -> {:.4} J",
+        "  XPBD, {} substeps × {} sweeps: max stretch {:.2e}, energy {:.4} -> {:.4} J",
+        cli.substeps,
         cli.iterations,
         verlet
             .iter()
@@ -262,7 +268,7 @@ fn run(cli: Cli) -> odyn::Result<()> {
         source,
     })?;
     let ropes = [
-        ("verlet_constraints", &verlet),
+        ("xpbd_constraints", &verlet),
         ("implicit_springs", &springs),
     ];
     let mut rows = Vec::new();
@@ -309,7 +315,7 @@ fn run(cli: Cli) -> odyn::Result<()> {
         cli.out.join("rope.png"),
         "Rope at t = 0, 0.25, 0.5, 0.75, 1, 2, 4 s (dt = 1/60 s)",
         &[
-            panel("Verlet + distance constraints (Jakobsen)", &verlet),
+            panel("rigid links, XPBD", &verlet),
             panel("stiff springs, implicit Euler", &springs),
         ],
         (1300, 650),
@@ -318,11 +324,11 @@ fn run(cli: Cli) -> odyn::Result<()> {
         Series::line(label, frames.iter().map(|f| (f.t, value(f))).collect())
     };
     Chart {
-        title: "Rope energy (J): constraints keep it, implicit Euler damps it".into(),
+        title: "Rope energy (J): XPBD and implicit Euler".into(),
         x_label: "t (s)".into(),
         y_label: "kinetic + potential energy (J)".into(),
         series: vec![
-            series("Verlet + constraints", &verlet, &|f| f.energy),
+            series("rigid links, XPBD", &verlet, &|f| f.energy),
             series("stiff springs, implicit Euler", &springs, &|f| f.energy),
         ],
         ..Chart::default()
