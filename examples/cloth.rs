@@ -5,6 +5,8 @@
 //! corners, and falls under gravity for 5 s at dt = 1/60 s. Every method runs at that dt: the
 //! explicit ones diverge within a few steps (a typed error naming the step), implicit Euler with
 //! the sparse Newton solve stays stable, both as full Newton and as the one-step linearized form.
+//! Beside them the same cloth runs as XPBD particles (`odyn::xpbd`), every spring a distance
+//! constraint of compliance 1/k, 40 substeps a frame.
 //!
 //! `cargo run --release --example cloth [-- --n 64 --k 1e6]` writes `out/cloth/energy.csv`
 //! (`method,step,t,kinetic,potential,energy`), `out/cloth/energy.png`, and the cloth seen from
@@ -20,7 +22,8 @@ use odyn::output::{number, write_table};
 use odyn::particles::{ParticleState, ParticleSystem, Spring};
 use odyn::plot::{Chart, Series, View, views};
 use odyn::prelude::*;
-use odyn::{NewtonOptions, Trajectory};
+use odyn::xpbd::{Constraint, Xpbd, XpbdOptions};
+use odyn::{NewtonOptions, Sample};
 
 /// A cloth: damped springs between particles, weight and air drag on each.
 #[system(integrator = ImplicitEuler, dt = 1.0 / 60.0)]
@@ -102,6 +105,9 @@ struct Cli {
     /// Simulated seconds.
     #[arg(long, default_value_t = 5.0)]
     duration: f64,
+    /// XPBD substeps per frame (one constraint sweep each).
+    #[arg(long, default_value_t = 40)]
+    xpbd_substeps: u32,
     /// Output directory.
     #[arg(long, default_value = "out/cloth")]
     out: PathBuf,
@@ -165,11 +171,11 @@ fn cloth(n: usize, k: f64, damping: f64) -> (Cloth, Vec<usize>) {
     (cloth, structural)
 }
 
-/// One run: a label, its trajectory, and the failure that ended it early, if any.
+/// One run: a label, its recorded states, and the failure that ended it early, if any.
 struct Run {
     name: String,
     label: String,
-    trajectory: Trajectory<ParticleState<3>>,
+    samples: Vec<Sample<ParticleState<3>>>,
     failure: Option<Error>,
 }
 
@@ -290,10 +296,17 @@ fn run(cli: Cli) -> odyn::Result<()> {
         runs.push(Run {
             name,
             label,
-            trajectory,
+            samples: trajectory.samples,
             failure,
         });
     }
+    runs.push(xpbd(
+        &cloth,
+        cli.k,
+        cli.xpbd_substeps,
+        cli.duration,
+        record_every,
+    )?);
     std::fs::create_dir_all(&cli.out).map_err(|source| Error::Io {
         path: cli.out.clone(),
         source,
@@ -313,12 +326,77 @@ fn run(cli: Cli) -> odyn::Result<()> {
     Ok(())
 }
 
+/// The same cloth as XPBD particles: every spring a distance constraint of compliance 1/k, the
+/// same pins and gravity (no air drag), `substeps` substeps of one sweep per 1/60 s frame.
+fn xpbd(
+    cloth: &Cloth,
+    k: f64,
+    substeps: u32,
+    duration: f64,
+    record_every: u64,
+) -> odyn::Result<Run> {
+    let mut particles = Xpbd::new(
+        cloth.x.clone(),
+        cloth.v.clone(),
+        &cloth.mass,
+        &cloth.pinned,
+        cloth.gravity,
+    )?;
+    particles.constraints = cloth
+        .springs
+        .iter()
+        .map(|s| Constraint::Distance {
+            ends: [s.a, s.b],
+            rest: s.rest,
+            compliance: 1.0 / k,
+        })
+        .collect();
+    particles.options = XpbdOptions {
+        substeps,
+        iterations: 1,
+    };
+    let dt = 1.0 / 60.0;
+    let steps = (duration / dt).round() as u64;
+    let sample = |step: u64, particles: &Xpbd<3>| -> odyn::Result<Sample<ParticleState<3>>> {
+        Ok(Sample {
+            step,
+            t: step as f64 * dt,
+            state: ParticleState::new(&particles.x, &particles.v)?,
+            energy: None,
+        })
+    };
+    let mut samples = vec![sample(0, &particles)?];
+    let started = Instant::now();
+    for step in 1..=steps {
+        particles.step(dt)?;
+        if step % record_every == 0 {
+            samples.push(sample(step, &particles)?);
+        }
+    }
+    let seconds = started.elapsed().as_secs_f64();
+    let label = format!("XPBD, {substeps} substeps (compliance 1/k)");
+    let last = &samples[samples.len() - 1];
+    println!(
+        "  {label:<48} finished: {steps} steps in {seconds:.2} s ({:.1} ms/step), max stretch \
+         {:.2e}, kinetic energy at {duration} s: {:.3e} J",
+        1e3 * seconds / steps as f64,
+        particles.max_stretch(),
+        cloth.kinetic_energy(&last.state)
+    );
+    Ok(Run {
+        name: "xpbd".into(),
+        label,
+        samples,
+        failure: None,
+    })
+}
+
 fn write_energy(dir: &Path, cloth: &Cloth, runs: &[Run]) -> odyn::Result<()> {
     let mut rows = Vec::new();
     let mut series = Vec::new();
     for run in runs {
         let mut points = Vec::new();
-        for s in &run.trajectory.samples {
+        for s in &run.samples {
             let kinetic = cloth.kinetic_energy(&s.state);
             let potential = cloth.potential_energy(&s.state).unwrap_or(f64::NAN);
             rows.push(vec![
@@ -357,7 +435,7 @@ fn write_energy(dir: &Path, cloth: &Cloth, runs: &[Run]) -> odyn::Result<()> {
 }
 
 fn write_frames(dir: &Path, cloth: &Cloth, structural: &[usize], run: &Run) -> odyn::Result<()> {
-    let samples = &run.trajectory.samples;
+    let samples = &run.samples;
     // One region for every frame, so the motion shows.
     let (mut lo, mut hi) = (
         Vector3::repeat(f64::INFINITY),

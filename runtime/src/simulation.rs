@@ -305,7 +305,8 @@ impl<'m, M: Model> Simulation<'m, M> {
         if self.options.method.needs_velocity_free_forces() && M::SecondOrder::READS_VELOCITY {
             return Err(self.unsupported(
                 "its force reads a velocity (in `acceleration`, or a kernel's velocity arguments), \
-                 and position Verlet has no velocity to give it; use velocity Verlet or leapfrog",
+                 and the method evaluates forces at positions only (position Verlet, the leapfrog \
+                 compositions); use velocity Verlet or leapfrog",
             ));
         }
         Ok(split)
