@@ -21,6 +21,7 @@ pub mod particles;
 pub mod plot;
 pub mod reference;
 mod simulation;
+pub mod sph;
 pub mod stability;
 mod stack;
 mod stepper;

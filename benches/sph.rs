@@ -1,0 +1,36 @@
+//! One SPH step of the dam break (`examples/sph.rs`) at 10, 20, 40 and 80 particles across the
+//! column (200 to 12 800 fluid particles, plus the walls), after 100 steps of collapse.
+//! `cargo bench --bench sph`; the cost per step should grow about linearly with the particle
+//! count (a uniform-grid neighbour search: each particle visits a fixed number of cells).
+
+use odyn::sph::{Sph, SphOptions};
+
+fn main() {
+    divan::main();
+}
+
+fn dam_break(resolution: usize) -> Sph {
+    let a = 0.2;
+    let mut sph = Sph::block(
+        SphOptions {
+            spacing: a / resolution as f64,
+            sound_speed: 10.0 * (2.0 * 9.81 * 2.0 * a).sqrt(),
+            domain: (5.0 * a, 2.0 * a),
+            ..SphOptions::default()
+        },
+        a,
+        2.0 * a,
+    )
+    .expect("valid dam break");
+    for _ in 0..100 {
+        sph.step(sph.stable_dt()).expect("stable step");
+    }
+    sph
+}
+
+#[divan::bench(args = [10, 20, 40, 80])]
+fn step(bencher: divan::Bencher, resolution: usize) {
+    bencher
+        .with_inputs(|| dam_break(resolution))
+        .bench_local_refs(|sph| sph.step(sph.stable_dt()).expect("stable step"));
+}
