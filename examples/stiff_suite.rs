@@ -25,7 +25,10 @@ use odyn::work_precision::{Accuracy, Cost, Reference, WorkPrecision, WorkPrecisi
 #[path = "common/stiff_models.rs"]
 mod stiff_models;
 
-use stiff_models::{Hires, Pollu, Robertson, VanDerPol};
+use stiff_models::{
+    HIRES_REFERENCE, Hires, POLLU_REFERENCE, Pollu, ROBERTSON_1E5, ROBERTSON_1E11, Robertson,
+    VAN_DER_POL_2000, VanDerPol,
+};
 
 /// One problem's study: the Rosenbrock methods over rtol = 10⁻³ … 10⁻ᵏ (atol = rtol·`atol`),
 /// implicit Euler over `dts`.
@@ -92,12 +95,7 @@ fn main() -> odyn::Result<()> {
         b: 0.0,
         c: 0.0,
     };
-    // 36-digit Radau IIA (scripts/reference_stiff.py).
-    let reference = vec![
-        1.786_592_114_209_946_4e-2,
-        7.274_751_468_436_319e-8,
-        9.821_340_061_103_858e-1,
-    ];
+    let reference = ROBERTSON_1E5.to_vec();
     study(
         "robertson",
         &robertson,
@@ -111,11 +109,7 @@ fn main() -> odyn::Result<()> {
     // To t = 1e11, where y₂ falls to 1e-13: the test set's rober.f reference (RADAU5 at rtol
     // 1.1e-18 in extended precision). Rosenbrock methods only: implicit Euler would need ~1e6
     // steps of growing size to cross eleven decades.
-    let reference = vec![
-        0.208_334_014_970_125_5e-7,
-        0.833_336_077_033_471_3e-13,
-        0.999_999_979_166_505,
-    ];
+    let reference = ROBERTSON_1E11.to_vec();
     study(
         "robertson_1e11",
         &robertson,
@@ -129,17 +123,7 @@ fn main() -> odyn::Result<()> {
     let hires = Hires {
         y: [1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0057],
     };
-    // hires.f of the Bari test set (RADAU5 in quadruple precision).
-    let reference = vec![
-        0.737_131_257_332_566_8e-3,
-        0.144_248_572_631_618_5e-3,
-        0.588_872_974_096_757_5e-4,
-        0.117_565_134_328_314_9e-2,
-        0.238_635_619_883_133_1e-2,
-        0.623_896_825_274_279_6e-2,
-        0.284_999_839_518_576_9e-2,
-        0.285_000_160_481_423_1e-2,
-    ];
+    let reference = HIRES_REFERENCE.to_vec();
     // 321.8122 is not a multiple of any round dt; fixed steps divide it exactly.
     study(
         "hires",
@@ -157,29 +141,7 @@ fn main() -> odyn::Result<()> {
             0.007, 0.0, 0.0, 0.0,
         ],
     };
-    // pollu.f of the Bari test set (RADAU5 in quadruple precision).
-    let reference = vec![
-        0.564_625_548_002_276_9e-1,
-        0.134_248_413_042_233_9,
-        0.413_973_433_109_942_7e-8,
-        0.552_314_020_748_435_9e-2,
-        0.201_897_726_230_219_6e-6,
-        0.146_454_186_349_396_6e-6,
-        0.778_424_911_899_796_4e-1,
-        0.324_507_535_339_601_8,
-        0.749_401_338_388_040_6e-2,
-        0.162_229_315_730_156_1e-7,
-        0.113_586_383_325_707_5e-7,
-        0.223_050_597_572_135_9e-2,
-        0.208_716_288_279_863e-3,
-        0.139_692_101_684_015_8e-4,
-        0.896_488_485_689_829_5e-2,
-        0.435_284_636_933_010_3e-17,
-        0.689_921_969_626_340_5e-2,
-        0.100_780_303_736_594_6e-3,
-        0.177_214_651_396_998_4e-5,
-        0.568_294_329_231_639_2e-4,
-    ];
+    let reference = POLLU_REFERENCE.to_vec();
     study(
         "pollu",
         &pollu,
@@ -196,7 +158,7 @@ fn main() -> odyn::Result<()> {
         mu: 1000.0,
     };
     // vdpolm.f of the Bari test set (problem VDPOLM, t = 2000).
-    let reference = vec![0.170_616_773_217_046_9e1, -0.892_809_701_024_812_5e-3];
+    let reference = VAN_DER_POL_2000.to_vec();
     study(
         "van_der_pol",
         &vdp,

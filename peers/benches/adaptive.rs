@@ -80,8 +80,10 @@ use differential_equations::ode::ODE;
 use diffsol::{NalgebraMat, OdeBuilder, OdeSolverMethod, OdeSolverStopReason};
 use odyn::prelude::*;
 
+mod calibration;
 mod models;
 
+use calibration::{Pick, pick};
 use models::*;
 
 /// The target final errors (max norm against the reference).
@@ -564,26 +566,18 @@ fn calibrate<P: Problem<N>, const N: usize>(
             "solver", "tol", "error", "steps", "rejected", "f-evals"
         );
         for (solver, sweep) in &sweeps {
-            let Some(k) = sweep.iter().position(|(_, error, _)| *error <= target) else {
-                let best = sweep
-                    .iter()
-                    .map(|(_, e, _)| *e)
-                    .fold(f64::INFINITY, f64::min);
-                println!(
-                    "    {:<20}  not reached (best error {best:.1e})",
-                    solver.name()
-                );
-                continue;
+            let errors: Vec<f64> = sweep.iter().map(|(_, e, _)| *e).collect();
+            let (k, note) = match pick(&errors, target) {
+                Pick::Met(k, note) => (k, note),
+                Pick::NotReached(best) => {
+                    println!(
+                        "    {:<20}  not reached (best error {best:.1e})",
+                        solver.name()
+                    );
+                    continue;
+                }
             };
             let (tol, error, run) = &sweep[k];
-            // A pick whose tighter neighbours miss the target was lucky (error cancellation);
-            // it is kept, as the rule says, but flagged.
-            let misses = sweep[k..].iter().filter(|(_, e, _)| *e > target).count();
-            let note = if misses == 0 {
-                "all meet the target".to_string()
-            } else {
-                format!("{misses} of {} miss it", sweep.len() - k - 1)
-            };
             println!(
                 "    {:<20}{tol:>10.2e}{error:>11.2e}{:>9}{:>10}{:>9}  {note}",
                 solver.name(),

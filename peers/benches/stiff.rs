@@ -62,9 +62,12 @@ use diffsol::{NalgebraLU, NalgebraMat, OdeBuilder, OdeSolverMethod, OdeSolverSto
 use odyn::nalgebra::SMatrix;
 use odyn::prelude::*;
 
+mod calibration;
+
 #[path = "../../examples/common/stiff_models.rs"]
 mod stiff_models;
 
+use calibration::{Pick, pick};
 use stiff_models::{Hires, Pollu, Robertson};
 
 /// The target final errors (max relative error against the reference).
@@ -97,12 +100,7 @@ impl Problem<3> for Robertson {
     const GROUP: &'static str = "robertson";
     const T_END: f64 = 1e5;
     const ATOL_SCALE: f64 = 1e-6;
-    // 36-digit Radau IIA (scripts/reference_stiff.py), as in examples/stiff_suite.rs.
-    const REFERENCE: [f64; 3] = [
-        1.786_592_114_209_946_4e-2,
-        7.274_751_468_436_319e-8,
-        9.821_340_061_103_858e-1,
-    ];
+    const REFERENCE: [f64; 3] = stiff_models::ROBERTSON_1E5;
 
     fn instance() -> Self {
         Robertson {
@@ -117,17 +115,7 @@ impl Problem<8> for Hires {
     const GROUP: &'static str = "hires";
     const T_END: f64 = 321.8122;
     const ATOL_SCALE: f64 = 1e-4;
-    // hires.f of the Bari test set (RADAU5 in quadruple precision).
-    const REFERENCE: [f64; 8] = [
-        0.737_131_257_332_566_8e-3,
-        0.144_248_572_631_618_5e-3,
-        0.588_872_974_096_757_5e-4,
-        0.117_565_134_328_314_9e-2,
-        0.238_635_619_883_133_1e-2,
-        0.623_896_825_274_279_6e-2,
-        0.284_999_839_518_576_9e-2,
-        0.285_000_160_481_423_1e-2,
-    ];
+    const REFERENCE: [f64; 8] = stiff_models::HIRES_REFERENCE;
 
     fn instance() -> Self {
         Hires {
@@ -140,29 +128,7 @@ impl Problem<20> for Pollu {
     const GROUP: &'static str = "pollu";
     const T_END: f64 = 60.0;
     const ATOL_SCALE: f64 = 1e-4;
-    // pollu.f of the Bari test set (RADAU5 in quadruple precision).
-    const REFERENCE: [f64; 20] = [
-        0.564_625_548_002_276_9e-1,
-        0.134_248_413_042_233_9,
-        0.413_973_433_109_942_7e-8,
-        0.552_314_020_748_435_9e-2,
-        0.201_897_726_230_219_6e-6,
-        0.146_454_186_349_396_6e-6,
-        0.778_424_911_899_796_4e-1,
-        0.324_507_535_339_601_8,
-        0.749_401_338_388_040_6e-2,
-        0.162_229_315_730_156_1e-7,
-        0.113_586_383_325_707_5e-7,
-        0.223_050_597_572_135_9e-2,
-        0.208_716_288_279_863e-3,
-        0.139_692_101_684_015_8e-4,
-        0.896_488_485_689_829_5e-2,
-        0.435_284_636_933_010_3e-17,
-        0.689_921_969_626_340_5e-2,
-        0.100_780_303_736_594_6e-3,
-        0.177_214_651_396_998_4e-5,
-        0.568_294_329_231_639_2e-4,
-    ];
+    const REFERENCE: [f64; 20] = stiff_models::POLLU_REFERENCE;
 
     fn instance() -> Self {
         Pollu {
@@ -497,24 +463,18 @@ fn calibrate<P: Problem<N>, const N: usize>(
             "solver", "rtol", "error", "steps", "rej", "f", "J", "LU"
         );
         for (solver, sweep) in &sweeps {
-            let Some(k) = sweep.iter().position(|(_, error, _)| *error <= target) else {
-                let best = sweep
-                    .iter()
-                    .map(|(_, e, _)| *e)
-                    .fold(f64::INFINITY, f64::min);
-                println!(
-                    "    {:<20}  not reached (best error {best:.1e})",
-                    solver.name()
-                );
-                continue;
+            let errors: Vec<f64> = sweep.iter().map(|(_, e, _)| *e).collect();
+            let (k, note) = match pick(&errors, target) {
+                Pick::Met(k, note) => (k, note),
+                Pick::NotReached(best) => {
+                    println!(
+                        "    {:<20}  not reached (best error {best:.1e})",
+                        solver.name()
+                    );
+                    continue;
+                }
             };
             let (rtol, error, run) = &sweep[k];
-            let misses = sweep[k..].iter().filter(|(_, e, _)| *e > target).count();
-            let note = if misses == 0 {
-                "all meet the target".to_string()
-            } else {
-                format!("{misses} of {} miss it", sweep.len() - k - 1)
-            };
             println!(
                 "    {:<20}{rtol:>10.2e}{error:>11.2e}{:>8}{:>6}{:>8}{:>7}{:>7}  {note}",
                 solver.name(),
