@@ -4,6 +4,11 @@
 //! crate) and an [`Integrator`]; the [`Method`] enum chooses an integrator at run time and the
 //! [`Simulation`] runner turns a choice into a typed [`Trajectory`]. File output lives in
 //! [`output`] and plots in `plot`; neither is touched by the numerics.
+//!
+//! Beside the ODE models: [`ensemble`] runs many members of an experiment in parallel,
+//! reproducibly and in shards; [`xpbd`] holds particles by constraints, [`sph`] simulates a
+//! liquid as particles with neighbours found every step, and [`fluids`] a grid fluid (Stable
+//! Fluids). Each module's docs say how it fits beside the `#[system]` models.
 
 pub mod clock;
 mod dense;

@@ -8,7 +8,7 @@ use crate::{Error, Model, Result, State, Tolerances};
 #[derive(Clone, Debug, PartialEq)]
 pub struct StepControl {
     /// The first step; `None` (the default) picks one by Hairer's algorithm (see
-    /// [`initial_step`]).
+    /// `initial_step`).
     pub dt_initial: Option<f64>,
     /// The smallest step allowed (default 0: only the resolution of `t` limits it, ten units in
     /// the last place, as in SciPy). A step that would have to be smaller fails with

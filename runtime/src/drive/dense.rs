@@ -7,7 +7,7 @@ use crate::{Error, Result, State};
 ///
 /// Each method with its own continuous extension fills one from its stages (Tsit5's order-4
 /// interpolant, DOP853's order-7 one, the Rosenbrock methods'); every other method gets the
-/// cubic Hermite interpolant through y and f at both ends ([`DenseStep::hermite`]), order 3.
+/// cubic Hermite interpolant through y and f at both ends (`DenseStep::hermite`), order 3.
 #[derive(Clone, Debug)]
 pub struct DenseStep<S> {
     /// Start of the step.

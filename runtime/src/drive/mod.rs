@@ -1,6 +1,6 @@
 //! The drivers: everything about a run that is not the method's own formula, written once.
 //!
-//! A method ([`crate::Integrator`]) attempts steps; a [`Driver`] decides which steps to attempt
+//! A method ([`crate::Integrator`]) attempts steps; a `Driver` decides which steps to attempt
 //! and what to do with them:
 //!
 //! - the **fixed-step** loop walks the grid t₀ + n·dt, retrying a step whose implicit solve failed
