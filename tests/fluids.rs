@@ -126,6 +126,15 @@ fn bad_settings_are_typed_errors() {
     for dt in [0.0, -1.0, f64::NAN, f64::INFINITY] {
         assert!(fluid.step(dt).is_err(), "dt {dt}");
     }
+    fluid.u.pop();
+    assert!(
+        fluid
+            .step(0.01)
+            .unwrap_err()
+            .to_string()
+            .contains("must keep")
+    );
+    fluid.u.push(0.0);
     fluid.density[5] = f64::NAN;
     assert!(
         fluid

@@ -186,6 +186,15 @@ fn bad_input_is_a_typed_error() {
     for dt in [0.0, -1.0, f64::NAN, 2.0 * limit] {
         assert!(sph.step(dt).is_err(), "dt {dt}");
     }
+    let mut grown = dam_break(0.2, 8);
+    grown.x.push(grown.x[0]);
+    assert!(
+        grown
+            .step(limit)
+            .unwrap_err()
+            .to_string()
+            .contains("cannot be added")
+    );
     sph.x[3].x = -1.0;
     assert!(
         sph.step(limit)

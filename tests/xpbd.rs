@@ -200,6 +200,15 @@ fn bad_input_is_a_typed_error() {
     rope.options.substeps = 0;
     assert!(rope.step(0.01).is_err());
     let mut rope = chain(3, 1.0, 0.0, true);
+    rope.x.push(Vector2::zeros());
+    rope.v.push(Vector2::zeros());
+    assert!(
+        rope.step(0.01)
+            .unwrap_err()
+            .to_string()
+            .contains("cannot be added")
+    );
+    let mut rope = chain(3, 1.0, 0.0, true);
     for dt in [0.0, -1.0, f64::NAN] {
         assert!(rope.step(dt).is_err());
     }

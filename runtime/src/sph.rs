@@ -83,6 +83,8 @@ pub struct Sph {
     density: Vec<f64>,
     pressure: Vec<f64>,
     acceleration: Vec<Vector2<f64>>,
+    /// Fluid then wall positions, the points the grid sorts.
+    all: Vec<Vector2<f64>>,
     grid: Grid,
 }
 
@@ -167,6 +169,7 @@ impl Sph {
             pressure: vec![0.0; n],
             acceleration: vec![Vector2::zeros(); x.len()],
             grid: Grid::new(cell),
+            all: x.iter().chain(&walls).copied().collect(),
             options,
             x,
             walls,
@@ -198,7 +201,8 @@ impl Sph {
     /// One step of size `dt`.
     ///
     /// Errors: [`Error::InvalidInput`] for a `dt` that is not finite and positive or above
-    /// [`Sph::stable_dt`], or a fluid particle that has left the box (through a wall: the step
+    /// [`Sph::stable_dt`], position or velocity lists whose length changed, or a fluid particle
+    /// that has left the box (through a wall: the step
     /// was too large for the flow).
     pub fn step(&mut self, dt: f64) -> Result<()> {
         let limit = self.stable_dt();
@@ -208,9 +212,22 @@ impl Sph {
                 format!("must be finite, positive and at most the stable step {limit:e}, got {dt}"),
             ));
         }
-        let fluid = self.x.len();
-        let all: Vec<Vector2<f64>> = self.x.iter().chain(&self.walls).copied().collect();
-        self.grid.build(&all);
+        let fluid = self.acceleration.len();
+        if self.x.len() != fluid || self.v.len() != fluid {
+            return Err(Error::invalid(
+                "particles",
+                format!(
+                    "{} positions and {} velocities for the {fluid} particles the liquid was made \
+                     with; particles cannot be added or removed",
+                    self.x.len(),
+                    self.v.len()
+                ),
+            ));
+        }
+        // The walls never move: only the fluid's part of `all` is refreshed.
+        self.all[..fluid].copy_from_slice(&self.x);
+        self.grid.build(&self.all);
+        let all = &self.all;
         let o = &self.options;
         let h = o.smoothing * o.spacing;
         let kernel = Wendland::new(h);
@@ -340,6 +357,9 @@ struct Grid {
     /// Start of each cell's particles in `order`, one more than there are cells.
     starts: Vec<usize>,
     order: Vec<usize>,
+    /// Scratch of `build`: each point's cell, and the next free slot of each cell.
+    cell_of: Vec<usize>,
+    next: Vec<usize>,
 }
 
 impl Grid {
@@ -350,6 +370,8 @@ impl Grid {
             dims: (0, 0),
             starts: Vec::new(),
             order: Vec::new(),
+            cell_of: Vec::new(),
+            next: Vec::new(),
         }
     }
 
@@ -377,24 +399,22 @@ impl Grid {
         let cells = self.dims.0 * self.dims.1;
         self.starts.clear();
         self.starts.resize(cells + 1, 0);
-        let index: Vec<usize> = points
-            .iter()
-            .map(|p| {
-                let (i, j) = self.coordinates(*p);
-                i + j * self.dims.0
-            })
-            .collect();
-        for &c in &index {
+        self.cell_of.clear();
+        for p in points {
+            let (i, j) = self.coordinates(*p);
+            self.cell_of.push(i + j * self.dims.0);
+        }
+        for &c in &self.cell_of {
             self.starts[c + 1] += 1;
         }
         for c in 0..cells {
             self.starts[c + 1] += self.starts[c];
         }
-        let mut next = self.starts.clone();
+        self.next.clone_from(&self.starts);
         self.order.resize(points.len(), 0);
-        for (p, &c) in index.iter().enumerate() {
-            self.order[next[c]] = p;
-            next[c] += 1;
+        for (p, &c) in self.cell_of.iter().enumerate() {
+            self.order[self.next[c]] = p;
+            self.next[c] += 1;
         }
     }
 

@@ -199,12 +199,24 @@ impl<const D: usize> Xpbd<D> {
 
     /// Checks the constraints, colliders and options ([`Xpbd::step`] does, every step).
     ///
-    /// Errors: [`Error::InvalidInput`] for a constraint on a particle that does not exist, a
+    /// Errors: [`Error::InvalidInput`] for position or velocity lists whose length changed, a
+    /// constraint on a particle that does not exist, a
     /// negative or non-finite compliance or rest length, a non-finite pin position, a plane
     /// whose normal is not a unit vector, a sphere with a non-positive radius, or zero substeps
     /// or iterations.
     pub fn check(&self) -> Result<()> {
-        let n = self.x.len();
+        let n = self.inverse_mass.len();
+        if self.x.len() != n || self.v.len() != n {
+            return Err(Error::invalid(
+                "particles",
+                format!(
+                    "{} positions and {} velocities for {n} particles; particles cannot be added \
+                     or removed",
+                    self.x.len(),
+                    self.v.len()
+                ),
+            ));
+        }
         let exists = |i: usize, what: &str| {
             if i < n {
                 Ok(())

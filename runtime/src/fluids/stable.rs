@@ -62,6 +62,10 @@ pub struct StableFluids {
     /// Smoke density at the cell centres, index i + j·nx.
     pub density: Vec<f64>,
     pressure: Vec<f64>,
+    /// The fields before advection (u, v, density), kept so a step allocates nothing.
+    before: [Vec<f64>; 3],
+    /// Right-hand sides of the diffusion solves.
+    rhs: Vec<f64>,
     poisson: SpdSolver,
     /// (Δt, u solver, v solver) of the last diffusion.
     diffusion: Option<(f64, SpdSolver, SpdSolver)>,
@@ -110,6 +114,8 @@ impl StableFluids {
             v: vec![0.0; nx * (ny + 1)],
             density: vec![0.0; nx * ny],
             pressure: vec![0.0; nx * ny],
+            before: [Vec::new(), Vec::new(), Vec::new()],
+            rhs: Vec::with_capacity((nx * ny).max((nx + 1) * ny)),
             poisson,
             diffusion: None,
             options,
@@ -124,12 +130,20 @@ impl StableFluids {
     /// One step of size `dt`: buoyancy, advection of velocity and smoke, diffusion, projection.
     ///
     /// Errors: [`Error::InvalidInput`] for a `dt` that is not finite and positive, or a velocity
-    /// or density field that is not finite (a user-set source gone wrong).
+    /// or density field that is not finite (a user-set source gone wrong) or was resized.
     pub fn step(&mut self, dt: f64) -> Result<()> {
         if !(dt.is_finite() && dt > 0.0) {
             return Err(Error::invalid(
                 "dt",
                 format!("must be finite and positive, got {dt}"),
+            ));
+        }
+        let (nx, ny) = (self.options.nx, self.options.ny);
+        let sizes = [(nx + 1) * ny, nx * (ny + 1), nx * ny];
+        if let Some(k) = (0..3).find(|&k| [&self.u, &self.v, &self.density][k].len() != sizes[k]) {
+            return Err(Error::invalid(
+                ["u", "v", "density"][k],
+                format!("must keep its {} values", sizes[k]),
             ));
         }
         if let Some(bad) = [&self.u, &self.v, &self.density]
@@ -157,11 +171,15 @@ impl StableFluids {
                 }
             }
         }
-        let (u0, v0) = (self.u.clone(), self.v.clone());
+        let [u0, v0, s0] = &mut self.before;
+        u0.clone_from(&self.u);
+        v0.clone_from(&self.v);
+        s0.clone_from(&self.density);
+        let (u0, v0, s0) = (&*u0, &*v0, &*s0);
         let velocity = |x: f64, y: f64| {
             (
-                sample(&u0, nx + 1, ny, 0.0, 0.5, x, y, h),
-                sample(&v0, nx, ny + 1, 0.5, 0.0, x, y, h),
+                sample(u0, nx + 1, ny, 0.0, 0.5, x, y, h),
+                sample(v0, nx, ny + 1, 0.5, 0.0, x, y, h),
             )
         };
         let (width, height) = (nx as f64 * h, ny as f64 * h);
@@ -177,20 +195,19 @@ impl StableFluids {
         for j in 0..ny {
             for i in 1..nx {
                 let (x, y) = back(i as f64 * h, (j as f64 + 0.5) * h);
-                self.u[i + j * (nx + 1)] = sample(&u0, nx + 1, ny, 0.0, 0.5, x, y, h);
+                self.u[i + j * (nx + 1)] = sample(u0, nx + 1, ny, 0.0, 0.5, x, y, h);
             }
         }
         for j in 1..ny {
             for i in 0..nx {
                 let (x, y) = back((i as f64 + 0.5) * h, j as f64 * h);
-                self.v[i + j * nx] = sample(&v0, nx, ny + 1, 0.5, 0.0, x, y, h);
+                self.v[i + j * nx] = sample(v0, nx, ny + 1, 0.5, 0.0, x, y, h);
             }
         }
-        let s0 = self.density.clone();
         for j in 0..ny {
             for i in 0..nx {
                 let (x, y) = back((i as f64 + 0.5) * h, (j as f64 + 0.5) * h);
-                self.density[i + j * nx] = sample(&s0, nx, ny, 0.5, 0.5, x, y, h);
+                self.density[i + j * nx] = sample(s0, nx, ny, 0.5, 0.5, x, y, h);
             }
         }
         if viscosity > 0.0 {
@@ -222,20 +239,25 @@ impl StableFluids {
         let Some((_, solve_u, solve_v)) = &mut self.diffusion else {
             return Ok(());
         };
-        let mut rhs: Vec<f64> = (0..ny)
-            .flat_map(|j| (1..nx).map(move |i| (i, j)))
-            .map(|(i, j)| self.u[i + j * (nx + 1)])
-            .collect();
-        solve_u.solve_in_place(&mut rhs);
+        let rhs = &mut self.rhs;
+        rhs.clear();
+        rhs.extend(
+            (0..ny)
+                .flat_map(|j| (1..nx).map(move |i| (i, j)))
+                .map(|(i, j)| self.u[i + j * (nx + 1)]),
+        );
+        solve_u.solve_in_place(rhs);
         for (k, value) in rhs.iter().enumerate() {
             let (i, j) = (1 + k % (nx - 1), k / (nx - 1));
             self.u[i + j * (nx + 1)] = *value;
         }
-        let mut rhs: Vec<f64> = (1..ny)
-            .flat_map(|j| (0..nx).map(move |i| (i, j)))
-            .map(|(i, j)| self.v[i + j * nx])
-            .collect();
-        solve_v.solve_in_place(&mut rhs);
+        rhs.clear();
+        rhs.extend(
+            (1..ny)
+                .flat_map(|j| (0..nx).map(move |i| (i, j)))
+                .map(|(i, j)| self.v[i + j * nx]),
+        );
+        solve_v.solve_in_place(rhs);
         for (k, value) in rhs.iter().enumerate() {
             let (i, j) = (k % nx, 1 + k / nx);
             self.v[i + j * nx] = *value;
@@ -256,12 +278,12 @@ impl StableFluids {
         let FluidOptions {
             nx, ny, cell: h, ..
         } = self.options;
-        let divergence = self.divergence();
-        // Unknowns: every cell but cell 0 (p₀ = 0); A = −L, so A·p = −∇·u/Δt.
-        let mut rhs: Vec<f64> = divergence[1..].iter().map(|d| -d / dt).collect();
-        self.poisson.solve_in_place(&mut rhs);
+        // Unknowns: every cell but cell 0 (p₀ = 0); A = −L, so A·p = −∇·u/Δt, solved in place
+        // in the pressure array.
+        divergence_into(&self.u, &self.v, nx, ny, h, &mut self.pressure);
+        self.pressure.iter_mut().for_each(|d| *d *= -1.0 / dt);
+        self.poisson.solve_in_place(&mut self.pressure[1..]);
         self.pressure[0] = 0.0;
-        self.pressure[1..].copy_from_slice(&rhs);
         let p = &self.pressure;
         for j in 0..ny {
             for i in 1..nx {
@@ -280,14 +302,9 @@ impl StableFluids {
         let FluidOptions {
             nx, ny, cell: h, ..
         } = self.options;
-        (0..ny)
-            .flat_map(|j| (0..nx).map(move |i| (i, j)))
-            .map(|(i, j)| {
-                (self.u[i + 1 + j * (nx + 1)] - self.u[i + j * (nx + 1)] + self.v[i + (j + 1) * nx]
-                    - self.v[i + j * nx])
-                    / h
-            })
-            .collect()
+        let mut divergence = vec![0.0; nx * ny];
+        divergence_into(&self.u, &self.v, nx, ny, h, &mut divergence);
+        divergence
     }
 
     /// The largest face speed |u| or |v|.
@@ -302,6 +319,17 @@ impl StableFluids {
     pub fn kinetic_energy(&self) -> f64 {
         let h = self.options.cell;
         0.5 * h * h * self.u.iter().chain(&self.v).map(|x| x * x).sum::<f64>()
+    }
+}
+
+/// Writes the discrete divergence of (u, v) into `out`, cell i + j·nx.
+fn divergence_into(u: &[f64], v: &[f64], nx: usize, ny: usize, h: f64, out: &mut [f64]) {
+    for j in 0..ny {
+        for i in 0..nx {
+            out[i + j * nx] = (u[i + 1 + j * (nx + 1)] - u[i + j * (nx + 1)] + v[i + (j + 1) * nx]
+                - v[i + j * nx])
+                / h;
+        }
     }
 }
 
