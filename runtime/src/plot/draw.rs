@@ -125,6 +125,37 @@ pub(crate) fn encode_png(rgb: &[u8], (w, h): (u32, u32)) -> std::result::Result<
     Ok(bytes)
 }
 
+/// Encodes RGB frames (each `size` pixels, from `frames`) as a looping GIF, `delay_ms` a frame,
+/// and writes it atomically to `path`. A frame that cannot be rendered stops the encoding with
+/// its error.
+pub(crate) fn write_gif(
+    path: &Path,
+    size: (u32, u32),
+    delay_ms: u32,
+    frames: impl Iterator<Item = Result<Vec<u8>>>,
+) -> Result<()> {
+    use image::codecs::gif::{GifEncoder, Repeat};
+    let fail = |e: image::ImageError| plot_error(path, e.to_string());
+    let mut bytes = Vec::new();
+    {
+        let mut encoder = GifEncoder::new_with_speed(&mut bytes, 30);
+        encoder.set_repeat(Repeat::Infinite).map_err(fail)?;
+        for rgb in frames {
+            let rgba = rgb?
+                .chunks_exact(3)
+                .flat_map(|p| [p[0], p[1], p[2], 255])
+                .collect();
+            let buffer = image::RgbaImage::from_raw(size.0, size.1, rgba)
+                .ok_or_else(|| plot_error(path, "frame buffer of the wrong size".into()))?;
+            let delay = image::Delay::from_numer_denom_ms(delay_ms, 1);
+            encoder
+                .encode_frame(image::Frame::from_parts(buffer, 0, 0, delay))
+                .map_err(fail)?;
+        }
+    }
+    write_atomic(path, &bytes)
+}
+
 pub(crate) fn plot_error(path: &Path, reason: String) -> Error {
     Error::Plot {
         path: path.to_path_buf(),

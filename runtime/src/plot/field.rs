@@ -64,7 +64,6 @@ pub fn field_animation(
     style: FieldStyle,
     delay_ms: u32,
 ) -> Result<()> {
-    use image::codecs::gif::{GifEncoder, Repeat};
     let path = path.as_ref();
     if path.extension().and_then(|e| e.to_str()) != Some("gif") {
         return Err(Error::invalid(
@@ -72,29 +71,23 @@ pub fn field_animation(
             format!("`{}` must end in .gif", path.display()),
         ));
     }
-    if frames.is_empty() {
+    let Some(first) = frames.first() else {
         return Err(Error::invalid("frames", "nothing to animate"));
-    }
-    let fail = |e: image::ImageError| draw::plot_error(path, e.to_string());
-    let mut bytes = Vec::new();
-    {
-        let mut encoder = GifEncoder::new_with_speed(&mut bytes, 30);
-        encoder.set_repeat(Repeat::Infinite).map_err(fail)?;
-        for field in frames {
-            let (rgb, (w, h)) = render(*field, style)?;
-            let rgba = rgb
-                .chunks_exact(3)
-                .flat_map(|p| [p[0], p[1], p[2], 255])
-                .collect();
-            let buffer = image::RgbaImage::from_raw(w, h, rgba)
-                .ok_or_else(|| draw::plot_error(path, "frame buffer of the wrong size".into()))?;
-            let delay = image::Delay::from_numer_denom_ms(delay_ms, 1);
-            encoder
-                .encode_frame(image::Frame::from_parts(buffer, 0, 0, delay))
-                .map_err(fail)?;
+    };
+    // The image size of the first frame (an oversized one is refused by `render` below).
+    let side = |cells: usize| u32::try_from(cells * style.scale as usize).unwrap_or(u32::MAX);
+    let size = (side(first.width), side(first.height));
+    let rendered = frames.iter().map(|field| {
+        let (rgb, frame_size) = render(*field, style)?;
+        if frame_size != size {
+            return Err(Error::invalid(
+                "frames",
+                "every field of an animation must have the same grid",
+            ));
         }
-    }
-    crate::output::write_atomic(path, &bytes)
+        Ok(rgb)
+    });
+    draw::write_gif(path, size, delay_ms, rendered)
 }
 
 /// RGB pixels of `field` (top row first) and the image size.

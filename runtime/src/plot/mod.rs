@@ -359,7 +359,6 @@ pub fn animation(
     size: (u32, u32),
     delay_ms: u32,
 ) -> Result<()> {
-    use image::codecs::gif::{GifEncoder, Repeat};
     let path = path.as_ref();
     if path.extension().and_then(|e| e.to_str()) != Some("gif") {
         return Err(Error::invalid(
@@ -372,33 +371,15 @@ pub fn animation(
     }
     draw::check_size(size)?;
     draw::register_bundled_font(path)?;
-    let fail = |reason: String| draw::plot_error(path, reason);
-    let mut bytes = Vec::new();
-    {
-        let mut encoder = GifEncoder::new_with_speed(&mut bytes, 30);
-        encoder
-            .set_repeat(Repeat::Infinite)
-            .map_err(|e| fail(e.to_string()))?;
-        for (k, frame) in frames.iter().enumerate() {
-            let regions = regions(&frame.views)
-                .map_err(|e| Error::invalid(format!("frames[{k}]"), e.to_string()))?;
-            let rgb = draw::render_rgb(size, |root| {
-                draw_views(root, &frame.title, &frame.views, &regions)
-            })
-            .map_err(fail)?;
-            let rgba: Vec<u8> = rgb
-                .chunks_exact(3)
-                .flat_map(|p| [p[0], p[1], p[2], 255])
-                .collect();
-            let buffer = image::RgbaImage::from_raw(size.0, size.1, rgba)
-                .ok_or_else(|| fail("frame buffer of the wrong size".into()))?;
-            let delay = image::Delay::from_numer_denom_ms(delay_ms, 1);
-            encoder
-                .encode_frame(image::Frame::from_parts(buffer, 0, 0, delay))
-                .map_err(|e| fail(e.to_string()))?;
-        }
-    }
-    crate::output::write_atomic(path, &bytes)
+    let rendered = frames.iter().enumerate().map(|(k, frame)| {
+        let regions = regions(&frame.views)
+            .map_err(|e| Error::invalid(format!("frames[{k}]"), e.to_string()))?;
+        draw::render_rgb(size, |root| {
+            draw_views(root, &frame.title, &frame.views, &regions)
+        })
+        .map_err(|reason| draw::plot_error(path, reason))
+    });
+    draw::write_gif(path, size, delay_ms, rendered)
 }
 
 /// The axes of each view, after checking its bounds and data are finite.
