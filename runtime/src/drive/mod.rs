@@ -293,10 +293,9 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
     /// (t, h) as the checked path — and tests the divergence limit once, on the block's last
     /// state (a state that left the limit is infinite, NaN or still growing there; one that
     /// left it and came back within a block is not reported). Returns false when a step failed
-    /// or the last state is outside the limit: the
-    /// state, time and counts are then back at the block's start (the method restarted there)
-    /// and the caller retakes the block on the checked path, which halves the failing step or
-    /// names the diverging one.
+    /// or the last state is outside the limit: the state, time and counts are then back at the
+    /// block's start (the method restarted there) and the caller retakes the block on the
+    /// checked path, which halves the failing step or names the diverging one.
     fn run_block(&mut self, dt: f64, n: u64, count: u64) -> bool {
         self.at.clone_from(&self.y);
         let stats = self.stats;
@@ -668,7 +667,7 @@ fn ulp(t: f64) -> f64 {
 }
 
 /// `count` steps of `integrator` from grid index `n` (t = t₀ + i·dt), as a bare loop; false as
-/// soon as a step fails or leaves `limit`. Small plain states (no heap parts, at most 256 bytes)
+/// soon as a step fails, or when the last state is outside `limit`. Small plain states (no heap parts, at most 256 bytes)
 /// are stepped in local copies the optimiser keeps in registers, as a hand-written loop's would
 /// be; the others in place. A function of its own, one call per block.
 #[inline(never)]
