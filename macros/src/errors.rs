@@ -45,3 +45,9 @@ impl Errors {
         Err(first)
     }
 }
+
+/// The user's item unchanged plus the error, so the rest of their crate still compiles.
+pub(crate) fn with_error(item: impl ToTokens, error: syn::Error) -> proc_macro2::TokenStream {
+    let error = error.to_compile_error();
+    quote::quote!(#item #error)
+}

@@ -6,11 +6,12 @@
 //! bodies. So the struct must come before its impl block, in the same module.
 
 use proc_macro2::TokenStream;
-use quote::{ToTokens, quote};
+use quote::quote;
 use syn::parse::{Parse, ParseStream};
 use syn::{Item, ItemImpl, ItemStruct, Type};
 
-use crate::errors::Errors;
+use crate::errors::{Errors, with_error};
+use crate::kinds::grid;
 use crate::model::Order;
 use crate::{args, functions, generate, lower, model, particles};
 
@@ -41,6 +42,9 @@ pub(crate) fn system(args: TokenStream, item: TokenStream) -> TokenStream {
 fn expand_struct(args_tokens: TokenStream, item: &ItemStruct) -> TokenStream {
     if particles::is_particle_model(item) {
         return expand_particle_struct(args_tokens, item);
+    }
+    if grid::is_grid_model(item) {
+        return expand_grid_struct(args_tokens, item);
     }
     let mut errors = Errors::default();
     let args = args::parse(args_tokens.clone(), &mut errors);
@@ -82,6 +86,26 @@ fn expand_particle_struct(args_tokens: TokenStream, item: &ItemStruct) -> TokenS
     match (errors.finish(), particles) {
         (Ok(()), Some(particles)) => {
             let state = particles::state(&particles);
+            let forwarder = generate::forwarder(item, &args_tokens, true);
+            quote!(#stripped #state #forwarder)
+        }
+        (result, _) => {
+            let error = result.err().map(|e| e.to_compile_error());
+            let forwarder = generate::forwarder(item, &args_tokens, false);
+            quote!(#stripped #error #forwarder)
+        }
+    }
+}
+
+/// The struct half of a field model.
+fn expand_grid_struct(args_tokens: TokenStream, item: &ItemStruct) -> TokenStream {
+    let mut errors = Errors::default();
+    args::parse(args_tokens.clone(), &mut errors);
+    let fields = grid::parse_struct(item, &mut errors);
+    let stripped = grid::strip(item);
+    match (errors.finish(), fields) {
+        (Ok(()), Some(fields)) => {
+            let state = grid::state(&fields);
             let forwarder = generate::forwarder(item, &args_tokens, true);
             quote!(#stripped #state #forwarder)
         }
@@ -166,6 +190,9 @@ pub(crate) fn system_impl(input: TokenStream) -> TokenStream {
     if particles::is_particle_model(&item) {
         return particles::expand_impl(&args, &item, &imp);
     }
+    if grid::is_grid_model(&item) {
+        return grid::expand_impl(&args, &item, &imp);
+    }
     let Some(model) = model::parse(&item, &mut errors) else {
         return with_error(
             imp,
@@ -242,12 +269,6 @@ fn too_deep(item: TokenStream, error: syn::Error) -> TokenStream {
         _ => TokenStream::new(),
     };
     quote!(#item #error #stub)
-}
-
-/// The user's item unchanged plus the error, so the rest of their crate still compiles.
-pub(crate) fn with_error(item: impl ToTokens, error: syn::Error) -> TokenStream {
-    let error = error.to_compile_error();
-    quote!(#item #error)
 }
 
 #[cfg(test)]

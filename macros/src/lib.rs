@@ -16,6 +16,7 @@ mod expand;
 mod functions;
 mod generate;
 mod ir;
+mod kinds;
 mod limits;
 mod lower;
 mod model;

@@ -516,7 +516,7 @@ fn parse_kernel(
 pub(crate) fn expand_impl(args: &Args, item: &ItemStruct, imp: &ItemImpl) -> TokenStream {
     let mut errors = Errors::default();
     let Some(particles) = parse_struct(item, &mut errors) else {
-        return crate::expand::with_error(
+        return crate::errors::with_error(
             strip_kernel_attributes(imp),
             errors.finish().expect_err("a rejected model has errors"),
         );
@@ -547,7 +547,13 @@ pub(crate) fn expand_impl(args: &Args, item: &ItemStruct, imp: &ItemImpl) -> Tok
     if args.no_jacobian.is_none() {
         let model = particles.parameter_model();
         for kernel in &functions.kernels {
-            match lower::lower_kernel(&model, &kernel.f, &kernel.vectors, particles.dim) {
+            match lower::lower_kernel(
+                &model,
+                &kernel.f,
+                &kernel.vectors,
+                particles.dim,
+                particles.dim,
+            ) {
                 Ok(l) => lowered.push(l),
                 Err(error) => errors.push(error),
             }
@@ -555,7 +561,7 @@ pub(crate) fn expand_impl(args: &Args, item: &ItemStruct, imp: &ItemImpl) -> Tok
     }
     if let Err(error) = errors.finish() {
         // The kernel attributes are odyn's: left in, rustc would add "cannot find attribute".
-        let rejected = crate::expand::with_error(strip_kernel_attributes(imp), error);
+        let rejected = crate::errors::with_error(strip_kernel_attributes(imp), error);
         let stub = crate::generate::stub_model(&item.ident, &particles.state_ident());
         return quote!(#rejected #stub);
     }

@@ -122,30 +122,43 @@ pub(crate) fn lower(model: &Model<'_>, f: &syn::ImplItemFn) -> syn::Result<Lower
     Ok(l.finish(outputs))
 }
 
-/// Lowers a particle kernel. `vectors` are its D-vector arguments, bound in order to the graph
-/// variables D·k … D·k + D − 1; `model` supplies only parameter shapes (its `states` are empty).
-/// The body's value, a D-vector, is the output.
+/// Lowers a kernel: a function of `inputs`, each `width` graph variables (input k binds the
+/// variables width·k … width·k + width − 1; a scalar when `width` is 1, else a vector), whose value
+/// is `outputs` numbers (a scalar when 1, else a vector or array). `model` supplies only parameter
+/// shapes (its `states` are empty). Particle kernels take D-vectors and return a D-vector force;
+/// a grid's `#[cell]` kernel takes its stencil reads as scalars and returns one value per field.
 pub(crate) fn lower_kernel(
     model: &Model<'_>,
     f: &syn::ImplItemFn,
-    vectors: &[Ident],
-    dim: usize,
+    inputs: &[Ident],
+    width: usize,
+    outputs: usize,
 ) -> syn::Result<Lowered> {
     let mut l = Lowering::new(model, f, None);
-    for (k, name) in vectors.iter().enumerate() {
-        let parts = (0..dim).map(|i| l.graph.var(dim * k + i)).collect();
-        l.bind(name.to_string(), Some(Value::Vector(parts)), true);
+    for (k, name) in inputs.iter().enumerate() {
+        let value = if width == 1 {
+            Value::Scalar(l.graph.var(k))
+        } else {
+            Value::Vector((0..width).map(|i| l.graph.var(width * k + i)).collect())
+        };
+        l.bind(name.to_string(), Some(value), true);
     }
-    let outputs = match l.body(&f.block)? {
-        Value::Vector(v) if v.len() == dim => v,
+    let values = match l.body(&f.block)? {
+        Value::Scalar(x) if outputs == 1 => vec![x],
+        Value::Vector(v) if v.len() == outputs => v,
         _ => {
+            let what = if outputs == 1 {
+                "a number".to_string()
+            } else {
+                format!("{outputs} numbers")
+            };
             return Err(l.error(
                 &f.sig.output,
-                format_args!("a kernel value that is not a {dim}-vector force"),
+                format_args!("a kernel value that is not {what}"),
             ));
         }
     };
-    Ok(l.finish(outputs))
+    Ok(l.finish(values))
 }
 
 impl<'m> Lowering<'m> {

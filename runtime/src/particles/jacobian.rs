@@ -1,41 +1,13 @@
 //! The sparse Jacobian of a particle model and its Newton solve.
 
 use std::fmt;
-use std::sync::Arc;
 
-use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
-use faer::linalg::cholesky::llt::factor::LltRegularization;
-use faer::sparse::linalg::SupernodalThreshold;
-use faer::sparse::linalg::cholesky::{
-    CholeskySymbolicParams, LltRef, SymbolicCholesky, SymmetricOrdering,
-    factorize_symbolic_cholesky,
-};
-use faer::sparse::linalg::lu::{
-    LuRef, LuSymbolicParams, NumericLu, SymbolicLu, factorize_symbolic_lu,
-};
-use faer::sparse::{Pair, SparseColMatRef, SymbolicSparseColMat};
-use faer::{Conj, MatMut, Par, Side};
+use faer::sparse::SparseColMatRef;
 use nalgebra::{SMatrix, SVector};
 
 use super::ParticleSystem;
 use crate::NewtonMatrix;
-
-/// How often a [`ParticleJacobian`] has factorized: the symbolic analyses happen once per run,
-/// the numeric factorizations once per Newton iteration.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Factorizations {
-    /// Symbolic Cholesky analyses (fill-reducing ordering and elimination tree).
-    pub symbolic_cholesky: u64,
-    /// Symbolic LU analyses (made only if a Newton matrix is unsymmetric or indefinite).
-    pub symbolic_lu: u64,
-    /// Numeric Cholesky factorizations that succeeded.
-    pub cholesky: u64,
-    /// Numeric Cholesky factorizations abandoned at a non-positive pivot (a symmetric but
-    /// indefinite matrix), each followed by an LU: work done twice.
-    pub cholesky_failed: u64,
-    /// Numeric LU factorizations.
-    pub lu: u64,
-}
+use crate::sparse::{Factorizations, SparseSolver};
 
 /// The Jacobian of a particle model's forces, in D×D blocks, and the sparse Newton matrix of
 /// implicit Euler built from it.
@@ -73,40 +45,9 @@ pub struct ParticleJacobian<const D: usize> {
     definite: bool,
     /// The c of the last factorization of I − c·J.
     scale: f64,
-    solver: Solver,
+    solver: SparseSolver,
+    slots: Slots,
 }
-
-/// A sparse LU: the symbolic analysis (shared by clones) and the numeric factors.
-type SparseLu = (Arc<SymbolicLu<usize>>, NumericLu<usize, f64>);
-
-/// The sparse Newton matrix and its factorizations.
-struct Solver {
-    pattern: SymbolicSparseColMat<usize>,
-    values: Vec<f64>,
-    /// Slot of entry (D·i + r, D·i + c) at i·D² + r·D + c.
-    diagonal_slots: Vec<usize>,
-    /// Per link, slots of block (a, b) then block (b, a), row-major; `usize::MAX` when either
-    /// particle is pinned.
-    pair_slots: Vec<usize>,
-    /// Slot of each entry's transpose.
-    transpose: Vec<usize>,
-    /// ∂f/∂x·bₓ, then the right-hand side of the velocity system.
-    rhs: Vec<f64>,
-    cholesky: Arc<SymbolicCholesky<usize>>,
-    cholesky_values: Vec<f64>,
-    lu: Option<SparseLu>,
-    scratch: MemBuffer,
-    counts: Factorizations,
-    factored: Option<Factored>,
-    /// Factorizations left to go straight to LU after a Cholesky failed.
-    skip_cholesky: u32,
-}
-
-/// After an indefinite matrix, this many factorizations skip the Cholesky attempt: an undamped
-/// 32² cloth hanging in its plane failed Cholesky on 132 of 133 Newton matrices, doing every
-/// factorization twice; retrying every ninth bounds that waste and still returns to Cholesky
-/// when the matrices become definite again.
-const SKIP_CHOLESKY_AFTER_FAILURE: u32 = 8;
 
 impl<const D: usize> ParticleJacobian<D> {
     /// The Jacobian of `model` with `particles` particles (its topology already checked by
@@ -125,7 +66,7 @@ impl<const D: usize> ParticleJacobian<D> {
             .flat_map(|(_, links)| (0..links.len()).map(move |k| links.ends(k)))
             .filter(|&[a, b]| a < particles && b < particles && a != b)
             .collect();
-        let solver = Solver::new::<D>(particles, &pinned, &ends);
+        let (solver, slots) = pattern::<D>(particles, &pinned, &ends);
         ParticleJacobian {
             particles,
             mass: model.masses().to_vec(),
@@ -137,6 +78,7 @@ impl<const D: usize> ParticleJacobian<D> {
             definite: false,
             scale: 0.0,
             solver,
+            slots,
         }
     }
 
@@ -246,7 +188,7 @@ impl<const D: usize> ParticleJacobian<D> {
     /// Assembles M − h·∂f/∂v − h²·∂f/∂x into the sparse matrix and returns it.
     pub fn newton_matrix(&mut self, h: f64) -> SparseColMatRef<'_, usize, f64> {
         self.assemble(h);
-        SparseColMatRef::new(self.solver.pattern.as_ref(), &self.solver.values)
+        self.solver.matrix()
     }
 
     /// Assembles M − h·∂f/∂v − h²·∂f/∂x from the blocks of the last evaluation (projected first
@@ -256,14 +198,15 @@ impl<const D: usize> ParticleJacobian<D> {
             self.project();
         }
         let s = &mut self.solver;
+        let slots = &self.slots;
         let h2 = h * h;
         s.values.fill(0.0);
         for (i, [bx, bv]) in self.diagonal.iter().enumerate() {
-            let slots = &s.diagonal_slots[i * D * D..(i + 1) * D * D];
+            let diagonal = &slots.diagonal[i * D * D..(i + 1) * D * D];
             for r in 0..D {
                 for c in 0..D {
                     let mass = if r == c { self.mass[i] } else { 0.0 };
-                    s.values[slots[r * D + c]] = if self.pinned[i] {
+                    s.values[diagonal[r * D + c]] = if self.pinned[i] {
                         mass
                     } else {
                         mass - h * bv[(r, c)] - h2 * bx[(r, c)]
@@ -282,14 +225,14 @@ impl<const D: usize> ParticleJacobian<D> {
             for r in 0..D {
                 for c in 0..D {
                     if !pinned_a {
-                        s.values[s.diagonal_slots[a * D * D + r * D + c]] += block(r, c, xa, va);
+                        s.values[slots.diagonal[a * D * D + r * D + c]] += block(r, c, xa, va);
                     }
                     if !pinned_b {
-                        s.values[s.diagonal_slots[b * D * D + r * D + c]] -= block(r, c, xb, vb);
+                        s.values[slots.diagonal[b * D * D + r * D + c]] -= block(r, c, xb, vb);
                     }
                     if !(pinned_a || pinned_b) {
-                        s.values[s.pair_slots[base + r * D + c]] += block(r, c, xb, vb);
-                        s.values[s.pair_slots[base + D * D + r * D + c]] -= block(r, c, xa, va);
+                        s.values[slots.pairs[base + r * D + c]] += block(r, c, xb, vb);
+                        s.values[slots.pairs[base + D * D + r * D + c]] -= block(r, c, xa, va);
                     }
                 }
             }
@@ -414,232 +357,64 @@ impl<const D: usize> NewtonMatrix for ParticleJacobian<D> {
     }
 }
 
-impl Solver {
-    fn new<const D: usize>(particles: usize, pinned: &[bool], ends: &[[usize; 2]]) -> Self {
-        let n = D * particles;
-        let mut entries = Vec::new();
-        let mut block = |i: usize, j: usize| {
+/// The slots of a particle model's blocks in the sparse matrix.
+#[derive(Clone)]
+struct Slots {
+    /// Slot of entry (D·i + r, D·i + c) at i·D² + r·D + c.
+    diagonal: Vec<usize>,
+    /// Per link, slots of block (a, b) then block (b, a), row-major; `usize::MAX` when either
+    /// particle is pinned.
+    pairs: Vec<usize>,
+}
+
+/// The sparse matrix of `particles` particles joined by `ends` (pinned particles keep only their
+/// own blocks), and where each block goes in it.
+fn pattern<const D: usize>(
+    particles: usize,
+    pinned: &[bool],
+    ends: &[[usize; 2]],
+) -> (SparseSolver, Slots) {
+    let mut entries = Vec::new();
+    let mut block = |i: usize, j: usize| {
+        for r in 0..D {
+            for c in 0..D {
+                entries.push((D * i + r, D * j + c));
+            }
+        }
+    };
+    for i in 0..particles {
+        block(i, i);
+    }
+    for &[a, b] in ends {
+        if !(pinned[a] || pinned[b]) {
+            block(a, b);
+            block(b, a);
+        }
+    }
+    let solver = SparseSolver::new(D * particles, &entries);
+    let mut diagonal = Vec::with_capacity(particles * D * D);
+    for i in 0..particles {
+        for r in 0..D {
+            for c in 0..D {
+                diagonal.push(solver.slot(D * i + r, D * i + c));
+            }
+        }
+    }
+    let mut pairs = Vec::with_capacity(ends.len() * 2 * D * D);
+    for &[a, b] in ends {
+        for (i, j) in [(a, b), (b, a)] {
             for r in 0..D {
                 for c in 0..D {
-                    entries.push(Pair::new(D * i + r, D * j + c));
-                }
-            }
-        };
-        for i in 0..particles {
-            block(i, i);
-        }
-        for &[a, b] in ends {
-            if !(pinned[a] || pinned[b]) {
-                block(a, b);
-                block(b, a);
-            }
-        }
-        let (pattern, _) = SymbolicSparseColMat::try_new_from_indices(n, n, &entries)
-            .expect("indices are in range: the topology was checked");
-        let slot = |row: usize, col: usize| -> usize {
-            let start = pattern.col_ptr()[col];
-            let rows = pattern.row_idx_of_col_raw(col);
-            start
-                + rows
-                    .binary_search(&row)
-                    .expect("every block is in the pattern")
-        };
-        let mut diagonal_slots = Vec::with_capacity(particles * D * D);
-        for i in 0..particles {
-            for r in 0..D {
-                for c in 0..D {
-                    diagonal_slots.push(slot(D * i + r, D * i + c));
+                    pairs.push(if pinned[a] || pinned[b] {
+                        usize::MAX
+                    } else {
+                        solver.slot(D * i + r, D * j + c)
+                    });
                 }
             }
         }
-        let mut pair_slots = Vec::with_capacity(ends.len() * 2 * D * D);
-        for &[a, b] in ends {
-            for (i, j) in [(a, b), (b, a)] {
-                for r in 0..D {
-                    for c in 0..D {
-                        pair_slots.push(if pinned[a] || pinned[b] {
-                            usize::MAX
-                        } else {
-                            slot(D * i + r, D * j + c)
-                        });
-                    }
-                }
-            }
-        }
-        let mut transpose = vec![0; pattern.compute_nnz()];
-        for col in 0..n {
-            let start = pattern.col_ptr()[col];
-            for (k, &row) in pattern.row_idx_of_col_raw(col).iter().enumerate() {
-                transpose[start + k] = slot(col, row);
-            }
-        }
-        let cholesky = factorize_symbolic_cholesky(
-            pattern.as_ref(),
-            Side::Lower,
-            SymmetricOrdering::Amd,
-            CholeskySymbolicParams::default(),
-        )
-        .expect("a symmetric pattern of checked size always has a symbolic Cholesky factor");
-        let scratch = MemBuffer::new(Self::cholesky_scratch(&cholesky));
-        Solver {
-            values: vec![0.0; pattern.compute_nnz()],
-            cholesky_values: vec![0.0; cholesky.len_val()],
-            cholesky: Arc::new(cholesky),
-            pattern,
-            diagonal_slots,
-            pair_slots,
-            transpose,
-            rhs: vec![0.0; n],
-            lu: None,
-            scratch,
-            counts: Factorizations {
-                symbolic_cholesky: 1,
-                ..Factorizations::default()
-            },
-            factored: None,
-            skip_cholesky: 0,
-        }
     }
-
-    fn cholesky_scratch(symbolic: &SymbolicCholesky<usize>) -> StackReq {
-        symbolic
-            .factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default())
-            .or(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq))
-    }
-
-    /// Whether the assembled matrix is symmetric to rounding: every |aᵢⱼ − aⱼᵢ| within 1e-12 of
-    /// the largest entry. (Entry-wise relative tests fail on entries that are differences of
-    /// nearly equal terms, such as a spring's k·(1 − L/|d|) near rest.) Cholesky reads the lower
-    /// triangle, so what it ignores is a perturbation of that size.
-    fn is_symmetric(&self) -> bool {
-        let largest = self.values.iter().fold(0.0f64, |m, a| m.max(a.abs()));
-        let tolerance = 1e-12 * largest;
-        self.values
-            .iter()
-            .zip(&self.transpose)
-            .all(|(&a, &t)| (a - self.values[t]).abs() <= tolerance)
-    }
-
-    /// Factorizes the assembled matrix: Cholesky when it is symmetric and positive definite,
-    /// else LU (its symbolic analysis made the first time; see [`SKIP_CHOLESKY_AFTER_FAILURE`]).
-    fn factorize(&mut self) -> bool {
-        self.factored = None;
-        if self.skip_cholesky > 0 {
-            self.skip_cholesky -= 1;
-        } else if self.is_symmetric() {
-            let matrix = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
-            let factored = self.cholesky.factorize_numeric_llt(
-                &mut self.cholesky_values,
-                matrix,
-                Side::Lower,
-                LltRegularization::default(),
-                Par::Seq,
-                MemStack::new(&mut self.scratch),
-                Default::default(),
-            );
-            if factored.is_ok() {
-                self.counts.cholesky += 1;
-                self.factored = Some(Factored::Cholesky);
-                return true;
-            }
-            self.counts.cholesky_failed += 1;
-            self.skip_cholesky = SKIP_CHOLESKY_AFTER_FAILURE;
-        }
-        self.factorize_lu()
-    }
-
-    fn factorize_lu(&mut self) -> bool {
-        if self.lu.is_none() {
-            // faer's simplicial LU spent 92 % of a 64-particle cloth run (measured with perf);
-            // the supernodal one is the fast path for these block-structured matrices.
-            let params = LuSymbolicParams {
-                supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
-                ..LuSymbolicParams::default()
-            };
-            let Ok(symbolic) = factorize_symbolic_lu(self.pattern.as_ref(), params) else {
-                return false;
-            };
-            let need = symbolic
-                .factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default())
-                .or(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq))
-                .or(Self::cholesky_scratch(&self.cholesky));
-            self.scratch = MemBuffer::new(need);
-            self.lu = Some((Arc::new(symbolic), NumericLu::new()));
-            self.counts.symbolic_lu += 1;
-        }
-        let Some((symbolic, numeric)) = &mut self.lu else {
-            return false;
-        };
-        let matrix = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
-        let factored = symbolic.factorize_numeric_lu(
-            numeric,
-            matrix,
-            Par::Seq,
-            MemStack::new(&mut self.scratch),
-            Default::default(),
-        );
-        if factored.is_err() {
-            return false;
-        }
-        self.counts.lu += 1;
-        self.factored = Some(Factored::Lu);
-        true
-    }
-
-    /// Solves the last factorization against `self.rhs`, in place.
-    fn substitute(&mut self) {
-        let n = self.rhs.len();
-        let rhs = MatMut::from_column_major_slice_mut(&mut self.rhs, n, 1);
-        let stack = MemStack::new(&mut self.scratch);
-        match (&self.factored, &self.lu) {
-            (Some(Factored::Cholesky), _) => LltRef::new(&self.cholesky, &self.cholesky_values)
-                .solve_in_place_with_conj(Conj::No, rhs, Par::Seq, stack),
-            (Some(Factored::Lu), Some((symbolic, numeric))) => LuRef::new_unchecked(
-                symbolic, numeric,
-            )
-            .solve_in_place_with_conj(Conj::No, rhs, Par::Seq, stack),
-            _ => {}
-        }
-    }
-}
-
-/// Which factorization [`Solver::factorize`] made last.
-#[derive(Clone, Copy, Debug)]
-enum Factored {
-    Cholesky,
-    Lu,
-}
-
-impl Clone for Solver {
-    fn clone(&self) -> Self {
-        Solver {
-            pattern: self.pattern.clone(),
-            values: self.values.clone(),
-            diagonal_slots: self.diagonal_slots.clone(),
-            pair_slots: self.pair_slots.clone(),
-            transpose: self.transpose.clone(),
-            rhs: self.rhs.clone(),
-            cholesky: Arc::clone(&self.cholesky),
-            cholesky_values: self.cholesky_values.clone(),
-            lu: self.lu.clone(),
-            scratch: MemBuffer::new(self.scratch_size()),
-            counts: self.counts,
-            factored: self.factored,
-            skip_cholesky: self.skip_cholesky,
-        }
-    }
-}
-
-impl Solver {
-    fn scratch_size(&self) -> StackReq {
-        let cholesky = Self::cholesky_scratch(&self.cholesky);
-        match &self.lu {
-            None => cholesky,
-            Some((lu, _)) => cholesky
-                .or(lu.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default()))
-                .or(lu.solve_in_place_scratch::<f64>(1, Par::Seq)),
-        }
-    }
+    (solver, Slots { diagonal, pairs })
 }
 
 impl<const D: usize> Clone for ParticleJacobian<D> {
@@ -655,6 +430,7 @@ impl<const D: usize> Clone for ParticleJacobian<D> {
             definite: self.definite,
             scale: self.scale,
             solver: self.solver.clone(),
+            slots: self.slots.clone(),
         }
     }
 }

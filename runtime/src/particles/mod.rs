@@ -25,7 +25,8 @@ use nalgebra::SVector;
 
 use crate::{Error, Model, Result, State};
 
-pub use jacobian::{Factorizations, ParticleJacobian};
+pub use crate::sparse::Factorizations;
+pub use jacobian::ParticleJacobian;
 
 /// The state of a particle model: every position, then every velocity, as one `Vec<f64>`.
 #[derive(PartialEq)]

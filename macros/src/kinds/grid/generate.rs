@@ -1,0 +1,224 @@
+//! Code generation for field models: the cell kernel's derivative blocks as straight-line code,
+//! and the `GridSystem`, `Model` and `Jacobian` impls, which call into `odyn::grid`.
+
+use proc_macro2::{Literal, Span, TokenStream};
+use quote::{format_ident, quote};
+use syn::{ImplItem, ItemImpl};
+
+use super::{Cell, Fields, NEIGHBOURS};
+use crate::args::Args;
+use crate::derivative::Differentiator;
+use crate::generate::{attribute_defaults, operand, prologue_tokens, straight_line};
+use crate::lower::Lowered;
+
+/// The impl block with `#[cell]` removed (it is odyn's).
+pub(super) fn strip_cell_attribute(imp: &ItemImpl) -> ItemImpl {
+    let mut imp = imp.clone();
+    for member in &mut imp.items {
+        if let ImplItem::Fn(f) = member {
+            f.attrs.retain(|a| !a.path().is_ident("cell"));
+        }
+    }
+    imp
+}
+
+/// The runtime trait impls of a field model; `lowered` is the cell kernel, absent with
+/// `jacobian = false`.
+pub(super) fn impls(
+    fields: &Fields<'_>,
+    args: &Args,
+    cell: &Cell,
+    imp: &ItemImpl,
+    lowered: Option<Lowered>,
+) -> TokenStream {
+    let self_ty = &imp.self_ty;
+    let name = fields.item.ident.to_string();
+    let state = fields.state_ident();
+    let count = Literal::usize_unsuffixed(fields.fields.len());
+    let grids = &fields.fields;
+    let names: Vec<String> = grids.iter().map(ToString::to_string).collect();
+    let defaults = attribute_defaults(args);
+    let kernel = &cell.f.sig.ident;
+    let arguments: Vec<TokenStream> = cell
+        .stencils
+        .iter()
+        .map(|(_, index)| {
+            let index = Literal::usize_unsuffixed(*index);
+            quote!(stencils[#index])
+        })
+        .collect();
+    let rate = if cell.scalar {
+        quote!([self.#kernel(#(#arguments),*)])
+    } else {
+        quote!(self.#kernel(#(#arguments),*))
+    };
+    let (blocks, jacobian_fn, jacobian_call, jacobian_assoc, jacobian_impl) = match lowered {
+        Some(lowered) => {
+            let (blocks, function) = blocks(cell, lowered);
+            let hidden = hidden_name(cell);
+            (
+                blocks,
+                function,
+                quote!(blocks.copy_from_slice(&self.#hidden(#(#arguments),*));),
+                quote! {
+                    type Jacobian = Self;
+                    #[inline(always)]
+                    fn as_jacobian(&self) -> ::core::option::Option<&Self> {
+                        ::core::option::Option::Some(self)
+                    }
+                },
+                quote! {
+                    #[automatically_derived]
+                    impl ::odyn::Jacobian for #self_ty {
+                        type Matrix = ::odyn::grid::GridJacobian;
+                        /// Empty: a field model's pattern comes from its grid at run time.
+                        const NONZEROS: &'static [(usize, usize)] = &[];
+                        fn jacobian_matrix(&self, state: &#state) -> Self::Matrix {
+                            ::odyn::grid::jacobian_matrix(self, state)
+                        }
+                        #[inline]
+                        fn jacobian(&self, _: f64, y: &#state, jacobian: &mut Self::Matrix) {
+                            ::odyn::grid::jacobian(self, y, jacobian)
+                        }
+                        /// A cell's rate does not read the time: ∂f/∂t = 0.
+                        const TIME_DEPENDENT: bool = false;
+                        #[inline]
+                        fn time_derivative(&self, _: f64, _: &#state, dfdt: &mut #state) {
+                            ::odyn::State::as_mut_slice(dfdt).fill(0.0);
+                        }
+                    }
+                },
+            )
+        }
+        None => (
+            Vec::new(),
+            TokenStream::new(),
+            TokenStream::new(),
+            quote! {
+                type Jacobian = ::odyn::Unavailable<Self>;
+                #[inline(always)]
+                fn as_jacobian(&self) -> ::core::option::Option<&Self::Jacobian> {
+                    ::core::option::Option::None
+                }
+            },
+            TokenStream::new(),
+        ),
+    };
+    let imp = strip_cell_attribute(imp);
+    quote! {
+        #imp
+        #[automatically_derived]
+        impl #self_ty {
+            #jacobian_fn
+        }
+        #[automatically_derived]
+        impl ::odyn::grid::GridSystem<#count> for #self_ty {
+            const FIELDS: [&'static str; #count] = [#(#names),*];
+            const BLOCKS: &'static [::odyn::grid::Block] = &[#(#blocks),*];
+            #[inline(always)]
+            fn grids(&self) -> [&::odyn::grid::Grid; #count] {
+                [#(&self.#grids),*]
+            }
+            #[inline(always)]
+            fn cell(&self, stencils: &[::odyn::grid::Stencil; #count]) -> [f64; #count] {
+                #rate
+            }
+            #[inline(always)]
+            #[allow(unused_variables)]
+            fn cell_jacobian(&self, stencils: &[::odyn::grid::Stencil; #count], blocks: &mut [f64]) {
+                #jacobian_call
+            }
+        }
+        #jacobian_impl
+        #[automatically_derived]
+        impl ::odyn::Model for #self_ty {
+            type State = #state;
+            type SecondOrder = ::odyn::Unavailable<Self>;
+            const NAME: &'static str = #name;
+            #defaults
+            fn state(&self) -> #state {
+                ::odyn::grid::GridState::from_grids(&[#(&self.#grids),*], &[#(#names),*])
+            }
+            #[inline]
+            fn derivative(&self, _: f64, y: &#state, dydt: &mut #state) {
+                ::odyn::grid::derivative(self, y, dydt)
+            }
+            fn energy(&self, _: &#state) -> ::core::option::Option<f64> {
+                ::core::option::Option::None
+            }
+            #[inline(always)]
+            fn as_second_order(&self) -> ::core::option::Option<&Self::SecondOrder> {
+                ::core::option::Option::None
+            }
+            #jacobian_assoc
+            fn check(&self, state: &#state) -> ::odyn::Result<()> {
+                ::odyn::grid::check(self, state)
+            }
+        }
+    }
+}
+
+fn hidden_name(cell: &Cell) -> syn::Ident {
+    format_ident!(
+        "__odyn_{}_jacobian",
+        cell.f.sig.ident,
+        span = Span::mixed_site()
+    )
+}
+
+/// The structural non-zeros of the kernel's derivative as `odyn::grid::Block`s, and a hidden
+/// method returning their values at a cell, in the same order.
+fn blocks(cell: &Cell, lowered: Lowered) -> (Vec<TokenStream>, TokenStream) {
+    let Lowered {
+        mut graph,
+        outputs,
+        prologue,
+        ..
+    } = lowered;
+    let inputs = cell.stencils.len() * NEIGHBOURS.len();
+    let pattern = crate::sparsity::pattern(&graph, &outputs, inputs);
+    let mut differentiator = Differentiator::default();
+    let mut blocks = Vec::new();
+    let mut roots = Vec::new();
+    for (row, (&output, reads)) in outputs.iter().zip(&pattern).enumerate() {
+        for &variable in reads {
+            let (stencil, neighbour) = (variable / NEIGHBOURS.len(), variable % NEIGHBOURS.len());
+            let column = Literal::usize_unsuffixed(cell.stencils[stencil].1);
+            let (row, neighbour) = (
+                Literal::usize_unsuffixed(row),
+                Literal::usize_unsuffixed(neighbour),
+            );
+            blocks.push(quote! {
+                ::odyn::grid::Block { row: #row, column: #column, neighbour: #neighbour }
+            });
+            roots.push(differentiator.derivative(&mut graph, output, variable));
+        }
+    }
+    let components: Vec<TokenStream> = cell
+        .stencils
+        .iter()
+        .flat_map(|(s, _)| {
+            NEIGHBOURS.map(|n| {
+                let n = syn::Ident::new(n, Span::call_site());
+                quote!(#s.#n)
+            })
+        })
+        .collect();
+    let lets = straight_line(&graph, &roots, &components);
+    let values = roots.iter().map(|&id| operand(&graph, id, &components));
+    let prologue = prologue_tokens(&prologue);
+    let count = Literal::usize_unsuffixed(roots.len());
+    let hidden = hidden_name(cell);
+    let inputs = &cell.f.sig.inputs;
+    let function = quote! {
+        #[doc(hidden)]
+        #[inline(always)]
+        #[allow(unused_variables, unused_parens, non_snake_case, clippy::all)]
+        fn #hidden(#inputs) -> [f64; #count] {
+            #(#prologue)*
+            #(#lets)*
+            [#(#values),*]
+        }
+    };
+    (blocks, function)
+}

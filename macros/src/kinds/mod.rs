@@ -1,0 +1,2 @@
+//! Model kinds: one front-end each.
+pub(crate) mod grid;

@@ -1,0 +1,199 @@
+//! The sparse Jacobian of a field model and its Newton solve.
+
+use std::fmt;
+
+use faer::sparse::SparseColMatRef;
+
+use super::{Block, Boundary, NEIGHBOURS, neighbour};
+use crate::NewtonMatrix;
+use crate::sparse::{Factorizations, SparseSolver};
+
+/// The Jacobian ∂f/∂y of a field model, assembled from its cells' blocks, and the sparse
+/// matrix I − c·J the implicit methods solve with.
+///
+/// The pattern is stencil × grid × boundary: for every cell and every [`Block`] of the model,
+/// row (output field, cell) and column (input field, the neighbour through the input field's
+/// [`Boundary`]) — a periodic read wraps, a Neumann read past the edge lands on the edge cell
+/// (adding into its entry), a Dirichlet read past the edge is a constant and has no column.
+/// The pattern, where each cell's blocks go in it, and the symbolic factorization are made once,
+/// in [`GridJacobian::new`]; an evaluation writes values only, a factorization refills I − c·J
+/// and factorizes numerically (Cholesky when symmetric positive definite, as for diffusion, else
+/// LU), with no allocation.
+pub struct GridJacobian {
+    nx: usize,
+    ny: usize,
+    blocks: usize,
+    /// Per cell and block, the slot in the matrix of the block's entry; `usize::MAX` for a read
+    /// of a Dirichlet value.
+    slots: Vec<usize>,
+    /// Slot of every diagonal entry.
+    diagonal: Vec<usize>,
+    /// J's values, in the matrix's slots.
+    jacobian: Vec<f64>,
+    /// The blocks of the cell being evaluated.
+    cell: Vec<f64>,
+    solver: SparseSolver,
+}
+
+impl GridJacobian {
+    /// The Jacobian of a model whose fields have `boundaries` on an nx × ny grid and whose cells
+    /// have `blocks`.
+    pub fn new(nx: usize, ny: usize, boundaries: &[Boundary], blocks: &[Block]) -> Self {
+        let cells = nx * ny;
+        let n = boundaries.len() * cells;
+        let column = |k: usize, b: &Block| {
+            let (_, di, dj) = NEIGHBOURS[b.neighbour];
+            let to = neighbour(nx, ny, boundaries[b.column], k % nx, k / nx, di, dj)?;
+            Some((b.row * cells + k, b.column * cells + to))
+        };
+        let mut entries = Vec::with_capacity(cells * blocks.len());
+        for k in 0..cells {
+            entries.extend(blocks.iter().filter_map(|b| column(k, b)));
+        }
+        let solver = SparseSolver::new(n, &entries);
+        let mut slots = Vec::with_capacity(cells * blocks.len());
+        for k in 0..cells {
+            slots.extend(
+                blocks
+                    .iter()
+                    .map(|b| column(k, b).map_or(usize::MAX, |(row, col)| solver.slot(row, col))),
+            );
+        }
+        GridJacobian {
+            nx,
+            ny,
+            blocks: blocks.len(),
+            slots,
+            diagonal: (0..n).map(|i| solver.slot(i, i)).collect(),
+            jacobian: vec![0.0; solver.values.len()],
+            cell: vec![0.0; blocks.len()],
+            solver,
+        }
+    }
+
+    /// The grid's size, nx × ny.
+    pub fn grid(&self) -> (usize, usize) {
+        (self.nx, self.ny)
+    }
+
+    /// Structural non-zeros of the matrix (with the diagonal and the transpose of every entry).
+    pub fn nonzeros(&self) -> usize {
+        self.jacobian.len()
+    }
+
+    /// How often this Jacobian has factorized.
+    pub fn factorizations(&self) -> Factorizations {
+        self.solver.counts
+    }
+
+    /// Starts an evaluation: every value to zero.
+    pub(crate) fn begin(&mut self) {
+        self.jacobian.fill(0.0);
+    }
+
+    /// Room for cell k's block values.
+    #[inline(always)]
+    pub(crate) fn cell_blocks(&mut self, _k: usize) -> &mut [f64] {
+        &mut self.cell
+    }
+
+    /// Adds the block values just written for cell k into J.
+    #[inline(always)]
+    pub(crate) fn place(&mut self, k: usize) {
+        let slots = &self.slots[k * self.blocks..(k + 1) * self.blocks];
+        for (&slot, &value) in slots.iter().zip(&self.cell) {
+            if let Some(entry) = self.jacobian.get_mut(slot) {
+                *entry += value;
+            }
+        }
+    }
+
+    /// Gershgorin's discs of J, one per row: (centre Jᵢᵢ, radius Σⱼ≠ᵢ |Jᵢⱼ|). Every eigenvalue
+    /// lies in their union.
+    pub fn discs(&self) -> Vec<(f64, f64)> {
+        let n = self.diagonal.len();
+        let mut discs: Vec<(f64, f64)> = self
+            .diagonal
+            .iter()
+            .map(|&slot| (self.jacobian[slot], 0.0))
+            .collect();
+        let matrix = SparseColMatRef::new(self.solver.matrix().symbolic(), &self.jacobian);
+        for col in 0..n {
+            for (row, value) in matrix.row_idx_of_col(col).zip(matrix.val_of_col(col)) {
+                if row != col {
+                    discs[row].1 += value.abs();
+                }
+            }
+        }
+        discs
+    }
+
+    /// J as a dense matrix: for tests and small grids.
+    pub fn to_dense(&self) -> faer::Mat<f64> {
+        SparseColMatRef::new(self.solver.matrix().symbolic(), &self.jacobian).to_dense()
+    }
+
+    /// Forms I − c·J and factorizes it: the "factorization" of a step's cost.
+    pub fn factorize(&mut self, c: f64) -> bool {
+        for (w, j) in self.solver.values.iter_mut().zip(&self.jacobian) {
+            *w = -c * j;
+        }
+        for &slot in &self.diagonal {
+            self.solver.values[slot] += 1.0;
+        }
+        self.solver.factorize()
+    }
+
+    /// Solves the last factorization against `b` in place: the "solve" of a step's cost. False
+    /// when `b` has the wrong length or the solution is not finite.
+    pub fn substitute(&mut self, b: &mut [f64]) -> bool {
+        if b.len() != self.solver.rhs.len() {
+            return false;
+        }
+        self.solver.rhs.copy_from_slice(b);
+        self.solver.substitute();
+        b.copy_from_slice(&self.solver.rhs);
+        b.iter().all(|x| x.is_finite())
+    }
+}
+
+impl NewtonMatrix for GridJacobian {
+    /// The factorization lives in the sparse solver inside the matrix.
+    type Factors = ();
+
+    fn factors(&self) {}
+
+    fn factorize(&mut self, c: f64, _: &mut ()) -> bool {
+        GridJacobian::factorize(self, c)
+    }
+
+    fn solve(&mut self, _: &mut (), b: &mut [f64]) -> bool {
+        self.substitute(b)
+    }
+}
+
+impl Clone for GridJacobian {
+    fn clone(&self) -> Self {
+        GridJacobian {
+            nx: self.nx,
+            ny: self.ny,
+            blocks: self.blocks,
+            slots: self.slots.clone(),
+            diagonal: self.diagonal.clone(),
+            jacobian: self.jacobian.clone(),
+            cell: self.cell.clone(),
+            solver: self.solver.clone(),
+        }
+    }
+}
+
+impl fmt::Debug for GridJacobian {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("GridJacobian")
+            .field("grid", &(self.nx, self.ny))
+            .field("blocks", &self.blocks)
+            .field("nonzeros", &self.jacobian.len())
+            .field("factorizations", &self.solver.counts)
+            .finish_non_exhaustive()
+    }
+}

@@ -1,0 +1,517 @@
+//! Field models: state that is one or more 2-D grids of values (`u` and `v` of Gray–Scott), a
+//! right-hand side written per cell from the cell and its neighbours, and the sparse Jacobian
+//! assembled from stencil × grid × boundary.
+//!
+//! A field model marks its grids `#[field]` (type [`Grid`], all the same size) and writes one
+//! `#[cell]` method taking a [`Stencil`] per field it reads, named like the field, and returning
+//! the time derivative of every field at the cell — `f64` for one field, `[f64; F]` for F, in
+//! declaration order:
+//!
+//! ```ignore
+//! #[cell]
+//! fn reaction(&self, u: Stencil, v: Stencil) -> [f64; 2] {
+//!     let uvv = u.c * v.c * v.c;
+//!     [self.du * u.laplacian() / (self.dx * self.dx) - uvv + self.feed * (1.0 - u.c),
+//!      self.dv * v.laplacian() / (self.dx * self.dx) + uvv - (self.feed + self.kill) * v.c]
+//! }
+//! ```
+//!
+//! `#[system]` differentiates the method into one block per (output field, input field,
+//! neighbour) it reads — [`GridSystem::BLOCKS`] — and the runtime places those blocks for every
+//! cell, through each field's [`Boundary`], into a sparse matrix whose pattern and symbolic
+//! factorization are made once per run ([`GridJacobian`]). Every integrator runs on field models;
+//! the implicit ones solve with sparse Cholesky when I − c·J is symmetric positive definite
+//! (diffusion), else sparse LU.
+//!
+//! Cells are indexed k = j·nx + i, with i along x (east is i + 1) and j along y (north is j + 1).
+
+mod jacobian;
+
+use std::fmt;
+
+use crate::{Error, Model, Result, State};
+
+pub use jacobian::GridJacobian;
+
+/// What a stencil reads beyond the edge of a grid.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Boundary {
+    /// The grid wraps around: east of the last column is the first. Needs at least 3 cells a
+    /// side, so that a cell's east and west neighbours differ.
+    Periodic,
+    /// Zero flux: a read past the edge gives the nearest cell inside (a cell-centred grid
+    /// whose ghost cells mirror the edge cells, so the normal gradient is zero).
+    Neumann,
+    /// A fixed value past the edge: the grid holds the interior nodes of a vertex-centred mesh
+    /// whose boundary nodes all have this value.
+    Dirichlet(f64),
+}
+
+/// One field of a field model: an nx × ny grid of values and its boundary.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Grid {
+    nx: usize,
+    ny: usize,
+    boundary: Boundary,
+    values: Vec<f64>,
+}
+
+impl Grid {
+    /// A grid of `values`, k = j·nx + i.
+    ///
+    /// Errors: [`Error::InvalidInput`] when `values` does not have nx·ny entries, a side is 0,
+    /// a periodic side has fewer than 3 cells, or a Dirichlet value is not finite.
+    pub fn new(nx: usize, ny: usize, boundary: Boundary, values: Vec<f64>) -> Result<Self> {
+        let invalid = |reason: String| Err(Error::invalid("grid", reason));
+        if nx == 0 || ny == 0 {
+            return invalid(format!("is {nx}×{ny}; both sides need at least one cell"));
+        }
+        if boundary == Boundary::Periodic && (nx < 3 || ny < 3) {
+            return invalid(format!(
+                "is {nx}×{ny} and periodic; a periodic side needs at least 3 cells, or a cell's \
+                 east and west neighbours are the same cell"
+            ));
+        }
+        if let Boundary::Dirichlet(value) = boundary
+            && !value.is_finite()
+        {
+            return invalid(format!("has Dirichlet value {value}; it must be finite"));
+        }
+        if values.len() != nx * ny {
+            return invalid(format!(
+                "is {nx}×{ny} = {} cells but was given {} values",
+                nx * ny,
+                values.len()
+            ));
+        }
+        Ok(Grid {
+            nx,
+            ny,
+            boundary,
+            values,
+        })
+    }
+
+    /// A grid whose cell (i, j) holds `value(i, j)`. Errors: as [`Grid::new`].
+    pub fn from_fn(
+        nx: usize,
+        ny: usize,
+        boundary: Boundary,
+        mut value: impl FnMut(usize, usize) -> f64,
+    ) -> Result<Self> {
+        let values = (0..ny)
+            .flat_map(|j| (0..nx).map(move |i| (i, j)))
+            .map(|(i, j)| value(i, j))
+            .collect();
+        Grid::new(nx, ny, boundary, values)
+    }
+
+    /// Cells along x.
+    pub fn nx(&self) -> usize {
+        self.nx
+    }
+
+    /// Cells along y.
+    pub fn ny(&self) -> usize {
+        self.ny
+    }
+
+    /// The boundary.
+    pub fn boundary(&self) -> Boundary {
+        self.boundary
+    }
+
+    /// The values, k = j·nx + i.
+    pub fn values(&self) -> &[f64] {
+        &self.values
+    }
+
+    /// The values, mutably (the grid's size cannot change).
+    pub fn values_mut(&mut self) -> &mut [f64] {
+        &mut self.values
+    }
+}
+
+/// A cell and its eight neighbours in one field, as a `#[cell]` method reads them: `c` the
+/// cell, `e`/`w` east and west (i ± 1), `n`/`s` north and south (j ± 1), and the diagonals.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Stencil {
+    /// The cell (i, j).
+    pub c: f64,
+    /// (i + 1, j).
+    pub e: f64,
+    /// (i − 1, j).
+    pub w: f64,
+    /// (i, j + 1).
+    pub n: f64,
+    /// (i, j − 1).
+    pub s: f64,
+    /// (i + 1, j + 1).
+    pub ne: f64,
+    /// (i − 1, j + 1).
+    pub nw: f64,
+    /// (i + 1, j − 1).
+    pub se: f64,
+    /// (i − 1, j − 1).
+    pub sw: f64,
+}
+
+impl Stencil {
+    /// The five-point Laplacian times the squared spacing, e + w + n + s − 4c: divide by dx² for
+    /// ∇²u to second order.
+    #[inline(always)]
+    pub fn laplacian(&self) -> f64 {
+        self.e + self.w + self.n + self.s - 4.0 * self.c
+    }
+}
+
+/// The neighbours of a [`Stencil`] in the order of [`Block::neighbour`], with their offsets
+/// (di, dj).
+pub const NEIGHBOURS: [(&str, isize, isize); 9] = [
+    ("c", 0, 0),
+    ("e", 1, 0),
+    ("w", -1, 0),
+    ("n", 0, 1),
+    ("s", 0, -1),
+    ("ne", 1, 1),
+    ("nw", -1, 1),
+    ("se", 1, -1),
+    ("sw", -1, -1),
+];
+
+/// One structural non-zero of a cell's Jacobian: ∂(output field `row` at the cell)/∂(field
+/// `column` at neighbour `neighbour`, an index into [`NEIGHBOURS`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Block {
+    /// The output field.
+    pub row: usize,
+    /// The input field.
+    pub column: usize,
+    /// The neighbour, an index into [`NEIGHBOURS`].
+    pub neighbour: usize,
+}
+
+/// The state of a field model: every field's values, one field after another.
+#[derive(PartialEq)]
+pub struct GridState {
+    values: Vec<f64>,
+    nx: usize,
+    ny: usize,
+    names: &'static [&'static str],
+}
+
+impl GridState {
+    /// The state of a model's grids (their sizes checked by [`Model::check`]).
+    #[doc(hidden)]
+    pub fn from_grids(grids: &[&Grid], names: &'static [&'static str]) -> Self {
+        let (nx, ny) = grids.first().map_or((0, 0), |g| (g.nx, g.ny));
+        GridState {
+            values: grids
+                .iter()
+                .flat_map(|g| g.values.iter().copied())
+                .collect(),
+            nx,
+            ny,
+            names,
+        }
+    }
+
+    /// Cells along x.
+    pub fn nx(&self) -> usize {
+        self.nx
+    }
+
+    /// Cells along y.
+    pub fn ny(&self) -> usize {
+        self.ny
+    }
+
+    /// Number of fields.
+    pub fn fields(&self) -> usize {
+        self.names.len()
+    }
+
+    /// The values of field `k` (declaration order), k = j·nx + i; empty past the last field.
+    pub fn field(&self, k: usize) -> &[f64] {
+        let n = self.nx * self.ny;
+        self.values.get(k * n..(k + 1) * n).unwrap_or(&[])
+    }
+
+    /// The values of field `k`, mutably; empty past the last field.
+    pub fn field_mut(&mut self, k: usize) -> &mut [f64] {
+        let n = self.nx * self.ny;
+        self.values.get_mut(k * n..(k + 1) * n).unwrap_or(&mut [])
+    }
+
+    /// The values of the field called `name`, if there is one.
+    pub fn by_name(&self, name: &str) -> Option<&[f64]> {
+        let k = self.names.iter().position(|n| *n == name)?;
+        Some(self.field(k))
+    }
+}
+
+impl fmt::Debug for GridState {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("GridState")
+            .field("nx", &self.nx)
+            .field("ny", &self.ny)
+            .field("fields", &self.names)
+            .finish_non_exhaustive()
+    }
+}
+
+impl State for GridState {
+    #[inline(always)]
+    fn as_slice(&self) -> &[f64] {
+        &self.values
+    }
+
+    #[inline(always)]
+    fn as_mut_slice(&mut self) -> &mut [f64] {
+        &mut self.values
+    }
+
+    fn component_name(&self, index: usize) -> String {
+        let n = (self.nx * self.ny).max(1);
+        let name = self.names.get(index / n).copied().unwrap_or("?");
+        let k = index % n;
+        format!("{name}[{},{}]", k % self.nx.max(1), k / self.nx.max(1))
+    }
+}
+
+impl Clone for GridState {
+    fn clone(&self) -> Self {
+        GridState {
+            values: self.values.clone(),
+            ..*self
+        }
+    }
+
+    /// Reuses the buffer: the integrators copy states every step and must not allocate.
+    fn clone_from(&mut self, source: &Self) {
+        self.values.clone_from(&source.values);
+        (self.nx, self.ny, self.names) = (source.nx, source.ny, source.names);
+    }
+}
+
+/// A field model with F fields, implemented by `#[system]`.
+pub trait GridSystem<const F: usize>: Model<State = GridState> {
+    /// The fields' names, in declaration order.
+    const FIELDS: [&'static str; F];
+
+    /// The structural non-zeros of one cell's Jacobian, in the order
+    /// [`GridSystem::cell_jacobian`] writes them (empty with `jacobian = false`).
+    const BLOCKS: &'static [Block];
+
+    /// The model's grids, in declaration order.
+    fn grids(&self) -> [&Grid; F];
+
+    /// The time derivative of every field at a cell whose stencils are `stencils`.
+    fn cell(&self, stencils: &[Stencil; F]) -> [f64; F];
+
+    /// The values of [`GridSystem::BLOCKS`] at a cell, into `blocks` (as long as `BLOCKS`).
+    fn cell_jacobian(&self, stencils: &[Stencil; F], blocks: &mut [f64]);
+}
+
+/// The index of cell (i + di, j + dj) of an nx × ny grid with `boundary`, `None` for a read of
+/// a Dirichlet value.
+#[inline]
+fn neighbour(
+    nx: usize,
+    ny: usize,
+    boundary: Boundary,
+    i: usize,
+    j: usize,
+    di: isize,
+    dj: isize,
+) -> Option<usize> {
+    let (x, y) = (i as isize + di, j as isize + dj);
+    let (w, h) = (nx as isize, ny as isize);
+    let (x, y) = match boundary {
+        Boundary::Periodic => (x.rem_euclid(w), y.rem_euclid(h)),
+        Boundary::Neumann => (x.clamp(0, w - 1), y.clamp(0, h - 1)),
+        Boundary::Dirichlet(_) if x < 0 || y < 0 || x >= w || y >= h => return None,
+        Boundary::Dirichlet(_) => (x, y),
+    };
+    Some(y as usize * nx + x as usize)
+}
+
+/// The stencil of cell (i, j) in `values` through `boundary`, for any cell.
+#[inline]
+fn stencil_at(
+    values: &[f64],
+    nx: usize,
+    ny: usize,
+    boundary: Boundary,
+    i: usize,
+    j: usize,
+) -> Stencil {
+    let read = |(_, di, dj): (&str, isize, isize)| match neighbour(nx, ny, boundary, i, j, di, dj) {
+        Some(k) => values[k],
+        None => match boundary {
+            Boundary::Dirichlet(value) => value,
+            _ => 0.0,
+        },
+    };
+    let [c, e, w, n, s, ne, nw, se, sw] = NEIGHBOURS.map(read);
+    Stencil {
+        c,
+        e,
+        w,
+        n,
+        s,
+        ne,
+        nw,
+        se,
+        sw,
+    }
+}
+
+/// The stencil of an interior cell i of row `mid` (1 ≤ i < nx − 1), rows below and above given.
+#[inline(always)]
+fn interior(below: &[f64], mid: &[f64], above: &[f64], i: usize) -> Stencil {
+    Stencil {
+        c: mid[i],
+        e: mid[i + 1],
+        w: mid[i - 1],
+        n: above[i],
+        s: below[i],
+        ne: above[i + 1],
+        nw: above[i - 1],
+        se: below[i + 1],
+        sw: below[i - 1],
+    }
+}
+
+/// Calls `visit(k, stencils)` for every cell k of `y`, interior cells by direct reads and edge
+/// cells through their fields' boundaries.
+#[inline]
+fn for_each_cell<const F: usize>(
+    y: &GridState,
+    boundaries: [Boundary; F],
+    mut visit: impl FnMut(usize, &[Stencil; F]),
+) {
+    let (nx, ny) = (y.nx, y.ny);
+    let fields: [&[f64]; F] = std::array::from_fn(|f| y.field(f));
+    let edge = |i: usize, j: usize| -> [Stencil; F] {
+        std::array::from_fn(|f| stencil_at(fields[f], nx, ny, boundaries[f], i, j))
+    };
+    for j in 0..ny {
+        let interior_row = j > 0 && j + 1 < ny && nx > 2;
+        if !interior_row {
+            for i in 0..nx {
+                visit(j * nx + i, &edge(i, j));
+            }
+            continue;
+        }
+        let rows: [(&[f64], &[f64], &[f64]); F] = std::array::from_fn(|f| {
+            let v = fields[f];
+            (
+                &v[(j - 1) * nx..j * nx],
+                &v[j * nx..(j + 1) * nx],
+                &v[(j + 1) * nx..(j + 2) * nx],
+            )
+        });
+        visit(j * nx, &edge(0, j));
+        for i in 1..nx - 1 {
+            let stencils = std::array::from_fn(|f| {
+                let (below, mid, above) = rows[f];
+                interior(below, mid, above, i)
+            });
+            visit(j * nx + i, &stencils);
+        }
+        visit(j * nx + nx - 1, &edge(nx - 1, j));
+    }
+}
+
+/// Each grid's boundary, in field order.
+fn boundaries<M: GridSystem<F>, const F: usize>(model: &M) -> [Boundary; F] {
+    model.grids().map(Grid::boundary)
+}
+
+/// [`Model::derivative`] of a field model: the `#[cell]` method at every cell.
+#[doc(hidden)]
+#[inline]
+pub fn derivative<M: GridSystem<F>, const F: usize>(
+    model: &M,
+    y: &GridState,
+    dydt: &mut GridState,
+) {
+    let n = y.nx * y.ny;
+    let out = &mut dydt.values;
+    for_each_cell(y, boundaries(model), |k, stencils| {
+        let values = model.cell(stencils);
+        for (f, value) in values.into_iter().enumerate() {
+            out[f * n + k] = value;
+        }
+    });
+}
+
+/// [`crate::Jacobian::jacobian`] of a field model: every cell's blocks, placed.
+#[doc(hidden)]
+#[inline]
+pub fn jacobian<M: GridSystem<F>, const F: usize>(
+    model: &M,
+    y: &GridState,
+    jacobian: &mut GridJacobian,
+) {
+    jacobian.begin();
+    for_each_cell(y, boundaries(model), |k, stencils| {
+        let blocks = jacobian.cell_blocks(k);
+        model.cell_jacobian(stencils, blocks);
+        jacobian.place(k);
+    });
+}
+
+/// [`crate::Jacobian::jacobian_matrix`] of a field model.
+#[doc(hidden)]
+pub fn jacobian_matrix<M: GridSystem<F>, const F: usize>(
+    model: &M,
+    state: &GridState,
+) -> GridJacobian {
+    GridJacobian::new(state.nx, state.ny, &boundaries(model), M::BLOCKS)
+}
+
+/// [`Model::check`] of a field model: every grid the same size, and the state that size.
+#[doc(hidden)]
+pub fn check<M: GridSystem<F>, const F: usize>(model: &M, state: &GridState) -> Result<()> {
+    let bad = |what: String, reason: String| Error::BadModel {
+        model: M::NAME,
+        what,
+        reason,
+    };
+    let grids = model.grids();
+    let Some(first) = grids.first() else {
+        return Err(bad("the model".into(), "has no `#[field]` grids".into()));
+    };
+    for (name, grid) in M::FIELDS.iter().zip(&grids) {
+        if (grid.nx, grid.ny) != (first.nx, first.ny) {
+            return Err(bad(
+                format!("`{name}`"),
+                format!(
+                    "is {}×{} but `{}` is {}×{}; every field of a model shares one grid",
+                    grid.nx,
+                    grid.ny,
+                    M::FIELDS[0],
+                    first.nx,
+                    first.ny
+                ),
+            ));
+        }
+    }
+    if (state.nx, state.ny, state.values.len()) != (first.nx, first.ny, F * first.nx * first.ny) {
+        return Err(bad(
+            "the state".into(),
+            format!(
+                "is {}×{} with {} values; the model's fields are {}×{}, {} values in all",
+                state.nx,
+                state.ny,
+                state.values.len(),
+                first.nx,
+                first.ny,
+                F * first.nx * first.ny
+            ),
+        ));
+    }
+    Ok(())
+}

@@ -1,0 +1,272 @@
+//! A sparse square matrix with a fixed pattern and its factorizations: Cholesky (LLᵀ) when the
+//! values are symmetric and positive definite, else LU — the linear algebra of the particle and
+//! grid Newton matrices.
+//!
+//! The pattern is given once ([`SparseSolver::new`]), made structurally symmetric, and analysed
+//! symbolically once (AMD ordering, elimination tree); each solve then refills the values,
+//! factorizes numerically and substitutes, with no allocation. When the values are not
+//! symmetric, or Cholesky meets a non-positive pivot, the solve falls back to LU, whose symbolic
+//! analysis is made the first time it is needed and kept.
+
+use std::sync::Arc;
+
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::linalg::cholesky::llt::factor::LltRegularization;
+use faer::sparse::linalg::SupernodalThreshold;
+use faer::sparse::linalg::cholesky::{
+    CholeskySymbolicParams, LltRef, SymbolicCholesky, SymmetricOrdering,
+    factorize_symbolic_cholesky,
+};
+use faer::sparse::linalg::lu::{
+    LuRef, LuSymbolicParams, NumericLu, SymbolicLu, factorize_symbolic_lu,
+};
+use faer::sparse::{Pair, SparseColMatRef, SymbolicSparseColMat};
+use faer::{Conj, MatMut, Par, Side};
+
+/// How often a sparse Newton matrix has factorized: the symbolic analyses happen once per run,
+/// the numeric factorizations once per Newton iteration (or Rosenbrock step).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Factorizations {
+    /// Symbolic Cholesky analyses (fill-reducing ordering and elimination tree).
+    pub symbolic_cholesky: u64,
+    /// Symbolic LU analyses (made only if a Newton matrix is unsymmetric or indefinite).
+    pub symbolic_lu: u64,
+    /// Numeric Cholesky factorizations that succeeded.
+    pub cholesky: u64,
+    /// Numeric Cholesky factorizations abandoned at a non-positive pivot (a symmetric but
+    /// indefinite matrix), each followed by an LU: work done twice.
+    pub cholesky_failed: u64,
+    /// Numeric LU factorizations.
+    pub lu: u64,
+}
+
+/// A sparse LU: the symbolic analysis (shared by clones) and the numeric factors.
+type SparseLu = (Arc<SymbolicLu<usize>>, NumericLu<usize, f64>);
+
+/// After an indefinite matrix, this many factorizations skip the Cholesky attempt: an undamped
+/// 32² cloth hanging in its plane failed Cholesky on 132 of 133 Newton matrices, doing every
+/// factorization twice; retrying every ninth bounds that waste and still returns to Cholesky
+/// when the matrices become definite again.
+const SKIP_CHOLESKY_AFTER_FAILURE: u32 = 8;
+
+/// A sparse matrix of fixed pattern, its values, a right-hand side, and its factorizations.
+pub(crate) struct SparseSolver {
+    pattern: SymbolicSparseColMat<usize>,
+    /// The matrix's values, in the pattern's column-major order (see [`SparseSolver::slot`]).
+    pub(crate) values: Vec<f64>,
+    /// Slot of each entry's transpose.
+    transpose: Vec<usize>,
+    /// The right-hand side [`SparseSolver::substitute`] solves in place.
+    pub(crate) rhs: Vec<f64>,
+    cholesky: Arc<SymbolicCholesky<usize>>,
+    cholesky_values: Vec<f64>,
+    lu: Option<SparseLu>,
+    scratch: MemBuffer,
+    pub(crate) counts: Factorizations,
+    factored: Option<Factored>,
+    /// Factorizations left to go straight to LU after a Cholesky failed.
+    skip_cholesky: u32,
+}
+
+/// Which factorization [`SparseSolver::factorize`] made last.
+#[derive(Clone, Copy, Debug)]
+enum Factored {
+    Cholesky,
+    Lu,
+}
+
+impl SparseSolver {
+    /// An n × n matrix whose structural non-zeros are `entries` (row, column), their transposes
+    /// and the diagonal; every value zero. Duplicates are merged.
+    ///
+    /// The caller guarantees every index is below `n` (checked topology or grid).
+    pub(crate) fn new(n: usize, entries: &[(usize, usize)]) -> Self {
+        let pairs: Vec<Pair<usize, usize>> = entries
+            .iter()
+            .flat_map(|&(r, c)| [Pair::new(r, c), Pair::new(c, r)])
+            .chain((0..n).map(|i| Pair::new(i, i)))
+            .collect();
+        let (pattern, _) = SymbolicSparseColMat::try_new_from_indices(n, n, &pairs)
+            .expect("indices are in range: the caller checked them");
+        let mut solver_transpose = vec![0; pattern.compute_nnz()];
+        for col in 0..n {
+            let start = pattern.col_ptr()[col];
+            for (k, &row) in pattern.row_idx_of_col_raw(col).iter().enumerate() {
+                solver_transpose[start + k] = slot_in(&pattern, col, row);
+            }
+        }
+        let cholesky = factorize_symbolic_cholesky(
+            pattern.as_ref(),
+            Side::Lower,
+            SymmetricOrdering::Amd,
+            CholeskySymbolicParams::default(),
+        )
+        .expect("a symmetric pattern of checked size always has a symbolic Cholesky factor");
+        let scratch = MemBuffer::new(Self::cholesky_scratch(&cholesky));
+        SparseSolver {
+            values: vec![0.0; pattern.compute_nnz()],
+            cholesky_values: vec![0.0; cholesky.len_val()],
+            cholesky: Arc::new(cholesky),
+            pattern,
+            transpose: solver_transpose,
+            rhs: vec![0.0; n],
+            lu: None,
+            scratch,
+            counts: Factorizations {
+                symbolic_cholesky: 1,
+                ..Factorizations::default()
+            },
+            factored: None,
+            skip_cholesky: 0,
+        }
+    }
+
+    /// The index in [`SparseSolver::values`] of entry (row, column), which must be structural.
+    pub(crate) fn slot(&self, row: usize, col: usize) -> usize {
+        slot_in(&self.pattern, row, col)
+    }
+
+    /// The matrix as faer sees it.
+    pub(crate) fn matrix(&self) -> SparseColMatRef<'_, usize, f64> {
+        SparseColMatRef::new(self.pattern.as_ref(), &self.values)
+    }
+
+    fn cholesky_scratch(symbolic: &SymbolicCholesky<usize>) -> StackReq {
+        symbolic
+            .factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default())
+            .or(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq))
+    }
+
+    /// Whether the values are symmetric to rounding: every |aᵢⱼ − aⱼᵢ| within 1e-12 of the
+    /// largest entry. (Entry-wise relative tests fail on entries that are differences of nearly
+    /// equal terms, such as a spring's k·(1 − L/|d|) near rest.) Cholesky reads the lower
+    /// triangle, so what it ignores is a perturbation of that size.
+    fn is_symmetric(&self) -> bool {
+        let largest = self.values.iter().fold(0.0f64, |m, a| m.max(a.abs()));
+        let tolerance = 1e-12 * largest;
+        self.values
+            .iter()
+            .zip(&self.transpose)
+            .all(|(&a, &t)| (a - self.values[t]).abs() <= tolerance)
+    }
+
+    /// Factorizes the values: Cholesky when symmetric and positive definite, else LU (its
+    /// symbolic analysis made the first time; see [`SKIP_CHOLESKY_AFTER_FAILURE`]). False when
+    /// the matrix is singular.
+    pub(crate) fn factorize(&mut self) -> bool {
+        self.factored = None;
+        if self.skip_cholesky > 0 {
+            self.skip_cholesky -= 1;
+        } else if self.is_symmetric() {
+            let matrix = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
+            let factored = self.cholesky.factorize_numeric_llt(
+                &mut self.cholesky_values,
+                matrix,
+                Side::Lower,
+                LltRegularization::default(),
+                Par::Seq,
+                MemStack::new(&mut self.scratch),
+                Default::default(),
+            );
+            if factored.is_ok() {
+                self.counts.cholesky += 1;
+                self.factored = Some(Factored::Cholesky);
+                return true;
+            }
+            self.counts.cholesky_failed += 1;
+            self.skip_cholesky = SKIP_CHOLESKY_AFTER_FAILURE;
+        }
+        self.factorize_lu()
+    }
+
+    fn factorize_lu(&mut self) -> bool {
+        if self.lu.is_none() {
+            // faer's simplicial LU spent 92 % of a 64-particle cloth run (measured with perf);
+            // the supernodal one is the fast path for these block-structured matrices.
+            let params = LuSymbolicParams {
+                supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+                ..LuSymbolicParams::default()
+            };
+            let Ok(symbolic) = factorize_symbolic_lu(self.pattern.as_ref(), params) else {
+                return false;
+            };
+            let need = symbolic
+                .factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default())
+                .or(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq))
+                .or(Self::cholesky_scratch(&self.cholesky));
+            self.scratch = MemBuffer::new(need);
+            self.lu = Some((Arc::new(symbolic), NumericLu::new()));
+            self.counts.symbolic_lu += 1;
+        }
+        let Some((symbolic, numeric)) = &mut self.lu else {
+            return false;
+        };
+        let matrix = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
+        let factored = symbolic.factorize_numeric_lu(
+            numeric,
+            matrix,
+            Par::Seq,
+            MemStack::new(&mut self.scratch),
+            Default::default(),
+        );
+        if factored.is_err() {
+            return false;
+        }
+        self.counts.lu += 1;
+        self.factored = Some(Factored::Lu);
+        true
+    }
+
+    /// Solves the last factorization against [`SparseSolver::rhs`], in place.
+    pub(crate) fn substitute(&mut self) {
+        let n = self.rhs.len();
+        let rhs = MatMut::from_column_major_slice_mut(&mut self.rhs, n, 1);
+        let stack = MemStack::new(&mut self.scratch);
+        match (&self.factored, &self.lu) {
+            (Some(Factored::Cholesky), _) => LltRef::new(&self.cholesky, &self.cholesky_values)
+                .solve_in_place_with_conj(Conj::No, rhs, Par::Seq, stack),
+            (Some(Factored::Lu), Some((symbolic, numeric))) => LuRef::new_unchecked(
+                symbolic, numeric,
+            )
+            .solve_in_place_with_conj(Conj::No, rhs, Par::Seq, stack),
+            _ => {}
+        }
+    }
+
+    fn scratch_size(&self) -> StackReq {
+        let cholesky = Self::cholesky_scratch(&self.cholesky);
+        match &self.lu {
+            None => cholesky,
+            Some((lu, _)) => cholesky
+                .or(lu.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default()))
+                .or(lu.solve_in_place_scratch::<f64>(1, Par::Seq)),
+        }
+    }
+}
+
+fn slot_in(pattern: &SymbolicSparseColMat<usize>, row: usize, col: usize) -> usize {
+    let start = pattern.col_ptr()[col];
+    let rows = pattern.row_idx_of_col_raw(col);
+    start
+        + rows
+            .binary_search(&row)
+            .expect("every entry asked for is in the pattern")
+}
+
+impl Clone for SparseSolver {
+    fn clone(&self) -> Self {
+        SparseSolver {
+            pattern: self.pattern.clone(),
+            values: self.values.clone(),
+            transpose: self.transpose.clone(),
+            rhs: self.rhs.clone(),
+            cholesky: Arc::clone(&self.cholesky),
+            cholesky_values: self.cholesky_values.clone(),
+            lu: self.lu.clone(),
+            scratch: MemBuffer::new(self.scratch_size()),
+            counts: self.counts,
+            factored: self.factored,
+            skip_cholesky: self.skip_cholesky,
+        }
+    }
+}
