@@ -269,3 +269,216 @@ fn implicit_euler_is_stable_far_past_the_explicit_limit() {
     let counts = jacobian.factorizations();
     assert_eq!((counts.cholesky, counts.lu, counts.symbolic_lu), (1, 0, 0));
 }
+
+/// Gray–Scott: two fields coupled through u·v², for the two-field Jacobian, Neumann and
+/// periodic boundaries, and every integrator.
+#[system(integrator = ExplicitEuler, dt = 1.0)]
+pub struct GrayScott {
+    /// U.
+    #[field]
+    pub u: Grid,
+    /// V.
+    #[field]
+    pub v: Grid,
+    /// D_u.
+    pub du: f64,
+    /// D_v.
+    pub dv: f64,
+    /// F.
+    pub feed: f64,
+    /// k.
+    pub kill: f64,
+    /// Cell size.
+    pub dx: f64,
+}
+
+#[system]
+impl GrayScott {
+    #[cell]
+    fn reaction(&self, u: Stencil, v: Stencil) -> [f64; 2] {
+        let uvv = u.c * v.c * v.c;
+        let h2 = self.dx * self.dx;
+        [
+            self.du * u.laplacian() / h2 - uvv + self.feed * (1.0 - u.c),
+            self.dv * v.laplacian() / h2 + uvv - (self.feed + self.kill) * v.c,
+        ]
+    }
+}
+
+/// A small Gray–Scott grid, `boundary` on both fields, with smooth non-uniform fields.
+fn gray_scott(n: usize, boundary: Boundary) -> GrayScott {
+    let field = |a: f64, b: f64| {
+        Grid::from_fn(n, n, boundary, |i, j| {
+            a + b * ((i as f64 * 0.7).sin() + (j as f64 * 1.3).cos())
+        })
+        .unwrap()
+    };
+    GrayScott {
+        u: field(0.7, 0.1),
+        v: field(0.2, 0.05),
+        du: 2e-5,
+        dv: 1e-5,
+        feed: 0.037,
+        kill: 0.06,
+        // Coarse cells keep diffusion slow beside the reaction (D_u/dx² = 0.008): the methods'
+        // orders, not their stability, decide the errors.
+        dx: 0.05,
+    }
+}
+
+/// The dense J of `model` at its state against central differences of its f.
+fn check_jacobian<M>(model: &M)
+where
+    M: Jacobian<Matrix = odyn::grid::GridJacobian, State = GridState>,
+{
+    let state = model.state();
+    let mut jacobian = model.jacobian_matrix(&state);
+    model.jacobian(0.0, &state, &mut jacobian);
+    let dense = jacobian.to_dense();
+    let n = state.as_slice().len();
+    let (mut plus, mut minus, mut fp, mut fm) =
+        (state.clone(), state.clone(), state.clone(), state.clone());
+    let h = 1e-6;
+    let scale = dense.norm_max();
+    for c in 0..n {
+        plus.clone_from(&state);
+        minus.clone_from(&state);
+        plus.as_mut_slice()[c] += h;
+        minus.as_mut_slice()[c] -= h;
+        model.derivative(0.0, &plus, &mut fp);
+        model.derivative(0.0, &minus, &mut fm);
+        for r in 0..n {
+            let fd = (fp.as_slice()[r] - fm.as_slice()[r]) / (2.0 * h);
+            assert!(
+                (dense[(r, c)] - fd).abs() <= 1e-7 * scale,
+                "J[{r}][{c}] = {} but finite differences give {fd}",
+                dense[(r, c)]
+            );
+        }
+    }
+}
+
+/// Two coupled fields on every boundary: the generated blocks, placed through the boundary
+/// (periodic wrap, Neumann's reads folded onto the edge cell), match finite differences.
+#[test]
+fn two_field_jacobian_matches_finite_differences_on_every_boundary() {
+    for boundary in [
+        Boundary::Periodic,
+        Boundary::Neumann,
+        Boundary::Dirichlet(0.3),
+    ] {
+        check_jacobian(&gray_scott(5, boundary));
+    }
+}
+
+/// Pure diffusion (F = k = 0 and no v) conserves the total of u on periodic and Neumann
+/// (zero-flux) grids: the five-point fluxes cancel in pairs. Explicit Euler keeps the sum to
+/// rounding over 1000 steps.
+#[test]
+fn diffusion_conserves_the_total_on_periodic_and_neumann_grids() {
+    for boundary in [Boundary::Periodic, Boundary::Neumann] {
+        let mut model = gray_scott(12, boundary);
+        (model.feed, model.kill) = (0.0, 0.0);
+        model.v.values_mut().fill(0.0);
+        let total = |s: &GridState| s.field(0).iter().sum::<f64>();
+        let start = total(&model.state());
+        let trajectory = model.simulate().steps(1000).run().unwrap();
+        let end = total(&trajectory.samples.last().unwrap().state);
+        assert!(
+            (end - start).abs() < 1e-11 * start,
+            "{boundary:?}: total {start} became {end}"
+        );
+    }
+}
+
+/// Every integrator that needs only f (and J) runs on a field model: against a DOP853 reference
+/// at rtol 1e-12 over t = 20, each converges at its order p: the error ratio between dt = 1 and
+/// 1/2 gives p − 0.25 < measured < p + 1 (Tsit5 measures 5.9: its fifth-order error constant is
+/// tuned small, so the sixth-order term still shows at these steps), and DOP853, whose error at dt = 1
+/// is already near the reference's, agrees to 1e-9.
+#[test]
+fn every_first_order_method_runs_on_a_field_model() {
+    let model = gray_scott(8, Boundary::Periodic);
+    let reference = model
+        .simulate()
+        .integrator(Method::Dop853)
+        .tolerances(1e-12, 1e-14)
+        .duration(20.0)
+        .run()
+        .unwrap();
+    let reference = reference.samples.last().unwrap().state.clone();
+    let error = |method: Method, dt: f64| {
+        let run = model
+            .simulate()
+            .integrator(method)
+            .dt(dt)
+            .duration(20.0)
+            .run()
+            .unwrap();
+        let state = &run.samples.last().unwrap().state;
+        (state.as_slice().iter())
+            .zip(reference.as_slice())
+            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()))
+    };
+    for (method, order, dt) in [
+        (Method::ExplicitEuler, 1.0, 1.0),
+        (Method::ImplicitEuler, 1.0, 1.0),
+        (Method::Rosenbrock23, 2.0, 1.0),
+        (Method::Rk4, 4.0, 1.0),
+        (Method::Tsit5, 5.0, 1.0),
+        (Method::Rodas5P, 5.0, 1.0),
+    ] {
+        let measured = (error(method, dt) / error(method, dt / 2.0)).log2();
+        assert!(
+            measured > order - 0.25 && measured < order + 1.0,
+            "{method:?}: order {measured}"
+        );
+    }
+    let e = error(Method::Dop853, 1.0);
+    assert!(e < 1e-9, "DOP853: {e}");
+}
+
+/// At the uniform background (u, v) = (1, 0) the Jacobian is circulant and the checkerboard
+/// mode's eigenvalue −8D_u/dx² − F sits on a Gershgorin rim: explicit Euler's predicted limit
+/// is 2/(8D_u/dx² + F) exactly (the example's check of the dx²/(4D_u), less F's share).
+#[test]
+fn gray_scott_explicit_limit_is_predicted_from_the_discs() {
+    let mut model = gray_scott(16, Boundary::Periodic);
+    // Pearson's cells, where diffusion sets the limit.
+    model.dx = 2.5 / 256.0;
+    model.u.values_mut().fill(1.0);
+    model.v.values_mut().fill(0.0);
+    let state = model.state();
+    let predicted = gershgorin_limit(&model, 0.0, &state, Method::ExplicitEuler).unwrap();
+    let theory = 2.0 / (8.0 * model.du / (model.dx * model.dx) + model.feed);
+    assert!(
+        (predicted / theory - 1.0).abs() < 1e-12,
+        "{predicted} vs {theory}"
+    );
+    assert_eq!(
+        gershgorin_limit(&model, 0.0, &state, Method::ImplicitEuler).unwrap(),
+        f64::INFINITY
+    );
+}
+
+/// Bad input is a typed error: a grid whose values do not fill it, a periodic side too short
+/// for distinct neighbours, and fields of different sizes in one model.
+#[test]
+fn bad_grids_are_typed_errors() {
+    let wrong = Grid::new(4, 4, Boundary::Neumann, vec![0.0; 15]).unwrap_err();
+    assert!(
+        wrong.to_string().contains("16 cells but was given 15"),
+        "{wrong}"
+    );
+    let short = Grid::new(2, 8, Boundary::Periodic, vec![0.0; 16]).unwrap_err();
+    assert!(short.to_string().contains("at least 3"), "{short}");
+    let nan = Grid::new(3, 3, Boundary::Dirichlet(f64::NAN), vec![0.0; 9]).unwrap_err();
+    assert!(nan.to_string().contains("finite"), "{nan}");
+    let mut model = gray_scott(6, Boundary::Periodic);
+    model.v = Grid::new(5, 6, Boundary::Periodic, vec![0.0; 30]).unwrap();
+    let error = model.simulate().steps(1).run().unwrap_err();
+    assert!(
+        matches!(error, odyn::Error::BadModel { .. }) && error.to_string().contains("5×6"),
+        "{error}"
+    );
+}
