@@ -6,7 +6,7 @@
 //! bodies. So the struct must come before its impl block, in the same module.
 
 use proc_macro2::TokenStream;
-use quote::quote;
+use quote::{ToTokens, quote};
 use syn::parse::{Parse, ParseStream};
 use syn::{Item, ItemImpl, ItemStruct, Type};
 
@@ -176,10 +176,34 @@ impl Parse for Forwarded {
     }
 }
 
+/// The input of `__system_impl!` for a rejected struct: `! impl …`; holds the impl block with
+/// odyn's method attributes removed.
+struct Rejected(ItemImpl);
+
+impl Parse for Rejected {
+    fn parse(input: ParseStream<'_>) -> syn::Result<Self> {
+        input.parse::<syn::Token![!]>()?;
+        let mut imp: ItemImpl = input.parse()?;
+        for member in &mut imp.items {
+            if let syn::ImplItem::Fn(f) = member {
+                f.attrs.retain(|a| {
+                    !["cell", "pair", "particle"]
+                        .iter()
+                        .any(|name| a.path().is_ident(name))
+                });
+            }
+        }
+        Ok(Rejected(imp))
+    }
+}
+
 /// Struct and impl together: the runtime trait impls.
 pub(crate) fn system_impl(input: TokenStream) -> TokenStream {
     if let Err(error) = crate::limits::check(&input) {
         return error.to_compile_error();
+    }
+    if let Ok(rejected) = syn::parse2::<Rejected>(input.clone()) {
+        return rejected.0.into_token_stream();
     }
     let Forwarded { args, item, imp } = match syn::parse2(input) {
         Ok(forwarded) => forwarded,
@@ -274,7 +298,7 @@ fn too_deep(item: TokenStream, error: syn::Error) -> TokenStream {
 #[cfg(test)]
 mod tests {
     use proc_macro2::TokenStream;
-    use quote::quote;
+    use quote::{ToTokens, quote};
 
     /// Checks the pretty-printed expansion of `input` against `tests/snapshots/<name>.rs`;
     /// `ODYN_BLESS=1 cargo test -p odyn-macros` rewrites the snapshots after a reviewed change.

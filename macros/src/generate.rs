@@ -109,13 +109,15 @@ pub(crate) fn state(model: &Model<'_>) -> TokenStream {
 }
 
 /// The `macro_rules!` that hands the struct to the impl block's expansion. On `Err` (the struct was
-/// rejected) it passes the impl block through untouched, so no follow-on errors drown the real one.
+/// rejected) it hands over only the impl block, marked `!`, which comes back with odyn's method
+/// attributes (`#[cell]`, `#[pair]`, `#[particle]`) removed and nothing added, so no follow-on
+/// errors drown the real one.
 pub(crate) fn forwarder(item: &ItemStruct, args: &TokenStream, ok: bool) -> TokenStream {
     let name = forwarder_name(&item.ident);
     let body = if ok {
         quote!(::odyn::__private::system_impl! { [#args] #item $($item)* })
     } else {
-        quote!($($item)*)
+        quote!(::odyn::__private::system_impl! { ! $($item)* })
     };
     quote! {
         #[doc(hidden)]

@@ -11,12 +11,19 @@ use crate::derivative::Differentiator;
 use crate::generate::{attribute_defaults, operand, prologue_tokens, straight_line};
 use crate::lower::Lowered;
 
-/// The impl block with `#[cell]` removed (it is odyn's).
-pub(super) fn strip_cell_attribute(imp: &ItemImpl) -> ItemImpl {
+/// The impl block with `#[cell]` removed (it is odyn's), and the body of method `silenced`, if
+/// any, replaced by one that is never run (the crate does not compile).
+pub(super) fn strip_cell_attribute(imp: &ItemImpl, silenced: Option<&syn::Ident>) -> ItemImpl {
     let mut imp = imp.clone();
     for member in &mut imp.items {
         if let ImplItem::Fn(f) = member {
             f.attrs.retain(|a| !a.path().is_ident("cell"));
+            if Some(&f.sig.ident) == silenced {
+                f.attrs.push(syn::parse_quote!(#[allow(unused_variables)]));
+                f.block = syn::parse_quote!({
+                    ::core::unreachable!("odyn rejected this model at compile time")
+                });
+            }
         }
     }
     imp
@@ -104,7 +111,7 @@ pub(super) fn impls(
             TokenStream::new(),
         ),
     };
-    let imp = strip_cell_attribute(imp);
+    let imp = strip_cell_attribute(imp, None);
     quote! {
         #imp
         #[automatically_derived]

@@ -287,7 +287,7 @@ pub(crate) fn expand_impl(args: &Args, item: &ItemStruct, imp: &ItemImpl) -> Tok
     let mut errors = Errors::default();
     let Some(fields) = parse_struct(item, &mut errors) else {
         return with_error(
-            generate::strip_cell_attribute(imp),
+            generate::strip_cell_attribute(imp, None),
             errors.finish().expect_err("a rejected model has errors"),
         );
     };
@@ -314,6 +314,7 @@ pub(crate) fn expand_impl(args: &Args, item: &ItemStruct, imp: &ItemImpl) -> Tok
         );
     }
     let mut lowered = None;
+    let mut misread = false;
     if let Some(cell) = &cell {
         let name = &cell.f.sig.ident;
         let (_, state_reads) =
@@ -332,7 +333,9 @@ pub(crate) fn expand_impl(args: &Args, item: &ItemStruct, imp: &ItemImpl) -> Tok
             .iter()
             .flat_map(|(s, _)| NEIGHBOURS.map(|n| reads::input(s, n)))
             .collect();
+        let before = errors.len();
         let renamed = reads::rename(&cell.f, &cell.stencils, &mut errors);
+        misread = errors.len() > before;
         if args.no_jacobian.is_none() && errors.is_empty() {
             let model = fields.parameter_model();
             let outputs = fields.fields.len();
@@ -344,11 +347,15 @@ pub(crate) fn expand_impl(args: &Args, item: &ItemStruct, imp: &ItemImpl) -> Tok
     }
     match (errors.finish(), cell) {
         (Ok(()), Some(cell)) => generate::impls(&fields, args, &cell, imp, lowered),
-        (result, _) => {
+        (result, cell) => {
             let error = result
                 .err()
                 .unwrap_or_else(|| syn::Error::new_spanned(&imp.self_ty, "field model rejected"));
-            let rejected = with_error(generate::strip_cell_attribute(imp), error);
+            // A misread stencil (`u.nn`, `u.gradient()`) is also an error of rustc's in the
+            // user's own body: emitted as written, it would be reported twice.
+            let silenced = cell.filter(|_| misread).map(|c| c.f.sig.ident);
+            let imp = generate::strip_cell_attribute(imp, silenced.as_ref());
+            let rejected = with_error(imp, error);
             let stub = crate::generate::stub_model(&item.ident, &fields.state_ident());
             quote!(#rejected #stub)
         }

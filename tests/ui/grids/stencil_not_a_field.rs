@@ -1,0 +1,21 @@
+use odyn::grid::{Grid, Stencil};
+use odyn::system;
+
+#[system]
+struct Brusselator {
+    #[field]
+    u: Grid,
+    #[field]
+    v: Grid,
+    a: f64,
+}
+
+#[system]
+impl Brusselator {
+    #[cell]
+    fn rate(&self, u: Stencil, w: Stencil) -> [f64; 2] {
+        [u.c, w.c * self.a]
+    }
+}
+
+fn main() {}
