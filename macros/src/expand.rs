@@ -11,9 +11,7 @@ use syn::parse::{Parse, ParseStream};
 use syn::{Item, ItemImpl, ItemStruct, Type};
 
 use crate::errors::{Errors, with_error};
-use crate::kinds::grid;
-use crate::model::Order;
-use crate::{args, functions, generate, lower, model, particles};
+use crate::{args, generate, kinds};
 
 /// `#[system(...)]` on an item.
 pub(crate) fn system(args: TokenStream, item: TokenStream) -> TokenStream {
@@ -21,7 +19,7 @@ pub(crate) fn system(args: TokenStream, item: TokenStream) -> TokenStream {
         return too_deep(item, error);
     }
     match syn::parse2::<Item>(item.clone()) {
-        Ok(Item::Struct(s)) => expand_struct(args, &s),
+        Ok(Item::Struct(s)) => kinds::expand_struct(args, &s),
         Ok(Item::Impl(i)) => forward_impl(args, &i),
         Ok(other) => {
             let message = "`#[system]` goes on a model struct and on that struct's `impl` block";
@@ -35,85 +33,6 @@ pub(crate) fn system(args: TokenStream, item: TokenStream) -> TokenStream {
             with_error(other, error)
         }
         Err(error) => with_error(item, error),
-    }
-}
-
-/// The struct half: the stripped struct, its state type, and the forwarding macro.
-fn expand_struct(args_tokens: TokenStream, item: &ItemStruct) -> TokenStream {
-    if particles::is_particle_model(item) {
-        return expand_particle_struct(args_tokens, item);
-    }
-    if grid::is_grid_model(item) {
-        return expand_grid_struct(args_tokens, item);
-    }
-    let mut errors = Errors::default();
-    let args = args::parse(args_tokens.clone(), &mut errors);
-    let model = model::parse(item, &mut errors);
-    if let (Some(model), Some((ident, info))) = (&model, &args.integrator)
-        && info.needs_second_order
-        && model.order == Order::First
-    {
-        errors.at(
-            ident,
-            format_args!(
-                "`{ident}` needs a second-order model (`#[position]`/`#[velocity]` fields), but \
-                 `{}` is first-order (`#[state]` fields); use `ExplicitEuler` or `Rk4`",
-                item.ident
-            ),
-        );
-    }
-    let stripped = model::strip_roles(item);
-    match (errors.finish(), model) {
-        (Ok(()), Some(model)) => {
-            let state = generate::state(&model);
-            let forwarder = generate::forwarder(item, &args_tokens, true);
-            quote!(#stripped #state #forwarder)
-        }
-        (result, _) => {
-            let error = result.err().map(|e| e.to_compile_error());
-            let forwarder = generate::forwarder(item, &args_tokens, false);
-            quote!(#stripped #error #forwarder)
-        }
-    }
-}
-
-/// The struct half of a particle model.
-fn expand_particle_struct(args_tokens: TokenStream, item: &ItemStruct) -> TokenStream {
-    let mut errors = Errors::default();
-    args::parse(args_tokens.clone(), &mut errors);
-    let particles = particles::parse_struct(item, &mut errors);
-    let stripped = particles::strip(item);
-    match (errors.finish(), particles) {
-        (Ok(()), Some(particles)) => {
-            let state = particles::state(&particles);
-            let forwarder = generate::forwarder(item, &args_tokens, true);
-            quote!(#stripped #state #forwarder)
-        }
-        (result, _) => {
-            let error = result.err().map(|e| e.to_compile_error());
-            let forwarder = generate::forwarder(item, &args_tokens, false);
-            quote!(#stripped #error #forwarder)
-        }
-    }
-}
-
-/// The struct half of a field model.
-fn expand_grid_struct(args_tokens: TokenStream, item: &ItemStruct) -> TokenStream {
-    let mut errors = Errors::default();
-    args::parse(args_tokens.clone(), &mut errors);
-    let fields = grid::parse_struct(item, &mut errors);
-    let stripped = grid::strip(item);
-    match (errors.finish(), fields) {
-        (Ok(()), Some(fields)) => {
-            let state = grid::state(&fields);
-            let forwarder = generate::forwarder(item, &args_tokens, true);
-            quote!(#stripped #state #forwarder)
-        }
-        (result, _) => {
-            let error = result.err().map(|e| e.to_compile_error());
-            let forwarder = generate::forwarder(item, &args_tokens, false);
-            quote!(#stripped #error #forwarder)
-        }
     }
 }
 
@@ -211,68 +130,7 @@ pub(crate) fn system_impl(input: TokenStream) -> TokenStream {
     };
     let mut errors = Errors::default();
     let args = args::parse(args, &mut errors);
-    if particles::is_particle_model(&item) {
-        return particles::expand_impl(&args, &item, &imp);
-    }
-    if grid::is_grid_model(&item) {
-        return grid::expand_impl(&args, &item, &imp);
-    }
-    let Some(model) = model::parse(&item, &mut errors) else {
-        return with_error(
-            imp,
-            errors.finish().expect_err("a rejected model has errors"),
-        );
-    };
-    let functions = functions::parse(&imp, &model, &mut errors);
-    if let (Some((ident, info)), Some(force)) = (&args.integrator, &functions.force)
-        && info.needs_velocity_free_forces
-    {
-        let reads = functions::velocity_reads(force, &model);
-        if let Some((field, tokens)) = reads.first() {
-            errors.at(
-                ident,
-                format_args!(
-                    "`{ident}` needs forces that do not read velocities, but `acceleration` reads \
-                     `self.{field}`; use `VelocityVerlet` or `Leapfrog`"
-                ),
-            );
-            errors.at(tokens, format_args!("`self.{field}` is read here"));
-        }
-    }
-    let lowered = match (&functions.force, &args.no_jacobian) {
-        (Some(force), None) => match lower::lower(&model, &force.original) {
-            Ok(lowered) => Some(lowered),
-            Err(error) => {
-                errors.push(error);
-                None
-            }
-        },
-        _ => None,
-    };
-    if let (Some(no), Some((ident, info))) = (&args.no_jacobian, &args.integrator)
-        && info.needs_jacobian
-    {
-        errors.at(
-            no,
-            format_args!("`{ident}` needs the Jacobian that `jacobian = false` turns off"),
-        );
-    }
-    match errors.finish() {
-        Ok(()) => {
-            let generated =
-                generate::model_impls(&model, &args, &functions, &imp, lowered.is_some());
-            let jacobian = match (lowered, &functions.force) {
-                (Some(lowered), Some(force)) => generate::jacobian(&model, lowered, force, &imp),
-                _ => TokenStream::new(),
-            };
-            quote!(#imp #generated #jacobian)
-        }
-        Err(error) => {
-            let stub = generate::stub_model(model.ident(), &model.state_ident());
-            let rejected = with_error(imp, error);
-            quote!(#rejected #stub)
-        }
-    }
+    kinds::expand_impl(&args, &item, &imp)
 }
 
 /// Input too deep to parse: the error, and the item unchanged (rustc parses it, on a stack that
@@ -319,6 +177,24 @@ mod tests {
         assert_eq!(
             pretty, expected,
             "expansion of `{name}` changed; review, then bless with ODYN_BLESS=1"
+        );
+    }
+
+    #[test]
+    fn grid_expansion() {
+        snapshot(
+            "heat",
+            quote! {
+                [integrator = ImplicitEuler, dt = 0.001]
+                pub struct Heat {
+                    #[field] pub u: Grid,
+                    pub d: f64, pub dx: f64,
+                }
+                impl Heat {
+                    #[cell]
+                    fn conduction(&self, u: Stencil) -> f64 { self.d * u.laplacian() / (self.dx * self.dx) }
+                }
+            },
         );
     }
 

@@ -5,6 +5,8 @@
 //! returns the same id — so common subexpressions are shared for free, and the smart
 //! constructors fold constants and the identities 0 + x, 1·x, 0·x, −(−x), x¹, x⁰. This stage is
 //! pure: no syn, no quote.
+//!
+//! (About half of this file is its unit tests of the smart constructors' simplifications.)
 
 use std::collections::HashMap;
 

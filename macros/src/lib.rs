@@ -1,28 +1,49 @@
-//! The `#[system]` attribute of odyn: a shim that hands `proc_macro2` tokens to `expand`.
+//! The `#[system]` attribute of odyn: one pipeline of small stages, with a front-end per model
+//! kind.
 //!
-//! The pipeline, one file a stage: `args` (the attribute's arguments) → `model` (the struct:
-//! state fields, their roles and shapes) → `functions` (the impl block: the force, derivative
-//! and energy bodies, with state reads made explicit) → `lower` (the force body as an
-//! expression graph, `ir`) → `derivative` (its exact Jacobian, pure: no syn, no quote) →
-//! `generate` (the state type, the Jacobian as straight-line code, the runtime trait impls).
-//! `particles` runs the same stages per force kernel for particle models. `expand` wires them
-//! together; `errors` collects every problem so a user sees all of them at once, each at its own
-//! token.
+//! ```text
+//!   #[system] struct / impl ──► expand ──► kinds::Kind::of(struct)
+//!                                            │  fixed / particles / grid front-end:
+//!                                            │  recognise the struct and the functions,
+//!                                            │  report what is rejected at its token
+//!                                            ▼
+//!   args ─► model (state description) ─► rewrite (self.x → state locals)
+//!        ─► lower (body → expression graph, ir) ─► derivative / sparsity (∂f, pattern)
+//!        ─► generate (straight-line code) ─► the kind's generate (runtime trait impls)
+//! ```
+//!
+//! Shared stages, one file or directory each, that know nothing of the kinds:
+//!
+//! - `args`: the attribute's arguments (`integrator`, `dt`, `rtol`, `atol`, `jacobian`);
+//! - `model`: the state description a front-end builds — fields, roles, shapes;
+//! - `rewrite`: function bodies with every read of state made explicit;
+//! - `lower`: a body to the expression graph `ir` (`lower` for a whole-state function,
+//!   `lower_kernel` for a kernel of its arguments);
+//! - `derivative`, `sparsity`: exact derivatives and structural patterns of the graph (pure: no
+//!   syn, no quote);
+//! - `generate`: the forwarding macro, stub impls, defaults, and the graph as straight-line code;
+//! - `errors`, `limits`: every problem reported at its own token; inputs too deep to expand.
+//!
+//! Model kinds, under `kinds/` (see its module docs for adding one): `fixed` (fixed-size
+//! first- and second-order models), `particles` (`Vec` positions with pair and particle
+//! kernels), `grid` (`#[field]` grids with a `#[cell]` stencil kernel). Each has its struct and
+//! impl front-end and its own `generate` for the runtime trait impls of its `odyn` module.
+//!
+//! `expand` wires the two halves together: the struct's expansion defines a `macro_rules!`
+//! carrying the struct's tokens to the impl block's expansion, the one place that sees both.
 
 mod args;
 mod derivative;
 mod errors;
 mod expand;
-mod functions;
 mod generate;
 mod ir;
 mod kinds;
 mod limits;
 mod lower;
 mod model;
-mod particles;
+mod rewrite;
 mod sparsity;
-mod tangent;
 
 use proc_macro::TokenStream;
 

@@ -11,14 +11,19 @@
 //!
 //! - this file: the entry points, the values a sub-expression lowers to, the error message;
 //! - [`scope`]: locals, `let` patterns, and which expressions read the state or the time;
-//! - [`statements`]: statements, branches on parameters (`if`, `match`) and early `return`s;
-//! - [`expr`]: expressions — literals, paths, fields, operators, calls, the state literal;
+//! - [`statements`]: statements: `let`, assignments, state-free statements;
+//! - [`branches`]: branches on parameters (`if`, `match`) and early `return`s from them;
+//! - [`expr`]: expressions — literals, paths, fields, operators, calls;
+//! - [`state`]: reads of state fields, parameter shapes, the state literal and the function's
+//!   value in state layout;
 //! - [`methods`]: the one table of supported methods, with their rules and the list the error
 //!   messages print.
 
+mod branches;
 mod expr;
 mod methods;
 mod scope;
+mod state;
 mod statements;
 
 use std::collections::HashMap;

@@ -143,6 +143,15 @@ pub(crate) fn state(fields: &Fields<'_>) -> TokenStream {
     }
 }
 
+/// The struct half: the struct without `#[field]`, and its state type when accepted.
+pub(crate) fn expand_struct(
+    item: &ItemStruct,
+    errors: &mut Errors,
+) -> (ItemStruct, Option<TokenStream>) {
+    let fields = parse_struct(item, errors);
+    (strip(item), fields.map(|f| state(&f)))
+}
+
 /// The `#[cell]` kernel.
 pub(crate) struct Cell {
     pub(crate) f: ImplItemFn,
@@ -318,7 +327,7 @@ pub(crate) fn expand_impl(args: &Args, item: &ItemStruct, imp: &ItemImpl) -> Tok
     if let Some(cell) = &cell {
         let name = &cell.f.sig.ident;
         let (_, state_reads) =
-            crate::functions::rewrite(&cell.f.block, &fields.rewriter_model(), name, &mut errors);
+            crate::rewrite::rewrite(&cell.f.block, &fields.rewriter_model(), name, &mut errors);
         if let Some(tokens) = state_reads.values().next() {
             errors.at(
                 tokens,

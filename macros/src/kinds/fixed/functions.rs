@@ -1,19 +1,13 @@
-//! Stage 3: the impl block — the force (or derivative) and energy functions, with every read of
-//! a state field made explicit so the runtime can evaluate them at any state.
-//!
-//! `self.x` for a state field `x` becomes a hygienic local bound to the state being evaluated;
-//! parameter reads (`self.k`) stay as they are. Any other use of `self` (a method call, passing
-//! `self`, `self` inside a macro) is an error: it would read the struct's own, stale state.
+//! The impl block of a fixed-size model: the force (or derivative) and energy functions.
 
 use std::collections::BTreeMap;
 
-use proc_macro2::{Span, TokenStream, TokenTree};
-use quote::{ToTokens, format_ident};
-use syn::visit_mut::{self, VisitMut};
-use syn::{Block, Expr, FnArg, Ident, ImplItem, ImplItemFn, ItemImpl, Member, ReturnType, Type};
+use proc_macro2::TokenStream;
+use syn::{Block, FnArg, Ident, ImplItem, ImplItemFn, ItemImpl, ReturnType, Type};
 
 use crate::errors::Errors;
 use crate::model::{Model, Order, Role, is_f64};
+use crate::rewrite::rewrite;
 
 /// The functions the macro reads; everything else in the impl block passes through untouched.
 pub(crate) struct Functions {
@@ -38,11 +32,6 @@ pub(crate) struct Function {
     pub(crate) body: Block,
     /// State fields the body reads, with the tokens of the first read (`self.x`).
     pub(crate) reads: BTreeMap<String, TokenStream>,
-}
-
-/// The local a state field `x` is bound to inside a rewritten body.
-pub(crate) fn state_local(field: &Ident) -> Ident {
-    format_ident!("__odyn_{}", field, span = Span::mixed_site())
 }
 
 /// The name of the force function a model of `order` must define.
@@ -197,107 +186,6 @@ fn read(
         output: output?,
         body,
         reads,
-    })
-}
-
-/// `block` with every `self.<state field>` of `model` replaced by the field's local and every other
-/// use of `self` reported; also the state fields read, with the tokens of the first read.
-pub(crate) fn rewrite(
-    block: &Block,
-    model: &Model<'_>,
-    function: &Ident,
-    errors: &mut Errors,
-) -> (Block, BTreeMap<String, TokenStream>) {
-    let mut rewriter = Rewriter {
-        model,
-        function,
-        reads: BTreeMap::new(),
-        errors,
-    };
-    let mut body = block.clone();
-    rewriter.visit_block_mut(&mut body);
-    (body, rewriter.reads)
-}
-
-/// Replaces `self.<state field>` with the field's local and rejects every other use of `self`.
-struct Rewriter<'m, 'e> {
-    model: &'m Model<'m>,
-    function: &'m Ident,
-    reads: BTreeMap<String, TokenStream>,
-    errors: &'e mut Errors,
-}
-
-impl Rewriter<'_, '_> {
-    fn reject_self(&mut self, span: Span, what: &str) {
-        self.errors.at_span(
-            span,
-            format_args!(
-                "{what} is not supported in `{}`: odyn evaluates it at states other than the \
-                 struct's own, so `self` may only be read through its fields (`self.k`, `self.x`)",
-                self.function
-            ),
-        );
-    }
-}
-
-impl VisitMut for Rewriter<'_, '_> {
-    fn visit_expr_mut(&mut self, expr: &mut Expr) {
-        if let Expr::Field(field) = expr
-            && is_self(&field.base)
-        {
-            if let Member::Named(name) = &field.member
-                && let Some(state) = self.model.field(name)
-            {
-                self.reads
-                    .entry(name.to_string())
-                    .or_insert_with(|| field.to_token_stream());
-                let local = state_local(state.ident);
-                *expr = syn::parse_quote_spanned!(name.span() => #local);
-            }
-            return;
-        }
-        if let Expr::MethodCall(call) = expr
-            && is_self(&call.receiver)
-        {
-            self.reject_self(
-                call.method.span(),
-                &format!("calling `self.{}()`", call.method),
-            );
-            return;
-        }
-        if is_self(expr) {
-            self.reject_self(span_of(expr), "using `self` other than to read a field");
-            return;
-        }
-        visit_mut::visit_expr_mut(self, expr);
-    }
-
-    fn visit_macro_mut(&mut self, mac: &mut syn::Macro) {
-        if let Some(span) = find_self(mac.tokens.clone()) {
-            let name = mac
-                .path
-                .segments
-                .last()
-                .map(|s| s.ident.to_string())
-                .unwrap_or_default();
-            self.reject_self(span, &format!("`self` inside `{name}!`"));
-        }
-    }
-}
-
-fn is_self(expr: &Expr) -> bool {
-    matches!(expr, Expr::Path(p) if p.qself.is_none() && p.path.is_ident("self"))
-}
-
-fn span_of(expr: &Expr) -> Span {
-    syn::spanned::Spanned::span(expr)
-}
-
-fn find_self(tokens: TokenStream) -> Option<Span> {
-    tokens.into_iter().find_map(|tree| match tree {
-        TokenTree::Ident(i) if i == "self" => Some(i.span()),
-        TokenTree::Group(g) => find_self(g.stream()),
-        _ => None,
     })
 }
 

@@ -10,8 +10,9 @@
 use proc_macro2::{Span, TokenStream};
 use quote::{format_ident, quote};
 
+use super::jacobian::JacobianBody;
 use crate::derivative::Differentiator;
-use crate::generate::{JacobianBody, lets, operand};
+use crate::generate::{lets, operand};
 use crate::ir::{ExprId, Graph, Node};
 use crate::sparsity::column_groups;
 

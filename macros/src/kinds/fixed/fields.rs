@@ -1,0 +1,187 @@
+//! The struct of a fixed-size model: its `#[state]` or `#[position]`/`#[velocity]` fields.
+
+use syn::{Attribute, Fields, ItemStruct};
+
+use crate::errors::Errors;
+use crate::model::{Model, Order, Role, StateField, array_of_f64_with_computed_length, shape_of};
+
+/// Reads the model from its struct, reporting every problem to `errors`.
+pub(crate) fn parse<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Option<Model<'a>> {
+    if !item.generics.params.is_empty() || item.generics.where_clause.is_some() {
+        errors.at(
+            &item.generics,
+            "generic models are not supported; use concrete `f64` fields",
+        );
+    }
+    let Fields::Named(named) = &item.fields else {
+        errors.at_span(
+            item.ident.span(),
+            "a model must be a struct with named fields, such as `struct Spring { x: f64, .. }`",
+        );
+        return None;
+    };
+    let mut declared = Vec::new();
+    for field in &named.named {
+        let Some(role) = role_of(&field.attrs, errors) else {
+            continue;
+        };
+        let ident = field.ident.as_ref().expect("named fields have names");
+        match shape_of(&field.ty) {
+            Some(shape) if shape.len() > 0 => {
+                declared.push((StateField { ident, role, shape }, field))
+            }
+            Some(_) => errors.at(&field.ty, "a state field needs at least one component"),
+            None if array_of_f64_with_computed_length(&field.ty) => errors.at(
+                &field.ty,
+                "the length of a state array must be an integer literal, such as `[f64; 64]`: \
+                 `#[system]` lays the state out before constants are evaluated, so write the \
+                 length out",
+            ),
+            None => errors.at(
+                &field.ty,
+                format_args!(
+                    "unsupported type for a `#[{}]` field; supported: `f64`, `[f64; N]`, \
+                     `SVector<f64, N>`, `Vector1<f64>` … `Vector6<f64>`",
+                    role.attribute()
+                ),
+            ),
+        }
+    }
+
+    let count = |role| declared.iter().filter(|(f, _)| f.role == role).count();
+    let (positions, velocities, states) = (
+        count(Role::Position),
+        count(Role::Velocity),
+        count(Role::State),
+    );
+    if declared.is_empty() {
+        if errors.is_empty() {
+            errors.at_span(
+                item.ident.span(),
+                format_args!(
+                    "model `{}` has no state; mark fields `#[position]` and `#[velocity]` \
+                     (second-order) or `#[state]` (first-order)",
+                    item.ident
+                ),
+            );
+        }
+        return None;
+    }
+    if states > 0 && positions + velocities > 0 {
+        let (first_state, _) = declared.iter().find(|(f, _)| f.role == Role::State)?;
+        errors.at(
+            first_state.ident,
+            "`#[state]` cannot be mixed with `#[position]`/`#[velocity]`; a model is either \
+             first-order or second-order",
+        );
+        return None;
+    }
+    let order = if states > 0 {
+        Order::First
+    } else {
+        Order::Second
+    };
+    if order == Order::Second {
+        pair_positions_and_velocities(&declared, errors);
+    }
+    let mut fields: Vec<_> = declared.into_iter().map(|(f, _)| f).collect();
+    // Layout: every position, then every velocity (a stable sort keeps declaration order).
+    fields.sort_by_key(|f| f.role == Role::Velocity);
+    Some(Model {
+        item,
+        order,
+        states: fields,
+    })
+}
+
+/// Positions and velocities pair up in declaration order, with equal shapes.
+fn pair_positions_and_velocities(declared: &[(StateField<'_>, &syn::Field)], errors: &mut Errors) {
+    let positions: Vec<_> = declared
+        .iter()
+        .filter(|(f, _)| f.role == Role::Position)
+        .collect();
+    let velocities: Vec<_> = declared
+        .iter()
+        .filter(|(f, _)| f.role == Role::Velocity)
+        .collect();
+    for (p, v) in positions.iter().zip(&velocities) {
+        if p.0.shape != v.0.shape {
+            errors.at(
+                &v.1.ty,
+                format_args!(
+                    "velocity `{}` is `{}` but its position `{}` is `{}`; a position and its \
+                     velocity have the same shape",
+                    v.0.ident,
+                    v.0.shape.describe(),
+                    p.0.ident,
+                    p.0.shape.describe()
+                ),
+            );
+        }
+    }
+    for (p, _) in positions.iter().skip(velocities.len()) {
+        errors.at(
+            p.ident,
+            format_args!(
+                "`#[position]` field `{}` has no `#[velocity]` field to pair with; positions and \
+                 velocities pair up in declaration order",
+                p.ident
+            ),
+        );
+    }
+    for (v, _) in velocities.iter().skip(positions.len()) {
+        errors.at(
+            v.ident,
+            format_args!(
+                "`#[velocity]` field `{}` has no `#[position]` field to pair with; positions and \
+                 velocities pair up in declaration order",
+                v.ident
+            ),
+        );
+    }
+}
+
+/// The role a field's attributes give it, if any.
+fn role_of(attrs: &[Attribute], errors: &mut Errors) -> Option<Role> {
+    let mut found: Option<(Role, &Attribute)> = None;
+    for attr in attrs {
+        let Some((_, role)) = Role::ATTRIBUTES
+            .iter()
+            .find(|(name, _)| attr.path().is_ident(name))
+        else {
+            continue;
+        };
+        if let Err(e) = attr.meta.require_path_only() {
+            errors.push(syn::Error::new(
+                e.span(),
+                format_args!("`#[{}]` takes no arguments", role.attribute()),
+            ));
+        }
+        match found {
+            Some((first, _)) => errors.at(
+                attr,
+                format_args!(
+                    "a field has one role, but this one is already `#[{}]`",
+                    first.attribute()
+                ),
+            ),
+            None => found = Some((*role, attr)),
+        }
+    }
+    found.map(|(role, _)| role)
+}
+
+/// The struct as the user wrote it, minus the role attributes (which are odyn's, not rustc's).
+pub(crate) fn strip_roles(item: &ItemStruct) -> ItemStruct {
+    let mut item = item.clone();
+    if let Fields::Named(named) = &mut item.fields {
+        for field in &mut named.named {
+            field.attrs.retain(|a| {
+                !Role::ATTRIBUTES
+                    .iter()
+                    .any(|(name, _)| a.path().is_ident(name))
+            });
+        }
+    }
+    item
+}

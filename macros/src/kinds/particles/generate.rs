@@ -1,0 +1,337 @@
+//! Code generation for particle models: each kernel's derivative blocks as straight-line code,
+//! and the `ParticleSystem`, `Model`, `SecondOrder` and `Jacobian` impls, which call into
+//! `odyn::particles`.
+
+use proc_macro2::{Span, TokenStream};
+use quote::{ToTokens, format_ident, quote};
+use syn::{FnArg, ImplItem, ItemImpl};
+
+use super::Particles;
+use super::kernels::{Functions, Kernel, Over};
+use crate::args::Args;
+use crate::generate::{operand, prologue_tokens, straight_line};
+use crate::ir::ExprId;
+use crate::lower::Lowered;
+
+pub(super) fn generate(
+    particles: &Particles<'_>,
+    args: &Args,
+    functions: &Functions,
+    imp: &ItemImpl,
+    jacobian: Option<Vec<Lowered>>,
+) -> TokenStream {
+    let self_ty = &imp.self_ty;
+    let name = particles.item.ident.to_string();
+    let state = particles.state_ident();
+    let d = proc_macro2::Literal::usize_unsuffixed(particles.dim);
+    let vector = particles.vector_type();
+    let (x, v, mass) = (particles.position, particles.velocity, particles.mass);
+    let (x_name, v_name, mass_name) = (x.to_string(), v.to_string(), mass.to_string());
+    let pinned = match particles.pinned {
+        Some(p) => quote!(&self.#p),
+        None => quote!(&[]),
+    };
+    let defaults = crate::generate::attribute_defaults(args);
+    let link_lists = functions.kernels.iter().filter_map(|k| match &k.over {
+        Over::Pairs(field) => {
+            let name = field.to_string();
+            Some(quote!((#name, &self.#field as &dyn ::odyn::particles::LinkList)))
+        }
+        Over::Particles => None,
+    });
+    let forces = functions.kernels.iter().map(|k| {
+        let name = &k.f.sig.ident;
+        match &k.over {
+            Over::Pairs(field) => {
+                let call = if k.reads_velocity() {
+                    quote!(self.#name(link, *xa, *xb, *va, *vb))
+                } else {
+                    quote!(self.#name(link, *xa, *xb))
+                };
+                quote! {
+                    ::odyn::particles::pair_forces(&self.#field, x, v, force, |link, xa, xb, va, vb| #call);
+                }
+            }
+            Over::Particles => {
+                let index = k.index.then(|| quote!(i,));
+                let velocity = k.reads_velocity().then(|| quote!(, *v));
+                quote! {
+                    ::odyn::particles::particle_forces(x, v, force, |i, x, v| self.#name(#index *x #velocity));
+                }
+            }
+        }
+    });
+    let reads_velocity = functions.kernels.iter().any(Kernel::reads_velocity);
+    let (potential_fn, potential) = match &functions.potential {
+        Some((f, body)) => {
+            let (lx, lv) = (
+                crate::rewrite::state_local(x),
+                crate::rewrite::state_local(v),
+            );
+            let receiver = match f.sig.inputs.first() {
+                Some(FnArg::Receiver(r)) => r.to_token_stream(),
+                _ => quote!(&self),
+            };
+            (
+                quote! {
+                    #[doc(hidden)]
+                    #[inline]
+                    #[allow(unused_variables, non_snake_case)]
+                    fn __odyn_potential(#receiver, #lx: &[#vector], #lv: &[#vector]) -> f64 #body
+                },
+                quote! {
+                    // The runtime calls the rewritten copy; this marks the original used.
+                    let _ = Self::potential;
+                    ::core::option::Option::Some(self.__odyn_potential(x, v))
+                },
+            )
+        }
+        None => (TokenStream::new(), quote!(::core::option::Option::None)),
+    };
+    let common = quote! {
+        #[inline(always)]
+        fn masses(&self) -> &[f64] {
+            &self.#mass
+        }
+        #[inline(always)]
+        fn pinned(&self) -> &[usize] {
+            #pinned
+        }
+        fn per_particle(&self) -> [(&'static str, usize); 3] {
+            [(#x_name, self.#x.len()), (#v_name, self.#v.len()), (#mass_name, self.#mass.len())]
+        }
+        fn link_lists(&self) -> ::std::vec::Vec<(&'static str, &dyn ::odyn::particles::LinkList)> {
+            ::std::vec![#(#link_lists),*]
+        }
+        #[inline]
+        fn add_forces(&self, _: f64, x: &[#vector], v: &[#vector], force: &mut [#vector]) {
+            #(#forces)*
+        }
+        fn potential_of(&self, x: &[#vector], v: &[#vector]) -> ::core::option::Option<f64> {
+            #potential
+        }
+    };
+    let (jacobian_fns, jacobian_impl, jacobian_assoc) = match jacobian {
+        Some(lowered) => {
+            let (fns, calls): (Vec<_>, Vec<_>) = functions
+                .kernels
+                .iter()
+                .zip(lowered)
+                .map(|(k, l)| kernel_jacobian(particles, k, l))
+                .unzip();
+            (
+                quote!(#(#fns)*),
+                quote! {
+                    #[automatically_derived]
+                    impl ::odyn::particles::ParticleSystem<#d> for #self_ty {
+                        #[inline]
+                        fn add_force_jacobian(
+                            &self,
+                            _: f64,
+                            x: &[#vector],
+                            v: &[#vector],
+                            jacobian: &mut ::odyn::particles::ParticleJacobian<#d>,
+                        ) {
+                            #(#calls)*
+                        }
+                        #common
+                    }
+                    #[automatically_derived]
+                    impl ::odyn::Jacobian for #self_ty {
+                        type Matrix = ::odyn::particles::ParticleJacobian<#d>;
+                        /// Empty: a particle model's pattern comes from its topology at run time.
+                        const NONZEROS: &'static [(usize, usize)] = &[];
+                        fn jacobian_matrix(&self, state: &#state) -> Self::Matrix {
+                            ::odyn::particles::jacobian_matrix(self, state)
+                        }
+                        #[inline]
+                        fn jacobian(&self, t: f64, y: &#state, jacobian: &mut Self::Matrix) {
+                            ::odyn::particles::jacobian(self, t, y, jacobian)
+                        }
+                        /// Kernels do not read the time: ∂f/∂t = 0.
+                        const TIME_DEPENDENT: bool = false;
+                        #[inline]
+                        fn time_derivative(&self, _: f64, _: &#state, dfdt: &mut #state) {
+                            ::odyn::State::as_mut_slice(dfdt).fill(0.0);
+                        }
+                    }
+                },
+                quote! {
+                    type Jacobian = Self;
+                    #[inline(always)]
+                    fn as_jacobian(&self) -> ::core::option::Option<&Self> {
+                        ::core::option::Option::Some(self)
+                    }
+                },
+            )
+        }
+        None => (
+            TokenStream::new(),
+            quote! {
+                #[automatically_derived]
+                impl ::odyn::particles::ParticleSystem<#d> for #self_ty {
+                    fn add_force_jacobian(
+                        &self,
+                        _: f64,
+                        _: &[#vector],
+                        _: &[#vector],
+                        _: &mut ::odyn::particles::ParticleJacobian<#d>,
+                    ) {
+                    }
+                    #common
+                }
+            },
+            quote! {
+                type Jacobian = ::odyn::Unavailable<Self>;
+                #[inline(always)]
+                fn as_jacobian(&self) -> ::core::option::Option<&Self::Jacobian> {
+                    ::core::option::Option::None
+                }
+            },
+        ),
+    };
+    let imp = strip_kernel_attributes(imp);
+    quote! {
+        #imp
+        #[automatically_derived]
+        impl #self_ty {
+            #potential_fn
+            #jacobian_fns
+        }
+        #jacobian_impl
+        #[automatically_derived]
+        impl ::odyn::Model for #self_ty {
+            type State = #state;
+            type SecondOrder = Self;
+            const NAME: &'static str = #name;
+            #defaults
+            fn state(&self) -> #state {
+                ::odyn::particles::ParticleState::from_fields(&self.#x, &self.#v, [#x_name, #v_name])
+            }
+            #[inline]
+            fn derivative(&self, t: f64, y: &#state, dydt: &mut #state) {
+                ::odyn::particles::derivative(self, t, y, dydt)
+            }
+            fn energy(&self, state: &#state) -> ::core::option::Option<f64> {
+                ::odyn::particles::energy(self, state)
+            }
+            #[inline(always)]
+            fn as_second_order(&self) -> ::core::option::Option<&Self> {
+                ::core::option::Option::Some(self)
+            }
+            #jacobian_assoc
+            fn check(&self, state: &#state) -> ::odyn::Result<()> {
+                ::odyn::particles::check(self, state)
+            }
+        }
+        #[automatically_derived]
+        impl ::odyn::SecondOrder for #self_ty {
+            const READS_VELOCITY: bool = #reads_velocity;
+            #[inline]
+            fn acceleration(&self, t: f64, y: &#state, accel: &mut #state) {
+                ::odyn::particles::acceleration(self, t, y, accel)
+            }
+        }
+    }
+}
+
+/// A kernel's derivative blocks as a hidden method, and the call that hands them to the runtime.
+fn kernel_jacobian(
+    particles: &Particles<'_>,
+    kernel: &Kernel,
+    lowered: Lowered,
+) -> (TokenStream, TokenStream) {
+    let dim = particles.dim;
+    let d = proc_macro2::Literal::usize_unsuffixed(dim);
+    let Lowered {
+        mut graph,
+        outputs,
+        prologue,
+        ..
+    } = lowered;
+    let mut differentiator = crate::derivative::Differentiator::default();
+    // blocks[k][(r, c)] = ∂fᵣ/∂(vector k)_c
+    let blocks: Vec<Vec<ExprId>> = (0..kernel.vectors.len())
+        .map(|k| {
+            let mut entries = Vec::with_capacity(dim * dim);
+            for c in 0..dim {
+                for &f in &outputs {
+                    entries.push(differentiator.derivative(&mut graph, f, dim * k + c));
+                }
+            }
+            entries
+        })
+        .collect();
+    let components: Vec<TokenStream> = kernel
+        .vectors
+        .iter()
+        .flat_map(|name| (0..dim).map(move |i| quote!(#name[#i])))
+        .collect();
+    let roots: Vec<ExprId> = blocks.iter().flatten().copied().collect();
+    let lets = straight_line(&graph, &roots, &components);
+    let prologue = prologue_tokens(&prologue);
+    let matrices = blocks.iter().map(|entries| {
+        let columns = entries.chunks(dim).map(|column| {
+            let rows = column.iter().map(|&id| operand(&graph, id, &components));
+            quote!([#(#rows),*])
+        });
+        quote! {
+            ::odyn::__private::nalgebra::SMatrix::<f64, #d, #d>::from_array_storage(
+                ::odyn::__private::nalgebra::ArrayStorage([#(#columns),*]),
+            )
+        }
+    });
+    let count = proc_macro2::Literal::usize_unsuffixed(kernel.vectors.len());
+    let name = &kernel.f.sig.ident;
+    let hidden = format_ident!("__odyn_{}_jacobian", name, span = Span::mixed_site());
+    let inputs = &kernel.f.sig.inputs;
+    let function = quote! {
+        #[doc(hidden)]
+        #[inline(always)]
+        #[allow(unused_variables, unused_parens, non_snake_case, clippy::all)]
+        fn #hidden(#inputs) -> [::odyn::__private::nalgebra::SMatrix<f64, #d, #d>; #count] {
+            #(#prologue)*
+            #(#lets)*
+            [#(#matrices),*]
+        }
+    };
+    let zero = quote!(::odyn::__private::nalgebra::SMatrix::<f64, #d, #d>::zeros());
+    let call = match &kernel.over {
+        Over::Pairs(field) => {
+            let body = if kernel.reads_velocity() {
+                quote!(self.#hidden(link, *xa, *xb, *va, *vb))
+            } else {
+                quote! {{
+                    let [dxa, dxb] = self.#hidden(link, *xa, *xb);
+                    [dxa, dxb, #zero, #zero]
+                }}
+            };
+            quote!(jacobian.pair_blocks(&self.#field, x, v, |link, xa, xb, va, vb| #body);)
+        }
+        Over::Particles => {
+            let index = kernel.index.then(|| quote!(i,));
+            let body = if kernel.reads_velocity() {
+                quote!(self.#hidden(#index *x, *v))
+            } else {
+                quote! {{
+                    let [dx] = self.#hidden(#index *x);
+                    [dx, #zero]
+                }}
+            };
+            quote!(jacobian.particle_blocks(x, v, |i, x, v| #body);)
+        }
+    };
+    (function, call)
+}
+
+/// The impl block with `#[pair]`/`#[particle]` removed from its kernels (they are odyn's).
+pub(super) fn strip_kernel_attributes(imp: &ItemImpl) -> ItemImpl {
+    let mut imp = imp.clone();
+    for member in &mut imp.items {
+        if let ImplItem::Fn(f) = member {
+            f.attrs
+                .retain(|a| !(a.path().is_ident("pair") || a.path().is_ident("particle")));
+        }
+    }
+    imp
+}

@@ -1,0 +1,326 @@
+//! The particle model front-end: `Vec<VectorD<f64>>` positions and velocities, forces as
+//! per-element kernels.
+//!
+//! The struct gives the particle fields ([`parse_struct`]); the impl block gives the kernels
+//! ([`kernels::parse`]); each kernel body is lowered by the shared
+//! [`crate::lower::lower_kernel`] with its vector arguments as the variables and differentiated
+//! into D×D blocks; [`generate`] emits the blocks as straight-line code and the runtime trait
+//! impls, which leave the loops over particles and links to `odyn::particles`.
+
+mod generate;
+mod kernels;
+
+use proc_macro2::TokenStream;
+use quote::{format_ident, quote};
+use syn::{Attribute, GenericArgument, Ident, ItemImpl, ItemStruct, PathArguments, Type};
+
+use crate::args::Args;
+use crate::errors::Errors;
+use crate::lower;
+use crate::model::{Model, Order, Role, Shape, StateField, shape_of};
+
+/// The attributes that mark a particle model's fields.
+const FIELD_ATTRIBUTES: [&str; 4] = ["position", "velocity", "mass", "pinned"];
+
+/// A particle model's struct.
+pub(crate) struct Particles<'a> {
+    pub(crate) item: &'a ItemStruct,
+    /// Spatial dimension D (2 or 3).
+    pub(crate) dim: usize,
+    pub(crate) position: &'a Ident,
+    pub(crate) velocity: &'a Ident,
+    pub(crate) mass: &'a Ident,
+    pub(crate) pinned: Option<&'a Ident>,
+}
+
+impl Particles<'_> {
+    fn state_ident(&self) -> Ident {
+        format_ident!("{}State", self.item.ident)
+    }
+
+    /// The model as the body rewriter sees it: positions and velocities are state.
+    fn rewriter_model(&self) -> Model<'_> {
+        let field = |ident, role| StateField {
+            ident,
+            role,
+            shape: Shape::Vector(self.dim),
+        };
+        Model {
+            item: self.item,
+            order: Order::Second,
+            states: vec![
+                field(self.position, Role::Position),
+                field(self.velocity, Role::Velocity),
+            ],
+        }
+    }
+
+    /// The model as a kernel's lowering sees it: every field a parameter.
+    fn parameter_model(&self) -> Model<'_> {
+        Model {
+            item: self.item,
+            order: Order::Second,
+            states: Vec::new(),
+        }
+    }
+
+    fn vector_type(&self) -> TokenStream {
+        let d = proc_macro2::Literal::usize_unsuffixed(self.dim);
+        quote!(::odyn::__private::nalgebra::SVector<f64, #d>)
+    }
+}
+
+/// Whether `item` is a particle model: a `Vec` position or velocity, or a `#[mass]`/`#[pinned]`
+/// field.
+pub(crate) fn is_particle_model(item: &ItemStruct) -> bool {
+    item.fields.iter().any(|f| {
+        f.attrs.iter().any(|a| {
+            a.path().is_ident("mass")
+                || a.path().is_ident("pinned")
+                || ((a.path().is_ident("position") || a.path().is_ident("velocity"))
+                    && vec_element(&f.ty).is_some())
+        })
+    })
+}
+
+/// `T` of `Vec<T>`.
+fn vec_element(ty: &Type) -> Option<&Type> {
+    let Type::Path(p) = ty else { return None };
+    let last = p.path.segments.last()?;
+    if last.ident != "Vec" {
+        return None;
+    }
+    let PathArguments::AngleBracketed(args) = &last.arguments else {
+        return None;
+    };
+    match args.args.iter().collect::<Vec<_>>().as_slice() {
+        [GenericArgument::Type(t)] => Some(t),
+        _ => None,
+    }
+}
+
+fn is_plain(ty: &Type, name: &str) -> bool {
+    matches!(ty, Type::Path(p) if p.qself.is_none() && p.path.is_ident(name))
+}
+
+fn attribute<'a>(attrs: &'a [Attribute], names: &[&str]) -> Option<&'a Attribute> {
+    attrs
+        .iter()
+        .find(|a| names.iter().any(|n| a.path().is_ident(n)))
+}
+
+/// Reads a particle model's struct, reporting every problem to `errors`.
+pub(crate) fn parse_struct<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Option<Particles<'a>> {
+    if !item.generics.params.is_empty() || item.generics.where_clause.is_some() {
+        errors.at(
+            &item.generics,
+            "generic models are not supported; use concrete `f64` fields",
+        );
+    }
+    let mut position = None;
+    let mut velocity = None;
+    let mut mass = None;
+    let mut pinned = None;
+    let mut dims = Vec::new();
+    for field in &item.fields {
+        let Some(ident) = field.ident.as_ref() else {
+            errors.at(field, "a model must be a struct with named fields");
+            return None;
+        };
+        if let Some(attr) = attribute(&field.attrs, &["state"]) {
+            errors.at(
+                attr,
+                "`#[state]` cannot be mixed with particle fields; a particle model has \
+                 `#[position]`/`#[velocity]` fields of type `Vec<Vector3<f64>>`",
+            );
+            continue;
+        }
+        let Some(attr) = attribute(&field.attrs, &FIELD_ATTRIBUTES) else {
+            continue;
+        };
+        if let Err(e) = attr.meta.require_path_only() {
+            errors.push(syn::Error::new(
+                e.span(),
+                "this attribute takes no arguments",
+            ));
+        }
+        let name = attr
+            .path()
+            .get_ident()
+            .map(Ident::to_string)
+            .unwrap_or_default();
+        let slot = match name.as_str() {
+            "position" | "velocity" => {
+                let dim = vec_element(&field.ty)
+                    .and_then(shape_of)
+                    .and_then(|s| match s {
+                        Shape::Vector(d @ (2 | 3)) => Some(d),
+                        _ => None,
+                    });
+                match dim {
+                    Some(d) => dims.push((d, &field.ty)),
+                    None => errors.at(
+                        &field.ty,
+                        format_args!(
+                            "a particle model's `#[{name}]` field must be `Vec<Vector3<f64>>` or \
+                             `Vec<Vector2<f64>>` (one vector per particle)"
+                        ),
+                    ),
+                }
+                if name == "position" {
+                    &mut position
+                } else {
+                    &mut velocity
+                }
+            }
+            "mass" => {
+                if !vec_element(&field.ty).is_some_and(|t| is_plain(t, "f64")) {
+                    errors.at(
+                        &field.ty,
+                        "`#[mass]` must be `Vec<f64>`, one mass per particle",
+                    );
+                }
+                &mut mass
+            }
+            _ => {
+                if !vec_element(&field.ty).is_some_and(|t| is_plain(t, "usize")) {
+                    errors.at(
+                        &field.ty,
+                        "`#[pinned]` must be `Vec<usize>`, the indices of the pinned particles",
+                    );
+                }
+                &mut pinned
+            }
+        };
+        if slot.is_some() {
+            errors.at(
+                attr,
+                format_args!("a particle model has one `#[{name}]` field; this is a second"),
+            );
+        }
+        *slot = Some(ident);
+    }
+    if let [(d0, _), rest @ ..] = dims.as_slice()
+        && let Some((_, ty)) = rest.iter().find(|(d, _)| d != d0)
+    {
+        errors.at(ty, "positions and velocities must have the same dimension");
+    }
+    let missing = |what: &str| {
+        format!(
+            "particle model `{}` needs a `#[{what}]` field; a particle model has `#[position]` \
+             and `#[velocity]` fields (`Vec<Vector3<f64>>`), `#[mass]` (`Vec<f64>`) and \
+             optionally `#[pinned]` (`Vec<usize>`)",
+            item.ident
+        )
+    };
+    for (what, found) in [
+        ("position", position.is_some()),
+        ("velocity", velocity.is_some()),
+        ("mass", mass.is_some()),
+    ] {
+        if !found {
+            errors.at_span(item.ident.span(), missing(what));
+        }
+    }
+    Some(Particles {
+        item,
+        dim: dims.first()?.0,
+        position: position?,
+        velocity: velocity?,
+        mass: mass?,
+        pinned,
+    })
+}
+
+/// The struct as the user wrote it, minus odyn's field attributes.
+pub(crate) fn strip(item: &ItemStruct) -> ItemStruct {
+    let mut item = item.clone();
+    for field in &mut item.fields {
+        field
+            .attrs
+            .retain(|a| !FIELD_ATTRIBUTES.iter().any(|n| a.path().is_ident(n)));
+    }
+    item
+}
+
+/// The state type of a particle model: an alias of the runtime's.
+pub(crate) fn state(particles: &Particles<'_>) -> TokenStream {
+    let vis = &particles.item.vis;
+    let name = particles.state_ident();
+    let d = proc_macro2::Literal::usize_unsuffixed(particles.dim);
+    let doc = format!(
+        "The state of [`{}`], generated by `#[system]`: every particle's position, then every \
+         velocity.",
+        particles.item.ident
+    );
+    quote! {
+        #[doc = #doc]
+        #vis type #name = ::odyn::particles::ParticleState<#d>;
+    }
+}
+
+/// The impl block of a particle model: kernels → blocks → runtime trait impls.
+pub(crate) fn expand_impl(args: &Args, item: &ItemStruct, imp: &ItemImpl) -> TokenStream {
+    let mut errors = Errors::default();
+    let Some(particles) = parse_struct(item, &mut errors) else {
+        return crate::errors::with_error(
+            generate::strip_kernel_attributes(imp),
+            errors.finish().expect_err("a rejected model has errors"),
+        );
+    };
+    let functions = kernels::parse_kernels(imp, &particles, &mut errors);
+    if let Some((ident, info)) = &args.integrator
+        && info.needs_velocity_free_forces
+        && let Some(kernel) = functions.kernels.iter().find(|k| k.reads_velocity())
+    {
+        errors.at(
+            ident,
+            format_args!(
+                "`{ident}` needs forces that do not read velocities, but kernel `{}` takes \
+                 velocities; use `VelocityVerlet` or `Leapfrog`",
+                kernel.f.sig.ident
+            ),
+        );
+    }
+    if let (Some(no), Some((ident, info))) = (&args.no_jacobian, &args.integrator)
+        && info.needs_jacobian
+    {
+        errors.at(
+            no,
+            format_args!("`{ident}` needs the Jacobian that `jacobian = false` turns off"),
+        );
+    }
+    let mut lowered = Vec::new();
+    if args.no_jacobian.is_none() {
+        let model = particles.parameter_model();
+        for kernel in &functions.kernels {
+            match lower::lower_kernel(
+                &model,
+                &kernel.f,
+                &kernel.vectors,
+                particles.dim,
+                particles.dim,
+            ) {
+                Ok(l) => lowered.push(l),
+                Err(error) => errors.push(error),
+            }
+        }
+    }
+    if let Err(error) = errors.finish() {
+        // The kernel attributes are odyn's: left in, rustc would add "cannot find attribute".
+        let rejected = crate::errors::with_error(generate::strip_kernel_attributes(imp), error);
+        let stub = crate::generate::stub_model(&item.ident, &particles.state_ident());
+        return quote!(#rejected #stub);
+    }
+    let jacobian = (args.no_jacobian.is_none()).then_some(lowered);
+    generate::generate(&particles, args, &functions, imp, jacobian)
+}
+
+/// The struct half: the struct without odyn's attributes, and its state type when accepted.
+pub(crate) fn expand_struct(
+    item: &ItemStruct,
+    errors: &mut Errors,
+) -> (ItemStruct, Option<TokenStream>) {
+    let particles = parse_struct(item, errors);
+    (strip(item), particles.map(|p| state(&p)))
+}
