@@ -7,10 +7,19 @@
 //! Euler's limit at 256². The step is the one-Newton-iteration (linearized) form, one force
 //! evaluation, one Jacobian, one assembly, one factorization and one solve, as in the cloth
 //! bench. `cargo bench --bench gray_scott`.
+//!
+//! `equal_accuracy`: whole solves of "coral" (F = 0.0545, k = 0.062) on 128² cells to t = 500 at
+//! equal final error (largest absolute error over u and v: 1e-3 and 1e-6), against a DOP853
+//! reference at rtol 1e-12 that `tests/grid.rs` checks against SciPy's. Each adaptive method's
+//! configuration is the loosest rtol (= atol) in a quarter-decade sweep from 1e-2 meeting the
+//! target, as in `scripts/scipy_gray_scott.py`, which runs SciPy's BDF (with `jac_sparsity`),
+//! Radau, RK45 and DOP853 the same way. The calibration is printed before the timings.
 
 use odyn::grid::{Boundary, Grid, GridJacobian, GridState, Stencil};
 use odyn::integrators::ImplicitEuler;
-use odyn::{Integrator, Jacobian, Model, NewtonOptions, Stats, system};
+use std::sync::OnceLock;
+
+use odyn::{Integrator, Jacobian, Method, Model, NewtonOptions, State, Stats, system};
 
 fn main() {
     divan::main();
@@ -48,6 +57,11 @@ impl GrayScott {
 
 /// Pearson's initial state without noise, F = 0.0367, k = 0.0649.
 fn model(n: usize) -> GrayScott {
+    with_rates(n, 0.0367, 0.0649)
+}
+
+/// Pearson's initial state without noise, feed F and kill k.
+fn with_rates(n: usize, feed: f64, kill: f64) -> GrayScott {
     let inside = |i: usize, j: usize| {
         let r = n * 10 / 256;
         (n / 2 - r..n / 2 + r).contains(&i) && (n / 2 - r..n / 2 + r).contains(&j)
@@ -60,8 +74,8 @@ fn model(n: usize) -> GrayScott {
         v: grid(&|inside| if inside { 0.25 } else { 0.0 }),
         du: 2e-5,
         dv: 1e-5,
-        feed: 0.0367,
-        kill: 0.0649,
+        feed,
+        kill,
         dx: 2.5 / n as f64,
     }
 }
@@ -180,4 +194,79 @@ fn rate_by_hand(bencher: divan::Bencher, n: usize) {
             }
         }
     });
+}
+
+/// The methods and targets of `equal_accuracy`.
+const RACES: [(&str, Method, f64); 8] = [
+    ("Tsit5 1e-3", Method::Tsit5, 1e-3),
+    ("Tsit5 1e-6", Method::Tsit5, 1e-6),
+    ("DOP853 1e-3", Method::Dop853, 1e-3),
+    ("DOP853 1e-6", Method::Dop853, 1e-6),
+    ("Rosenbrock23 1e-3", Method::Rosenbrock23, 1e-3),
+    ("Rosenbrock23 1e-6", Method::Rosenbrock23, 1e-6),
+    ("Rodas5P 1e-3", Method::Rodas5P, 1e-3),
+    ("Rodas5P 1e-6", Method::Rodas5P, 1e-6),
+];
+
+/// Coral on 128² cells, the equal-accuracy problem.
+fn coral() -> GrayScott {
+    with_rates(128, 0.0545, 0.062)
+}
+
+/// The final state of an adaptive solve to t = 500 and its step count.
+fn adaptive(model: &GrayScott, method: Method, rtol: f64) -> Option<(GridState, u64)> {
+    let run = model
+        .simulate()
+        .integrator(method)
+        .tolerances(rtol, rtol)
+        .duration(500.0)
+        .record_every(u64::MAX)
+        .run()
+        .ok()?;
+    let last = run.samples.last()?.state.clone();
+    Some((last, run.stats.steps))
+}
+
+/// For each race, the loosest rtol in the sweep meeting its target.
+fn calibration() -> &'static Vec<Option<f64>> {
+    static CALIBRATION: OnceLock<Vec<Option<f64>>> = OnceLock::new();
+    CALIBRATION.get_or_init(|| {
+        let model = coral();
+        let (reference, _) = adaptive(&model, Method::Dop853, 1e-12).expect("the reference solves");
+        let error = |state: &GridState| {
+            (state.as_slice().iter())
+                .zip(reference.as_slice())
+                .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()))
+        };
+        eprintln!("race                  rtol      error     steps");
+        RACES
+            .iter()
+            .map(|&(name, method, target)| {
+                for k in 0..33 {
+                    let rtol = 10f64.powf(-2.0 - f64::from(k) / 4.0);
+                    let Some((state, steps)) = adaptive(&model, method, rtol) else {
+                        continue;
+                    };
+                    let e = error(&state);
+                    if e <= target {
+                        eprintln!("{name:<20} {rtol:9.2e} {e:9.2e} {steps:6}");
+                        return Some(rtol);
+                    }
+                }
+                eprintln!("{name:<20} does not reach its target");
+                None
+            })
+            .collect()
+    })
+}
+
+/// A whole solve at the calibrated tolerance.
+#[divan::bench(args = [0, 1, 2, 3, 4, 5, 6, 7], sample_count = 3)]
+fn equal_accuracy(bencher: divan::Bencher, race: usize) {
+    let (_, method, _) = RACES[race];
+    let Some(rtol) = calibration()[race] else {
+        return;
+    };
+    let model = coral();
+    bencher.bench_local(|| adaptive(&model, method, rtol));
 }

@@ -1,4 +1,4 @@
-//! odyn: declarative ODE and particle simulation with typed state and measured integrators.
+//! odyn: declarative ODE, particle and grid simulation with typed state and measured integrators.
 //!
 //! Annotate a model struct with `#[system]`, write its force (or derivative) and energy in plain
 //! Rust in an impl block also marked `#[system]`, and run it:
@@ -60,6 +60,12 @@
 //!   `fn(&self[, i: usize], x[, v]) -> Vector3<f64>`; `fn potential(&self) -> f64` is optional.
 //!   The macro differentiates each kernel into 3×3 blocks and implicit Euler solves with a
 //!   sparse Newton matrix; see [`particles`].
+//! - **Field models** have one or more `#[field]` grids ([`grid::Grid`], each with its
+//!   [`grid::Boundary`]) and one `#[cell]` method taking a [`grid::Stencil`] per field it reads,
+//!   named like the field, and returning each field's rate at the cell (`f64` for one field,
+//!   `[f64; F]` for F): `#[cell] fn rate(&self, u: Stencil) -> f64 { self.d * u.laplacian() }`.
+//!   The macro differentiates it into one block per stencil offset, and the runtime assembles
+//!   the sparse Jacobian from stencil × grid × boundary; see [`grid`].
 //!
 //! The macro generates `<Model>State` (named fields, arithmetic, a zero-copy `SVector` view) and
 //! implements [`Model`] (and [`SecondOrder`], [`Jacobian`]), which [`Simulation`] runs with any

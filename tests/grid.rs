@@ -482,3 +482,58 @@ fn bad_grids_are_typed_errors() {
         "{error}"
     );
 }
+
+/// odyn's Gray–Scott against SciPy's: "coral" (F = 0.0545, k = 0.062) on 128² cells from
+/// Pearson's square without noise, to t = 500, DOP853 at rtol = atol = 1e-12, against
+/// `scripts/scipy_gray_scott.py`'s reference (SciPy DOP853 at 1e-13, which its Radau at 1e-10
+/// matches to 7e-11): the bench `gray_scott`'s `equal_accuracy` reference.
+#[test]
+fn gray_scott_matches_scipy() {
+    let n = 128;
+    let r = n * 10 / 256;
+    let inside = |i: usize, j: usize| {
+        (n / 2 - r..n / 2 + r).contains(&i) && (n / 2 - r..n / 2 + r).contains(&j)
+    };
+    let grid = |inner: f64, outer: f64| {
+        Grid::from_fn(n, n, Boundary::Periodic, |i, j| {
+            if inside(i, j) { inner } else { outer }
+        })
+        .unwrap()
+    };
+    let model = GrayScott {
+        u: grid(0.5, 1.0),
+        v: grid(0.25, 0.0),
+        du: 2e-5,
+        dv: 1e-5,
+        feed: 0.0545,
+        kill: 0.062,
+        dx: 2.5 / n as f64,
+    };
+    let run = model
+        .simulate()
+        .integrator(Method::Dop853)
+        .tolerances(1e-12, 1e-12)
+        .duration(500.0)
+        .record_every(u64::MAX)
+        .run()
+        .unwrap();
+    let y = run.samples.last().unwrap().state.as_slice().to_vec();
+    // scripts/scipy_gray_scott.py: (index, value) in odyn's layout (u then v, k = j·n + i).
+    let probes = [
+        (0, 1.0),
+        (8256, 0.8252041021609033),
+        (8263, 0.9461718839552694),
+        (24640, 0.02231620281632055),
+        (24647, 0.004601571359955548),
+    ];
+    for (k, expected) in probes {
+        assert!(
+            (y[k] - expected).abs() < 1e-9,
+            "y[{k}] = {} vs SciPy {expected}",
+            y[k]
+        );
+    }
+    let mean = |s: &[f64]| s.iter().sum::<f64>() / s.len() as f64;
+    assert!((mean(&y[..n * n]) - 9.944044225515868e-01).abs() < 1e-10);
+    assert!((mean(&y[n * n..]) - 2.680455095769755e-03).abs() < 1e-10);
+}

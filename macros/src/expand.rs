@@ -156,7 +156,7 @@ fn too_deep(item: TokenStream, error: syn::Error) -> TokenStream {
 #[cfg(test)]
 mod tests {
     use proc_macro2::TokenStream;
-    use quote::{ToTokens, quote};
+    use quote::quote;
 
     /// Checks the pretty-printed expansion of `input` against `tests/snapshots/<name>.rs`;
     /// `ODYN_BLESS=1 cargo test -p odyn-macros` rewrites the snapshots after a reviewed change.

@@ -1,0 +1,144 @@
+//! Stepping a field model allocates nothing after the first step: explicit Euler, RK4, and
+//! implicit Euler with its sparse Newton solve by Cholesky (heat), counted by a global
+//! allocator; by LU (Gray–Scott, whose Newton matrix is unsymmetric) only faer's numeric
+//! factorization allocates, a bounded number of times per call. One test in its own binary, so
+//! no other test's allocations are counted.
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use odyn::grid::{Boundary, Grid, Stencil};
+use odyn::integrators::{ExplicitEuler, ImplicitEuler, Rk4};
+use odyn::{Integrator, Model, NewtonOptions, Stepper, system};
+
+/// Counts allocations and hands them to the system allocator.
+struct Counting;
+
+static ALLOCATIONS: AtomicU64 = AtomicU64::new(0);
+
+// SAFETY: forwards every call to `System` unchanged.
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        unsafe { System.dealloc(ptr, layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+#[system(integrator = ImplicitEuler, dt = 1e-4)]
+struct Heat {
+    #[field]
+    u: Grid,
+    d: f64,
+    dx: f64,
+}
+
+#[system]
+impl Heat {
+    #[cell]
+    fn conduction(&self, u: Stencil) -> f64 {
+        self.d * u.laplacian() / (self.dx * self.dx)
+    }
+}
+
+#[system(integrator = ImplicitEuler, dt = 1.0)]
+struct GrayScott {
+    #[field]
+    u: Grid,
+    #[field]
+    v: Grid,
+    feed: f64,
+    kill: f64,
+    dx: f64,
+}
+
+#[system]
+impl GrayScott {
+    #[cell]
+    fn reaction(&self, u: Stencil, v: Stencil) -> [f64; 2] {
+        let uvv = u.c * v.c * v.c;
+        let h2 = self.dx * self.dx;
+        [
+            2e-5 * u.laplacian() / h2 - uvv + self.feed * (1.0 - u.c),
+            1e-5 * v.laplacian() / h2 + uvv - (self.feed + self.kill) * v.c,
+        ]
+    }
+}
+
+/// Allocations made by steps 2..=21 of integrator `I` on `model` at `dt`.
+fn allocations<M: Model, I: Integrator<M>>(model: &M, dt: f64) -> u64 {
+    let newton = NewtonOptions::default();
+    let mut stepper = Stepper::<M, I>::with_newton(model, model.state(), 0.0, dt, &newton).unwrap();
+    stepper.step().unwrap();
+    let before = ALLOCATIONS.load(Ordering::Relaxed);
+    for _ in 0..20 {
+        stepper.step().unwrap();
+    }
+    ALLOCATIONS.load(Ordering::Relaxed) - before
+}
+
+#[test]
+fn stepping_a_field_model_allocates_nothing() {
+    let n = 12;
+    let bump = |i: usize, j: usize| ((i * 7 + j * 3) % 5) as f64 * 0.1;
+    let heat = Heat {
+        u: Grid::from_fn(n, n, Boundary::Dirichlet(0.0), bump).unwrap(),
+        d: 0.1,
+        dx: 1.0 / (n as f64 + 1.0),
+    };
+    let counts = [
+        (
+            "explicit Euler",
+            allocations::<Heat, ExplicitEuler<_>>(&heat, 1e-4),
+        ),
+        ("RK4", allocations::<Heat, Rk4<_>>(&heat, 1e-4)),
+        (
+            "implicit Euler (Cholesky)",
+            allocations::<Heat, ImplicitEuler<_>>(&heat, 1e-2),
+        ),
+    ];
+    for (method, count) in counts {
+        assert_eq!(count, 0, "{method} allocated {count} times in 20 steps");
+    }
+    let gray_scott = GrayScott {
+        u: Grid::from_fn(n, n, Boundary::Periodic, |i, j| 1.0 - bump(i, j)).unwrap(),
+        v: Grid::from_fn(n, n, Boundary::Periodic, bump).unwrap(),
+        feed: 0.04,
+        kill: 0.06,
+        dx: 2.5 / 256.0,
+    };
+    let newton = NewtonOptions::default();
+    let mut stepper = Stepper::<GrayScott, ImplicitEuler<_>>::with_newton(
+        &gray_scott,
+        gray_scott.state(),
+        0.0,
+        5.0,
+        &newton,
+    )
+    .unwrap();
+    stepper.step().unwrap();
+    let lus = stepper.integrator().matrix().factorizations().lu;
+    let before = ALLOCATIONS.load(Ordering::Relaxed);
+    for _ in 0..20 {
+        stepper.step().unwrap();
+    }
+    let count = ALLOCATIONS.load(Ordering::Relaxed) - before;
+    let lus = stepper.integrator().matrix().factorizations().lu - lus;
+    assert!(lus > 0, "the LU path was not taken");
+    // faer 0.24's supernodal numeric LU allocates its per-supernode contribution buffers on
+    // every call; the bound pins that nothing else on the path allocates: at most one
+    // allocation per cell per factorization.
+    assert!(
+        count <= lus * (n * n) as u64,
+        "implicit Euler by sparse LU allocated {count} times in {lus} factorizations"
+    );
+}
