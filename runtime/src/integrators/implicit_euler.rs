@@ -66,7 +66,6 @@ impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
     fn attempt(&mut self, model: &M, s: Step<'_, M::State>, y: &mut M::State) -> Result<f64> {
         let (t1, h) = (s.t + s.h, s.h);
         y.clone_from(s.y);
-        let mut residual = f64::NAN;
         let mut previous_update = f64::INFINITY;
         let fail = |iters, residual, cause| Error::NewtonDidNotConverge {
             t: t1,
@@ -80,7 +79,6 @@ impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
             model.derivative(t1, y, &mut self.force);
             s.stats.evaluations += 1;
             let rhs = self.update.as_mut_slice();
-            residual = 0.0;
             let terms =
                 s.y.as_slice()
                     .iter()
@@ -88,51 +86,77 @@ impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
                     .zip(y.as_slice());
             for (bi, ((y0, f), yk)) in rhs.iter_mut().zip(terms) {
                 *bi = y0 + h * f - yk;
-                // NaN-propagating max: a NaN residual must not read as converged.
-                if bi.abs() > residual || bi.is_nan() {
-                    residual = bi.abs();
-                }
-            }
-            if !residual.is_finite() {
-                return Err(fail(iter, residual, NewtonFailure::NotFinite));
             }
             model.jacobian(t1, y, &mut self.jacobian);
             s.stats.jacobian_evaluations += 1;
             s.stats.factorizations += 1;
             s.stats.linear_solves += 1;
+            // A non-finite residual makes a non-finite update, which `solve` reports; the
+            // residual itself is measured only for the error, off the hot path.
             if !(self.jacobian.factorize(h, &mut self.factors)
                 && self.jacobian.solve(&mut self.factors, rhs))
             {
-                let cause = if rhs.iter().all(|x| x.is_finite()) {
+                let residual = residual_of(model, t1, h, s.y, y, &mut self.force);
+                let cause = if residual.is_finite() && rhs.iter().all(|x| x.is_finite()) {
                     NewtonFailure::Singular
                 } else {
                     NewtonFailure::NotFinite
                 };
                 return Err(fail(iter, residual, cause));
             }
-            // Newton that stops contracting (θ = ‖Δₖ‖/‖Δₖ₋₁‖ ≥ 1) is heading for another root
-            // of the implicit equations, or none: give up so the step can be halved (the test of
-            // Hairer & Wanner 1996, §IV.8).
-            let update = rhs.iter().fold(0.0, |m: f64, d| m.max(d.abs()));
-            if update >= previous_update && !self.newton.linearized {
-                return Err(fail(iter, residual, NewtonFailure::Diverging));
-            }
-            previous_update = update;
+            // One pass: the update's size, convergence, and the update applied. Newton that
+            // stops contracting (θ = ‖Δₖ‖/‖Δₖ₋₁‖ ≥ 1) is heading for another root of the
+            // implicit equations, or none: give up so the step can be halved (the test of
+            // Hairer & Wanner 1996, §IV.8); the caller discards y then.
+            let mut update = 0.0f64;
             let mut converged = true;
             for (yi, di) in y.as_mut_slice().iter_mut().zip(rhs.iter()) {
                 *yi += di;
+                update = update.max(di.abs());
                 converged &= di.abs() <= self.newton.tol * (1.0 + yi.abs());
             }
+            if update >= previous_update && !self.newton.linearized {
+                // Reported at the iterate the failing update started from.
+                for (yi, di) in y.as_mut_slice().iter_mut().zip(rhs.iter()) {
+                    *yi -= di;
+                }
+                let residual = residual_of(model, t1, h, s.y, y, &mut self.force);
+                return Err(fail(iter, residual, NewtonFailure::Diverging));
+            }
+            previous_update = update;
             if converged || self.newton.linearized {
                 return Ok(0.0);
             }
         }
+        let residual = residual_of(model, t1, h, s.y, y, &mut self.force);
         Err(fail(
             self.newton.max_iters,
             residual,
             NewtonFailure::Iterations,
         ))
     }
+}
+
+/// max |G(y)| = max |yₙ + h·f(t, y) − y|, for a failure's report (`scratch` takes f).
+fn residual_of<M: Jacobian>(
+    model: &M,
+    t: f64,
+    h: f64,
+    start: &M::State,
+    y: &M::State,
+    scratch: &mut M::State,
+) -> f64 {
+    model.derivative(t, y, scratch);
+    let terms = start
+        .as_slice()
+        .iter()
+        .zip(scratch.as_slice())
+        .zip(y.as_slice());
+    terms.fold(0.0, |m: f64, ((y0, f), yk)| {
+        let g = (y0 + h * f - yk).abs();
+        // NaN-propagating: a NaN residual must not read as small.
+        if g > m || g.is_nan() { g } else { m }
+    })
 }
 
 impl<M: Jacobian> ImplicitEuler<M> {
