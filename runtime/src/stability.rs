@@ -1,5 +1,6 @@
-//! Where each method stops being stable: predicted from the spectrum of the generated Jacobian,
-//! and measured by bisection on long runs.
+//! Where each method stops being stable: predicted from the spectrum of the generated Jacobian
+//! ([`predicted_limit`]; for field models, whose Jacobians are too big for dense eigenvalues,
+//! from Gershgorin's discs, [`gershgorin_limit`]), and measured by bisection on long runs.
 //!
 //! A limit is a step dt: `0.0` means no dt is stable (explicit Euler on an undamped oscillator)
 //! and `f64::INFINITY` means every dt is (implicit Euler on a dissipative or conservative linear
@@ -222,9 +223,17 @@ where
         return Ok(f64::INFINITY);
     }
     let fastest = lambdas.iter().map(|l| l.norm()).fold(0.0, f64::max);
-    Ok(match method {
+    Ok(limit_on(&lambdas, fastest, method))
+}
+
+/// The largest stable dt of `method` on a spectrum sampled by `points` — the eigenvalues, or
+/// points on the rims of discs that contain them — whose largest |λ| is `fastest` (see
+/// [`predicted_limit`] for each family's rule).
+fn limit_on(points: &[Complex<f64>], fastest: f64, method: Method) -> f64 {
+    let left_half = points.iter().all(|l| l.re <= 1e-12 * fastest);
+    match method {
         Method::ImplicitEuler | Method::Rosenbrock23 | Method::Rodas5P => {
-            if lambdas.iter().all(|l| l.re <= 0.0) {
+            if left_half {
                 f64::INFINITY
             } else {
                 0.0
@@ -239,12 +248,12 @@ where
         }
         Method::ExplicitEuler | Method::Rk4 | Method::Tsit5 | Method::Dop853 => {
             let polynomial = crate::integrators::stability_polynomial(method);
-            lambdas
+            points
                 .iter()
                 .map(|l| ray_limit(*l, &polynomial))
                 .fold(f64::INFINITY, f64::min)
         }
-    })
+    }
 }
 
 /// The largest stable dt `method` is predicted to have on a field model, from Gershgorin's discs
@@ -303,42 +312,20 @@ pub fn disc_limit(discs: &[(f64, f64)], method: Method) -> f64 {
     if reach == 0.0 {
         return f64::INFINITY;
     }
-    let left_half = maximal.iter().all(|&(_, r)| r <= 0.0);
-    match method {
-        Method::ImplicitEuler | Method::Rosenbrock23 | Method::Rodas5P => {
-            if left_half {
-                f64::INFINITY
-            } else {
-                0.0
+    // 64 points on each maximal disc's rim, θ = π (the leftmost point) and θ = 0 (the
+    // rightmost) among them.
+    let mut rims = Vec::with_capacity(64 * maximal.len());
+    for &(left, right) in &maximal {
+        let (c, r) = (0.5 * (left + right), 0.5 * (right - left));
+        for k in 0..64 {
+            let theta = std::f64::consts::PI * f64::from(k) / 32.0;
+            let lambda = Complex::new(c + r * theta.cos(), r * theta.sin());
+            if lambda.norm() > 1e-12 * reach {
+                rims.push(lambda);
             }
-        }
-        Method::SymplecticEuler
-        | Method::PositionVerlet
-        | Method::VelocityVerlet
-        | Method::Leapfrog => 2.0 / reach,
-        Method::Yoshida4 | Method::Yoshida6 | Method::KahanLi6 => {
-            crate::integrators::composition_limit(method) / reach
-        }
-        Method::ExplicitEuler | Method::Rk4 | Method::Tsit5 | Method::Dop853 => {
-            if !left_half {
-                return 0.0;
-            }
-            let polynomial = crate::integrators::stability_polynomial(method);
-            // 64 points on each rim, θ = π (the leftmost point) among them.
-            let mut limit = f64::INFINITY;
-            for &(left, right) in &maximal {
-                let (c, r) = (0.5 * (left + right), 0.5 * (right - left));
-                for k in 0..64 {
-                    let theta = std::f64::consts::PI * f64::from(k) / 32.0;
-                    let lambda = Complex::new(c + r * theta.cos(), r * theta.sin());
-                    if lambda.norm() > 1e-12 * reach {
-                        limit = limit.min(ray_limit(lambda, &polynomial));
-                    }
-                }
-            }
-            limit
         }
     }
+    limit_on(&rims, reach, method)
 }
 
 /// The coefficients γ₀ … γ_s of the stability polynomial R(z) = Σₖ γₖzᵏ of an explicit

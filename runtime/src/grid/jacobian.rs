@@ -91,9 +91,9 @@ impl GridJacobian {
         self.jacobian.fill(0.0);
     }
 
-    /// Room for cell k's block values.
+    /// Room for the block values of the cell being evaluated.
     #[inline(always)]
-    pub(crate) fn cell_blocks(&mut self, _k: usize) -> &mut [f64] {
+    pub(crate) fn cell_blocks(&mut self) -> &mut [f64] {
         &mut self.cell
     }
 

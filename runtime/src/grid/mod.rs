@@ -462,7 +462,7 @@ pub fn jacobian<M: GridSystem<F>, const F: usize>(
 ) {
     jacobian.begin();
     for_each_cell(y, boundaries(model), |k, stencils| {
-        let blocks = jacobian.cell_blocks(k);
+        let blocks = jacobian.cell_blocks();
         model.cell_jacobian(stencils, blocks);
         jacobian.place(k);
     });
