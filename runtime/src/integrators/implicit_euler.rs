@@ -63,6 +63,7 @@ impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
     }
 
     /// Newton's method for y = yₙ + h·f(tₙ₊₁, y), from y⁰ = yₙ.
+    #[inline]
     fn attempt(&mut self, model: &M, s: Step<'_, M::State>, y: &mut M::State) -> Result<f64> {
         let (t1, h) = (s.t + s.h, s.h);
         y.clone_from(s.y);
