@@ -11,7 +11,7 @@
 //! diffusion-only dx²/(4D_u) because the feed F damps u too; both are printed, and one short run
 //! on each side of the prediction checks it. Each named pattern then runs with explicit Euler at
 //! Pearson's dt = 1; coral runs once more on a 128² grid, with explicit Euler at dt = 1 and
-//! with implicit Euler at dt = 10 (past explicit Euler's limit there, 4.7), and the two are
+//! with implicit Euler at dt = 10 (past explicit Euler's limit there, 4.2), and the two are
 //! compared.
 //!
 //! `cargo run --release --example gray_scott [-- --steps N]` writes under `out/gray_scott/`:
