@@ -8,8 +8,8 @@
 //! grid holds the n × n interior nodes of a vertex-centred mesh (dx = 1/(n + 1)), its edges held
 //! at 0 by `Boundary::Dirichlet(0.0)`.
 //!
-//! The example prints explicit Euler's limit as Gershgorin's discs of the assembled Jacobian
-//! predict it (dx²/(4D)) and as long runs measure it, then runs explicit Euler just inside the
+//! The example prints explicit Euler's and RK4's limits as Gershgorin's discs of the assembled
+//! Jacobian predict them (dx²/(4D) for explicit Euler) and as long runs measure them, then runs explicit Euler just inside the
 //! limit, implicit Euler at 120× the limit, and Rodas5P (adaptive), reporting each one's error
 //! against the exact solution, steps and time.
 //!
@@ -96,6 +96,13 @@ fn main() -> odyn::Result<()> {
         "Heat on {N}² interior nodes, D = {D}: explicit Euler limit dx²/(4D) = {limit:.4e}; \
          predicted {predicted:.4e}, measured {measured:.4e} (the grid's own 2/|λ_max| = \
          {grid_exact:.4e})"
+    );
+    let rk4 = gershgorin_limit(&model, 0.0, &start, Method::Rk4)?;
+    let rk4_measured = measured_limit(&model, &start, Method::Rk4, rk4, &probe)?;
+    println!(
+        "  RK4: predicted {rk4:.4e} ({:.4}× explicit Euler's, RK4's reach on the negative real \
+         axis over 2), measured {rk4_measured:.4e}",
+        rk4 / predicted
     );
     let duration = 0.25;
     // Implicit Euler takes two steps of 120× the limit, so the run ends on t = duration.

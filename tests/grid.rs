@@ -185,7 +185,8 @@ fn temporal_orders() {
 
 /// Explicit Euler's limit: Gershgorin's discs give dx²/(4D) exactly; bisection on long runs
 /// measures the grid's true limit 2/|λ_max|, above it by 1/sin²(nπ/(2(n + 1))) = 1.0023 at
-/// n = 32 — within 1 %. Stable at 0.99×, diverged at 1.01×.
+/// n = 32 — within 1 %. Stable at 0.99×, diverged at 1.01×. RK4's prediction is its real-axis
+/// reach over the same disc, measured within 1 % too.
 #[test]
 fn explicit_euler_limit_is_predicted_and_measured() {
     let model = heat(32);
@@ -232,6 +233,20 @@ fn explicit_euler_limit_is_predicted_and_measured() {
     };
     assert!(peak(0.99 * predicted) <= 1.5, "unstable at 0.99×");
     assert!(peak(1.01 * predicted) > 1e3, "stable at 1.01×");
+    // RK4 reaches −2.785293563405282 on the negative real axis, where its stability polynomial
+    // returns to R(z) = 1: the real root of 1 + z/2 + z²/6 + z³/24 (numpy.roots; Hairer &
+    // Wanner, Solving ODEs II, §IV.2, Fig. 2.1).
+    let rk4 = gershgorin_limit(&model, 0.0, &state, Method::Rk4).unwrap();
+    let rk4_theory = 2.785293563405282 * model.dx * model.dx / (8.0 * D);
+    assert!(
+        (rk4 / rk4_theory - 1.0).abs() < 1e-9,
+        "RK4 predicted {rk4} vs {rk4_theory}"
+    );
+    let rk4_measured = measured_limit(&model, &state, Method::Rk4, rk4, &probe).unwrap();
+    assert!(
+        (rk4_measured / rk4 - 1.0).abs() < 0.01,
+        "RK4 measured {rk4_measured}, predicted {rk4}"
+    );
 }
 
 /// Implicit Euler at 100× the explicit limit: every mode decays (no node grows), the solution
