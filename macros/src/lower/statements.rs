@@ -1,7 +1,7 @@
 //! Statements: `let` (with tuple and slice patterns), assignments and state-free statements;
 //! branches on parameters are lowered in [`super::branches`].
 //!
-//! A branch on parameters becomes a [`Branch`] of the prologue (the same branch runs before the
+//! A branch on parameters becomes a [`super::Branch`] of the prologue (the same branch runs before the
 //! Jacobian and records which arm it took) and `Select` nodes in the graph: every local an arm
 //! changes, and the value of a branch expression, is selected by that record, so each control path
 //! is differentiated. A branch with a `return` in it is lowered with the statements after it

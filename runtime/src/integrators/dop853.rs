@@ -32,12 +32,12 @@ const KEPT: usize = 16;
 /// P. J. Prince, "A family of embedded Runge–Kutta formulae", J. Comp. Appl. Math. 6 (1980) 19.
 #[derive(Clone, Debug)]
 pub struct Dop853<S> {
-    /// k₁ … k₁₆ (0-based); k[12] = f(tₙ₊₁, yₙ₊₁) once the dense output needed it.
+    /// k₁ … k₁₆ (0-based); `k[12]` = f(tₙ₊₁, yₙ₊₁) once the dense output needed it.
     k: [S; KEPT],
     probe: S,
     /// Whether k₁ holds f at the start of the next attempt.
     have_k1: bool,
-    /// Whether k[12] holds f at the end of the accepted step, the next step's k₁.
+    /// Whether `k[12]` holds f at the end of the accepted step, the next step's k₁.
     fsal: bool,
 }
 

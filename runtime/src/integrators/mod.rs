@@ -287,7 +287,7 @@ fn stage<S: crate::State>(out: &mut S, y: &S, h: f64, a: &[f64], k: &[S]) {
     }
 }
 
-/// Σⱼ wⱼ·kⱼ[i] for component i: the building block of error estimates.
+/// `Σⱼ wⱼ·kⱼ[i]` for component i: the building block of error estimates.
 #[inline(always)]
 fn weighted<S: crate::State>(w: &[f64], k: &[S], i: usize) -> f64 {
     w.iter().zip(k).map(|(wj, kj)| wj * kj.as_slice()[i]).sum()

@@ -28,7 +28,7 @@ pub(crate) struct Function {
     /// The user's time argument (`t: f64`), if declared.
     pub(crate) time: Option<syn::PatType>,
     pub(crate) output: Type,
-    /// The body with state reads replaced by [`state_local`]s.
+    /// The body with state reads replaced by [`crate::rewrite::state_local`]s.
     pub(crate) body: Block,
     /// State fields the body reads, with the tokens of the first read (`self.x`).
     pub(crate) reads: BTreeMap<String, TokenStream>,

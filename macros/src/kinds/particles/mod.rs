@@ -2,7 +2,7 @@
 //! per-element kernels.
 //!
 //! The struct gives the particle fields ([`parse_struct`]); the impl block gives the kernels
-//! ([`kernels::parse`]); each kernel body is lowered by the shared
+//! ([`kernels::parse_kernels`]); each kernel body is lowered by the shared
 //! [`crate::lower::lower_kernel`] with its vector arguments as the variables and differentiated
 //! into D×D blocks; [`generate`] emits the blocks as straight-line code and the runtime trait
 //! impls, which leave the loops over particles and links to `odyn::particles`.
