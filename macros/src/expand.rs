@@ -96,7 +96,7 @@ impl Parse for Forwarded {
 }
 
 /// The input of `__system_impl!` for a rejected struct: `! impl …`; holds the impl block with
-/// odyn's method attributes removed.
+/// odyn's method attributes removed and its bodies replaced by ones that never run.
 struct Rejected(ItemImpl);
 
 impl Parse for Rejected {
@@ -109,6 +109,13 @@ impl Parse for Rejected {
                     !["cell", "pair", "particle"]
                         .iter()
                         .any(|name| a.path().is_ident(name))
+                });
+                // The bodies read fields the rejected struct may not have as declared (its state
+                // type is a stub): never run, they would only add follow-on errors.
+                f.attrs
+                    .push(syn::parse_quote!(#[allow(unused_variables, unreachable_code)]));
+                f.block = syn::parse_quote!({
+                    ::core::unreachable!("odyn rejected this model at compile time")
                 });
             }
         }

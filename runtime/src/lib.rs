@@ -63,4 +63,21 @@ pub mod __private {
     pub use nalgebra;
 
     pub use crate::__flat_state as flat_state;
+
+    /// The state type `#[system]` gives a struct it rejected, so the user's crate still
+    /// type-checks around the real error: it has no values, and nothing of it ever runs.
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    pub enum RejectedState {}
+
+    impl crate::State for RejectedState {
+        fn as_slice(&self) -> &[f64] {
+            match *self {}
+        }
+        fn as_mut_slice(&mut self) -> &mut [f64] {
+            match *self {}
+        }
+        fn component_name(&self, _: usize) -> String {
+            match *self {}
+        }
+    }
 }

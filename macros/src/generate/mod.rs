@@ -66,6 +66,24 @@ pub(crate) fn stub_model(model: &syn::Ident, state: &syn::Ident) -> TokenStream 
     }
 }
 
+/// For a struct `#[system]` rejected: its state type, as a type without values, and a stub
+/// `Model` impl, so that uses of the model elsewhere in the crate (`model.simulate()`, the
+/// state's name in signatures) type-check and the user sees the real error alone. Nothing of it
+/// runs: the crate does not compile.
+pub(crate) fn rejected_struct(item: &ItemStruct) -> TokenStream {
+    let vis = &item.vis;
+    let state = format_ident!("{}State", item.ident);
+    let stub = stub_model(&item.ident, &state);
+    if !item.generics.params.is_empty() {
+        return TokenStream::new();
+    }
+    quote! {
+        #[doc(hidden)]
+        #vis type #state = ::odyn::__private::RejectedState;
+        #stub
+    }
+}
+
 /// The `macro_rules!` that hands the struct to the impl block's expansion. On `Err` (the struct was
 /// rejected) it hands over only the impl block, marked `!`, which comes back with odyn's method
 /// attributes (`#[cell]`, `#[pair]`, `#[particle]`) removed and nothing added, so no follow-on

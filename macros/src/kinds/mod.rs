@@ -67,7 +67,8 @@ pub(crate) fn expand_struct(args_tokens: TokenStream, item: &ItemStruct) -> Toke
         (result, _) => {
             let error = result.err().map(|e| e.to_compile_error());
             let forwarder = generate::forwarder(item, &args_tokens, false);
-            quote!(#stripped #error #forwarder)
+            let stub = generate::rejected_struct(item);
+            quote!(#stripped #error #forwarder #stub)
         }
     }
 }
