@@ -710,26 +710,39 @@ fn steps_in<M: Model, I: Integrator<M>>(
     limit: f64,
 ) -> bool {
     // The grid index as a float, exact below 2⁵³ (the same values as `i as f64`, without a
-    // conversion per step); each step's end is the next one's start.
+    // conversion per step); each step's end is the next one's start. Steps go in pairs, y → y_new
+    // → y, so no state is swapped: with a swap a step, LLVM rotated a small state through extra
+    // registers on the critical path (explicit-Euler Lorenz was 1.21× the bare integrator, 1.03×
+    // in pairs; RK4 1.12× → 0.98×).
     let mut index = n as f64;
     let mut t = t0 + index * dt;
-    for _ in 0..count {
+    let mut one = |from: &mut M::State, to: &mut M::State, stats: &mut Stats| {
         index += 1.0;
         let end = t0 + index * dt;
-        let h = end - t;
         let step = Step {
             t,
-            h,
-            y,
+            h: end - t,
+            y: from,
             tolerances: None,
             stats,
         };
-        if integrator.attempt(model, step, y_new).is_err() {
+        if integrator.attempt(model, step, to).is_err() {
             return false;
         }
         integrator.accept();
-        std::mem::swap(y, y_new);
         t = end;
+        true
+    };
+    for _ in 0..count / 2 {
+        if !(one(y, y_new, stats) && one(y_new, y, stats)) {
+            return false;
+        }
+    }
+    if count % 2 == 1 {
+        if !one(y, y_new, stats) {
+            return false;
+        }
+        std::mem::swap(y, y_new);
     }
     within(y, limit)
 }
