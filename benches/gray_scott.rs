@@ -8,6 +8,9 @@
 //! evaluation, one Jacobian, one assembly, one factorization and one solve, as in the cloth
 //! bench. `cargo bench --bench gray_scott`.
 //!
+//! `explicit_bare` and `explicit_runner`: 1000 explicit Euler steps of dt = 1 through the
+//! `Integrator` trait and through `Simulation::run`, for the runner's overhead on a field model.
+//!
 //! `equal_accuracy`: whole solves of "coral" (F = 0.0545, k = 0.062) on 64² cells to t = 500 at
 //! equal final error (largest absolute error over u and v: 1e-3 and 1e-6), against a DOP853
 //! reference at rtol 1e-12 that `tests/grid.rs` checks against SciPy's. Each adaptive method's
@@ -193,6 +196,47 @@ fn rate_by_hand(bencher: divan::Bencher, n: usize) {
                 dv[c] = b * lv + uvv - (f + k) * v[c];
             }
         }
+    });
+}
+
+/// Explicit Euler steps a run of `explicit_bare` and `explicit_runner` takes (dt = 1, below the
+/// 256² limit 1.1666).
+const EXPLICIT_STEPS: u64 = 1000;
+
+/// 1000 explicit Euler steps through the `Integrator` trait: the bare integrator.
+#[divan::bench(args = SIZES, sample_count = 10)]
+fn explicit_bare(bencher: divan::Bencher, n: usize) {
+    use odyn::integrators::ExplicitEuler;
+    let model = model(n);
+    bencher.bench_local(|| {
+        let mut y = model.state();
+        let mut scratch = y.clone();
+        let mut stats = Stats::default();
+        let options = NewtonOptions::default();
+        let mut integrator = ExplicitEuler::start(&model, 0.0, &y, &options, &mut stats).unwrap();
+        for step in 0..EXPLICIT_STEPS {
+            integrator
+                .step(&model, step as f64, 1.0, &mut y, &mut scratch, &mut stats)
+                .unwrap();
+        }
+        y
+    });
+}
+
+/// The same 1000 steps through `Simulation::run` (validation, the divergence test once per
+/// block, first and last samples): what the runner adds to `explicit_bare`.
+#[divan::bench(args = SIZES, sample_count = 10)]
+fn explicit_runner(bencher: divan::Bencher, n: usize) {
+    let model = model(n);
+    bencher.bench_local(|| {
+        model
+            .simulate()
+            .integrator(Method::ExplicitEuler)
+            .dt(1.0)
+            .steps(EXPLICIT_STEPS)
+            .record_every(u64::MAX)
+            .run()
+            .unwrap()
     });
 }
 
