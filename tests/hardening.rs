@@ -5,7 +5,7 @@ mod common;
 
 use std::path::PathBuf;
 
-use common::{Oscillator, Spring};
+use common::{Oscillator, OscillatorState, Spring};
 use odyn::integrators::{ImplicitEuler, SymplecticEuler};
 use odyn::plot::{Chart, Series, View, views};
 use odyn::prelude::*;
@@ -480,4 +480,96 @@ fn error_messages_print_numbers_compactly() {
     let text = error.to_string();
     assert!(text.contains("-1e-300"), "{text}");
     assert!(text.len() < 120, "{text}");
+}
+
+/// A time step below the resolution of t (t₀ = 10¹², dt = 10⁻⁶, where one ulp is 1.2e-4) used
+/// to run: most steps had length 0 and the state did not move, without a word. Now `dt` is
+/// rejected, for a run, a `Stepper`, and an adaptive run whose whole duration vanishes at t₀.
+/// Three ulps of t are enough (steps of uneven but positive length, consistent with the
+/// recorded times).
+#[test]
+fn a_step_below_the_resolution_of_t_is_an_input_error() {
+    let osc = Oscillator {
+        x: 1.0,
+        v: 0.0,
+        omega: 1.0,
+    };
+    let t0: f64 = 1e12;
+    let ulp = f64::from_bits(t0.to_bits() + 1) - t0; // 2⁻¹³ = 1.22e-4 at 10¹²
+    let run = osc.simulate().dt(1e-6).steps(10).start_time(t0).run();
+    assert_eq!(invalid_field(run), "dt");
+    let stepper = Stepper::<_, SymplecticEuler<_>>::new(&osc, osc.state(), t0, 1e-6);
+    assert_eq!(invalid_field(stepper.unwrap().step()), "dt");
+    let adaptive = osc
+        .simulate()
+        .integrator(Method::Tsit5)
+        .duration(1e-6)
+        .start_time(t0)
+        .run();
+    assert_eq!(invalid_field(adaptive), "duration");
+
+    let run = osc.simulate().dt(3.0 * ulp).steps(10).start_time(t0).run();
+    let run = run.unwrap();
+    let times: Vec<f64> = run.times().collect();
+    assert!(times.windows(2).all(|w| w[1] > w[0]), "{times:?}");
+}
+
+/// An event whose condition returns NaN used to be silently never fired (a NaN has no sign);
+/// a change that leaves the state NaN used to end in a misleading `StepSizeTooSmall`. Both are
+/// now `BadEvent`, naming the event, the time and what was wrong.
+#[test]
+fn a_nan_event_condition_or_change_is_a_typed_error() {
+    let osc = Oscillator {
+        x: 1.0,
+        v: 0.0,
+        omega: 1.0,
+    };
+    // √x is NaN once x < 0, first at t = π/2: the first step ending past it reports.
+    let error = osc
+        .simulate()
+        .integrator(Method::Tsit5)
+        .duration(3.0)
+        .event(Event::crossing("root", |_, s: &OscillatorState| s.x.sqrt() - 0.5).record())
+        .run()
+        .unwrap_err();
+    match &error {
+        Error::BadEvent { event, t, reason } => {
+            assert_eq!(event, "root");
+            assert!(*t > std::f64::consts::FRAC_PI_2 && *t < 3.0, "{error}");
+            assert!(reason.contains("NaN"), "{error}");
+        }
+        other => panic!("expected BadEvent, got {other:?}"),
+    }
+    // NaN at the start is reported before any step, on the fixed-step path too.
+    let error = osc
+        .simulate()
+        .dt(0.1)
+        .steps(10)
+        .event(Event::crossing("nan", |_, _: &OscillatorState| f64::NAN))
+        .run()
+        .unwrap_err();
+    assert!(
+        matches!(&error, Error::BadEvent { t, .. } if *t == 0.0),
+        "{error}"
+    );
+
+    // x crosses 0 at t = π/2; the change sets v to NaN there.
+    let error = osc
+        .simulate()
+        .integrator(Method::Tsit5)
+        .duration(3.0)
+        .event(
+            Event::crossing("zero", |_, s: &OscillatorState| s.x)
+                .change(|_, s: &mut OscillatorState| s.v = f64::NAN),
+        )
+        .run()
+        .unwrap_err();
+    match &error {
+        Error::BadEvent { event, t, reason } => {
+            assert_eq!(event, "zero");
+            assert!((t - std::f64::consts::FRAC_PI_2).abs() < 1e-6, "{error}");
+            assert!(reason.contains("`v`"), "{error}");
+        }
+        other => panic!("expected BadEvent, got {other:?}"),
+    }
 }

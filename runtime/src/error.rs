@@ -30,6 +30,17 @@ pub enum Error {
         /// What is wrong with it.
         reason: String,
     },
+    /// An event's condition returned NaN (a NaN has no sign, so a crossing there would be missed
+    /// without a word), or its change left the state non-finite.
+    #[error("event `{event}` at t = {t:?}: {reason}")]
+    BadEvent {
+        /// The event's name.
+        event: String,
+        /// Where it happened.
+        t: f64,
+        /// What was wrong.
+        reason: String,
+    },
     /// The chosen method cannot integrate this model.
     #[error("{method} cannot integrate `{model}`: {reason}")]
     Unsupported {

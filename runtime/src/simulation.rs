@@ -375,10 +375,20 @@ impl<'m, M: Model> Simulation<'m, M> {
                 dt,
                 steps: steps_for(d, dt)?,
             },
-            (Stepping::Adaptive(tolerances), Length::Duration(d)) => Span::Adaptive {
-                tolerances,
-                t_end: o.t0 + checked_duration(d)?,
-            },
+            (Stepping::Adaptive(tolerances), Length::Duration(d)) => {
+                let t_end = o.t0 + checked_duration(d)?;
+                if d > 0.0 && t_end == o.t0 {
+                    return Err(Error::invalid(
+                        "duration",
+                        format!(
+                            "{d:e} is below the resolution of t at the start time {:e}: the \
+                             run would not move; use a start time nearer 0",
+                            o.t0
+                        ),
+                    ));
+                }
+                Span::Adaptive { tolerances, t_end }
+            }
             (Stepping::Adaptive(_), Length::Steps(_)) => {
                 return Err(Error::invalid(
                     "length",

@@ -258,7 +258,9 @@ pub(crate) struct Watch<'a, S> {
 }
 
 impl<'a, S: State> Watch<'a, S> {
-    pub(crate) fn new(events: Vec<Event<'a, S>>, t0: f64, y0: &S, tolerance: f64) -> Self {
+    ///
+    /// Errors: [`Error::BadEvent`] when a condition is NaN at (t₀, y₀).
+    pub(crate) fn new(events: Vec<Event<'a, S>>, t0: f64, y0: &S, tolerance: f64) -> Result<Self> {
         let n = events.len();
         let mut watch = Watch {
             next_time: events
@@ -275,8 +277,8 @@ impl<'a, S: State> Watch<'a, S> {
             ahead: vec![false; n],
             tolerance,
         };
-        watch.reset(t0, y0);
-        watch
+        watch.reset(t0, y0)?;
+        Ok(watch)
     }
 
     pub(crate) fn is_empty(&self) -> bool {
@@ -284,18 +286,19 @@ impl<'a, S: State> Watch<'a, S> {
     }
 
     /// The state was changed from outside at t: the conditions start afresh there.
-    pub(crate) fn restart(&mut self, t: f64, y: &S) {
-        self.reset(t, y);
+    pub(crate) fn restart(&mut self, t: f64, y: &S) -> Result<()> {
+        self.reset(t, y)
     }
 
     /// Re-evaluates every condition at (t, y): at the start, and after the state changed.
-    fn reset(&mut self, t: f64, y: &S) {
+    fn reset(&mut self, t: f64, y: &S) -> Result<()> {
         for (i, e) in self.events.iter().enumerate() {
             if let Trigger::Crossing { condition, .. } = &e.trigger {
-                self.g[i] = condition(t, y);
+                self.g[i] = finite_condition(e, t, condition(t, y))?;
                 self.ahead[i] = self.g[i] == 0.0;
             }
         }
+        Ok(())
     }
 
     /// The next time a time event needs a step to land on, after `t`.
@@ -312,7 +315,9 @@ impl<'a, S: State> Watch<'a, S> {
 
     /// Whether a crossing may have happened in the step ending at (t1, y1): evaluates every
     /// condition there. Cheap; the caller builds the dense output only when this says so.
-    pub(crate) fn scan(&mut self, t1: f64, y1: &S) -> bool {
+    ///
+    /// Errors: [`Error::BadEvent`] when a condition is NaN there.
+    pub(crate) fn scan(&mut self, t1: f64, y1: &S) -> Result<bool> {
         let mut any = false;
         for (i, e) in self.events.iter().enumerate() {
             match &e.trigger {
@@ -320,7 +325,7 @@ impl<'a, S: State> Watch<'a, S> {
                     condition,
                     direction,
                 } => {
-                    let g1 = condition(t1, y1);
+                    let g1 = finite_condition(e, t1, condition(t1, y1))?;
                     self.g_end[i] = g1;
                     any |= self.ahead[i] || crosses(self.g[i], g1, *direction);
                 }
@@ -329,7 +334,7 @@ impl<'a, S: State> Watch<'a, S> {
                 }
             }
         }
-        any
+        Ok(any)
     }
 
     /// Handles the events of the accepted step `dense` (from t to t1 = t + h, ending at `y1`),
@@ -337,6 +342,9 @@ impl<'a, S: State> Watch<'a, S> {
     /// order — recording, and stopping or changing the state at the first that does. On return
     /// `at` holds the state at the returned time (the event's, after its action), or `y1` when
     /// the step went through.
+    ///
+    /// Errors: [`Error::BadEvent`] when a change leaves the state non-finite, or a condition is
+    /// NaN on the changed state.
     pub(crate) fn handle(
         &mut self,
         dense: &DenseStep<S>,
@@ -344,7 +352,7 @@ impl<'a, S: State> Watch<'a, S> {
         y1: &S,
         at: &mut S,
         records: &mut Vec<EventRecord<S>>,
-    ) -> Outcome {
+    ) -> Result<Outcome> {
         let mut found: Vec<(f64, usize)> = Vec::new();
         for (i, e) in self.events.iter().enumerate() {
             match &e.trigger {
@@ -399,6 +407,18 @@ impl<'a, S: State> Watch<'a, S> {
                 Action::Stop => Outcome::Stop(t),
                 Action::Change(change) => {
                     change(t, at);
+                    if let Some(k) = at.as_slice().iter().position(|x| !x.is_finite()) {
+                        return Err(Error::BadEvent {
+                            event: event.name.clone(),
+                            t,
+                            reason: format!(
+                                "its change left component `{}` = {:?}; the state after a \
+                                 change must be finite",
+                                at.component_name(k),
+                                at.as_slice()[k]
+                            ),
+                        });
+                    }
                     Outcome::Changed(t)
                 }
             };
@@ -413,17 +433,17 @@ impl<'a, S: State> Watch<'a, S> {
                 Outcome::Continue => {}
                 Outcome::Changed(t) => {
                     self.changed_at[i] = t;
-                    self.reset(t, at);
+                    self.reset(t, at)?;
                     // The event left its condition at (or a rounding away from) zero.
                     self.ahead[i] = true;
-                    return outcome;
+                    return Ok(outcome);
                 }
-                Outcome::Stop(_) => return outcome,
+                Outcome::Stop(_) => return Ok(outcome),
             }
         }
         at.clone_from(y1);
         self.advance();
-        Outcome::Continue
+        Ok(Outcome::Continue)
     }
 
     /// The step went through: the end values are the next step's start values.
@@ -433,6 +453,20 @@ impl<'a, S: State> Watch<'a, S> {
             *ahead = *g == 0.0;
         }
     }
+}
+
+/// `g`, the value of `event`'s condition at `t`, if it is not NaN (infinities have a sign).
+fn finite_condition<S>(event: &Event<'_, S>, t: f64, g: f64) -> Result<f64> {
+    if g.is_nan() {
+        return Err(Error::BadEvent {
+            event: event.name.clone(),
+            t,
+            reason: "its condition returned NaN, which has no sign, so a crossing there would \
+                     be missed; a condition must be a number wherever the run goes"
+                .to_owned(),
+        });
+    }
+    Ok(g)
 }
 
 /// Whether g going from `g0` to `g1` crosses zero in `direction`. A g that reaches zero exactly

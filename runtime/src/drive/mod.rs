@@ -183,7 +183,7 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
             f_start: false,
             dense: DenseStep::new(&y0, I::DENSE_DEGREE.max(3)),
             stats,
-            watch: Watch::new(events, t0, &y0, event_tolerance),
+            watch: Watch::new(events, t0, &y0, event_tolerance)?,
             limit,
             max_halvings: newton.max_halvings,
             pending: Vec::with_capacity(newton.max_halvings as usize + 2),
@@ -246,6 +246,8 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
             let block = (last - n)
                 .min(BLOCK)
                 .min(if recording { until_record } else { BLOCK });
+            // Checked as the run goes: a run of `steps(u64::MAX)` stops at a divergence first.
+            check_resolution(self.t0, dt, n, n + block)?;
             let taken = if n >= checked_until && block > 1 && self.plain() {
                 if !self.run_block(dt, n, block) {
                     checked_until = n + block;
@@ -454,7 +456,7 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
             self.dirty = false;
             self.integrator
                 .restart(self.model, self.t, &self.y, &mut self.stats);
-            self.watch.restart(self.t, &self.y);
+            self.watch.restart(self.t, &self.y)?;
             self.f_start = false;
         }
         let step = Step {
@@ -482,7 +484,7 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
         }
         self.integrator.accept();
         self.stats.steps += 1;
-        let events = !self.watch.is_empty() && self.watch.scan(t1, &self.y_new);
+        let events = !self.watch.is_empty() && self.watch.scan(t1, &self.y_new)?;
         let saves = self
             .recording
             .save_at
@@ -495,7 +497,7 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
                 &self.y_new,
                 &mut self.at,
                 &mut self.record.events,
-            )
+            )?
         } else {
             self.watch.advance();
             Outcome::Continue
@@ -664,6 +666,34 @@ fn ulp(t: f64) -> f64 {
     } else {
         f64::from_bits(t.to_bits() + 1) - t
     }
+}
+
+/// Whether fixed steps of `dt` from grid index `first` to `last` (t = t₀ + n·dt) all advance the
+/// time (one test per block of steps). Each grid time is rounded twice (n·dt, then t₀ +), by at most one ulp of the largest
+/// magnitude on the way in all, so two neighbours differ by at least dt − 2 ulp: more than two
+/// ulps of dt guarantees every step a positive length.
+///
+/// Errors: [`Error::InvalidInput`] naming `dt` when it is not that large.
+fn check_resolution(t0: f64, dt: f64, first: u64, last: u64) -> Result<()> {
+    let far = [
+        t0,
+        t0 + first as f64 * dt,
+        t0 + last as f64 * dt,
+        last as f64 * dt,
+    ]
+    .iter()
+    .fold(0.0f64, |m, t| m.max(t.abs()));
+    if dt > 2.0 * ulp(far) {
+        return Ok(());
+    }
+    Err(Error::invalid(
+        "dt",
+        format!(
+            "{dt:e} is below the resolution of t near {far:e} (one ulp there is {:e}): steps \
+             would not advance the time; use a larger dt, or a start time nearer 0",
+            ulp(far)
+        ),
+    ))
 }
 
 /// `count` steps of `integrator` from grid index `n` (t = t₀ + i·dt), as a bare loop; false as
