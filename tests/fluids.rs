@@ -118,6 +118,18 @@ fn bad_settings_are_typed_errors() {
     };
     assert!(with(&|o| o.nx = 2).unwrap().contains("too small"));
     assert!(with(&|o| o.ny = 0).unwrap().contains("too small"));
+    // A grid beyond usize, or beyond what the machine can allocate (2⁴⁰ × 64 cells), used to
+    // panic or abort on the allocation.
+    assert!(
+        with(&|o| o.nx = usize::MAX)
+            .unwrap()
+            .contains("cells is more than")
+    );
+    assert!(
+        with(&|o| o.nx = 1 << 40)
+            .unwrap()
+            .contains("cells is more than")
+    );
     assert!(with(&|o| o.cell = 0.0).is_some());
     assert!(with(&|o| o.cell = f64::NAN).is_some());
     assert!(with(&|o| o.viscosity = -1.0).is_some());

@@ -477,7 +477,8 @@ fn gray_scott_explicit_limit_is_predicted_from_the_discs() {
 }
 
 /// Bad input is a typed error: a grid whose values do not fill it, a periodic side too short
-/// for distinct neighbours, and fields of different sizes in one model.
+/// for distinct neighbours, more cells than memory holds, and fields of different sizes in one
+/// model.
 #[test]
 fn bad_grids_are_typed_errors() {
     let wrong = Grid::new(4, 4, Boundary::Neumann, vec![0.0; 15]).unwrap_err();
@@ -489,6 +490,14 @@ fn bad_grids_are_typed_errors() {
     assert!(short.to_string().contains("at least 3"), "{short}");
     let nan = Grid::new(3, 3, Boundary::Dirichlet(f64::NAN), vec![0.0; 9]).unwrap_err();
     assert!(nan.to_string().contains("finite"), "{nan}");
+    // nx·ny overflowing usize used to panic ("capacity overflow") in `from_fn`.
+    let huge = Grid::from_fn(usize::MAX / 2, 4, Boundary::Neumann, |_, _| 0.0).unwrap_err();
+    assert!(huge.to_string().contains("more cells"), "{huge}");
+    let huge = Grid::new(usize::MAX, 2, Boundary::Neumann, vec![]).unwrap_err();
+    assert!(huge.to_string().contains("more cells"), "{huge}");
+    // 2⁵⁰ cells (8 PB, beyond any address space) used to abort the process.
+    let huge = Grid::from_fn(1 << 40, 1 << 10, Boundary::Neumann, |_, _| 0.0).unwrap_err();
+    assert!(huge.to_string().contains("cannot be allocated"), "{huge}");
     let mut model = gray_scott(6, Boundary::Periodic);
     model.v = Grid::new(5, 6, Boundary::Periodic, vec![0.0; 30]).unwrap();
     let error = model.simulate().steps(1).run().unwrap_err();

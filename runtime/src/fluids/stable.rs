@@ -74,8 +74,8 @@ pub struct StableFluids {
 impl StableFluids {
     /// A fluid at rest with no smoke; builds and factorizes the Poisson matrix.
     ///
-    /// Errors: [`Error::InvalidInput`] for a grid under 3×3 cells, a cell size that is not
-    /// finite and positive, a negative or non-finite viscosity or a non-finite buoyancy.
+    /// Errors: [`Error::InvalidInput`] for a grid under 3×3 cells or of more cells than memory
+    /// holds, a cell size that is not finite and positive, a negative or non-finite viscosity or a non-finite buoyancy.
     pub fn new(options: FluidOptions) -> Result<StableFluids> {
         let FluidOptions {
             nx,
@@ -88,6 +88,16 @@ impl StableFluids {
             return Err(Error::invalid(
                 "grid",
                 format!("{nx}×{ny} cells is too small; at least 3×3"),
+            ));
+        }
+        let faces = nx
+            .checked_add(1)
+            .zip(ny.checked_add(1))
+            .and_then(|(a, b)| a.checked_mul(b));
+        if faces.is_none_or(|n| n > isize::MAX as usize / std::mem::size_of::<f64>()) {
+            return Err(Error::invalid(
+                "grid",
+                format!("{nx}×{ny} cells is more than any memory holds"),
             ));
         }
         if !(cell.is_finite() && cell > 0.0) {
@@ -108,7 +118,7 @@ impl StableFluids {
                 format!("must be finite, got {buoyancy}"),
             ));
         }
-        let poisson = SpdSolver::new(nx * ny - 1, &poisson_entries(nx, ny, cell))?;
+        let poisson = SpdSolver::new(nx * ny - 1, &poisson_entries(nx, ny, cell)?)?;
         Ok(StableFluids {
             u: vec![0.0; (nx + 1) * ny],
             v: vec![0.0; nx * (ny + 1)],
@@ -353,9 +363,18 @@ fn sample(f: &[f64], w: usize, hgt: usize, ox: f64, oy: f64, x: f64, y: f64, h: 
 
 /// −L (the 5-point Neumann Laplacian times −1) on the cells, cell 0 removed: unknown k is cell
 /// k + 1.
-fn poisson_entries(nx: usize, ny: usize, h: f64) -> Vec<(usize, usize, f64)> {
+///
+/// Errors: [`Error::InvalidInput`] when the entries cannot be allocated: the first and largest
+/// allocation of a fluid, so a grid too big for the machine is an error rather than an abort.
+fn poisson_entries(nx: usize, ny: usize, h: f64) -> Result<Vec<(usize, usize, f64)>> {
     let inv = 1.0 / (h * h);
-    let mut entries = Vec::with_capacity(5 * nx * ny);
+    let mut entries = Vec::new();
+    entries.try_reserve_exact(5 * nx * ny).map_err(|_| {
+        Error::invalid(
+            "grid",
+            format!("{nx}×{ny} cells is more than this machine can allocate"),
+        )
+    })?;
     for j in 0..ny {
         for i in 0..nx {
             let c = i + j * nx;
@@ -381,7 +400,7 @@ fn poisson_entries(nx: usize, ny: usize, h: f64) -> Vec<(usize, usize, f64)> {
             }
         }
     }
-    entries
+    Ok(entries)
 }
 
 /// I − k·L for an mx×my block of unknowns with zero (wall) values just past the x ends and

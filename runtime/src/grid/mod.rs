@@ -62,6 +62,52 @@ impl Grid {
     /// Errors: [`Error::InvalidInput`] when `values` does not have nx·ny entries, a side is 0,
     /// a periodic side has fewer than 3 cells, or a Dirichlet value is not finite.
     pub fn new(nx: usize, ny: usize, boundary: Boundary, values: Vec<f64>) -> Result<Self> {
+        let cells = Grid::cells(nx, ny, boundary)?;
+        if values.len() != cells {
+            return Err(Error::invalid(
+                "grid",
+                format!(
+                    "is {nx}×{ny} = {cells} cells but was given {} values",
+                    values.len()
+                ),
+            ));
+        }
+        Ok(Grid {
+            nx,
+            ny,
+            boundary,
+            values,
+        })
+    }
+
+    /// A grid whose cell (i, j) holds `value(i, j)`.
+    ///
+    /// Errors: as [`Grid::new`], and [`Error::InvalidInput`] when the nx·ny values cannot be
+    /// allocated.
+    pub fn from_fn(
+        nx: usize,
+        ny: usize,
+        boundary: Boundary,
+        mut value: impl FnMut(usize, usize) -> f64,
+    ) -> Result<Self> {
+        let cells = Grid::cells(nx, ny, boundary)?;
+        let mut values = Vec::new();
+        values.try_reserve_exact(cells).map_err(|_| {
+            Error::invalid(
+                "grid",
+                format!("is {nx}×{ny}; its {cells} values cannot be allocated"),
+            )
+        })?;
+        values.extend(
+            (0..ny)
+                .flat_map(|j| (0..nx).map(move |i| (i, j)))
+                .map(|(i, j)| value(i, j)),
+        );
+        Grid::new(nx, ny, boundary, values)
+    }
+
+    /// The number of cells of an nx × ny grid with `boundary`, once the shape is checked.
+    fn cells(nx: usize, ny: usize, boundary: Boundary) -> Result<usize> {
         let invalid = |reason: String| Err(Error::invalid("grid", reason));
         if nx == 0 || ny == 0 {
             return invalid(format!("is {nx}×{ny}; both sides need at least one cell"));
@@ -77,33 +123,11 @@ impl Grid {
         {
             return invalid(format!("has Dirichlet value {value}; it must be finite"));
         }
-        if values.len() != nx * ny {
-            return invalid(format!(
-                "is {nx}×{ny} = {} cells but was given {} values",
-                nx * ny,
-                values.len()
-            ));
+        // A Vec of f64 holds at most isize::MAX bytes.
+        match nx.checked_mul(ny) {
+            Some(cells) if cells <= isize::MAX as usize / std::mem::size_of::<f64>() => Ok(cells),
+            _ => invalid(format!("is {nx}×{ny}: more cells than any memory holds")),
         }
-        Ok(Grid {
-            nx,
-            ny,
-            boundary,
-            values,
-        })
-    }
-
-    /// A grid whose cell (i, j) holds `value(i, j)`. Errors: as [`Grid::new`].
-    pub fn from_fn(
-        nx: usize,
-        ny: usize,
-        boundary: Boundary,
-        mut value: impl FnMut(usize, usize) -> f64,
-    ) -> Result<Self> {
-        let values = (0..ny)
-            .flat_map(|j| (0..nx).map(move |i| (i, j)))
-            .map(|(i, j)| value(i, j))
-            .collect();
-        Grid::new(nx, ny, boundary, values)
     }
 
     /// Cells along x.
