@@ -181,6 +181,29 @@ fn bad_input_is_a_typed_error() {
         .unwrap()
         .contains("too small")
     );
+    // A spacing far below the box: 10¹⁶ particles used to exhaust memory (an abort), 10⁶⁰ to
+    // overflow the count; a box of 10³⁰⁰ spacings made the wall loop run away.
+    for (spacing, domain) in [
+        (1e-8, (1.0, 1.0)),
+        (1e-30, (1.0, 1.0)),
+        (1.0, (1e300, 1e300)),
+    ] {
+        let error = block(
+            SphOptions {
+                spacing,
+                domain,
+                ..SphOptions::default()
+            },
+            domain.0 / 2.0,
+            domain.1 / 2.0,
+        );
+        assert!(
+            error
+                .as_deref()
+                .is_some_and(|e| e.contains("more particles")),
+            "{spacing}: {error:?}"
+        );
+    }
     let mut sph = dam_break(0.2, 8);
     let limit = sph.stable_dt();
     for dt in [0.0, -1.0, f64::NAN, 2.0 * limit] {

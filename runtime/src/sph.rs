@@ -93,7 +93,8 @@ impl Sph {
     /// square lattice at `spacing`, starting half a spacing from the walls), at rest.
     ///
     /// Errors: [`Error::InvalidInput`] for a non-positive or non-finite setting, a block that
-    /// does not fit in the box, or a box smaller than 4 spacings a side.
+    /// does not fit in the box, a box smaller than 4 spacings a side, or more particles than
+    /// the machine can allocate.
     pub fn block(options: SphOptions, width: f64, height: f64) -> Result<Sph> {
         let positive = [
             ("spacing", options.spacing),
@@ -140,15 +141,33 @@ impl Sph {
             (width / dx).round() as usize,
             (height / dx).round() as usize,
         );
-        let x: Vec<_> = (0..ny)
-            .flat_map(|j| {
-                (0..nx).map(move |i| Vector2::new((i as f64 + 0.5) * dx, (j as f64 + 0.5) * dx))
-            })
-            .collect();
         // Three layers of wall particles below and beside the box (open at the top).
-        let mut walls = Vec::new();
         let layers = 3;
         let (cols, rows) = ((w / dx).round() as i64, (h / dx).round() as i64);
+        // Counted before anything is allocated: a spacing far below the box's size would
+        // otherwise run the machine out of memory (an abort) or overflow the count.
+        let fluid = nx.checked_mul(ny);
+        let wall = (cols as u64)
+            .checked_add(2 * layers as u64)
+            .zip((rows as u64).checked_mul(2))
+            .and_then(|(a, b)| a.checked_add(b))
+            .and_then(|n| n.checked_mul(layers as u64))
+            .and_then(|n| usize::try_from(n).ok());
+        let too_many = || {
+            Error::invalid(
+                "spacing",
+                format!("{dx} in a {w} × {h} box is more particles than this machine can allocate"),
+            )
+        };
+        let (Some(fluid), Some(wall)) = (fluid, wall) else {
+            return Err(too_many());
+        };
+        let (mut x, mut walls) = (Vec::new(), Vec::new());
+        x.try_reserve_exact(fluid).map_err(|_| too_many())?;
+        walls.try_reserve_exact(wall).map_err(|_| too_many())?;
+        x.extend((0..ny).flat_map(|j| {
+            (0..nx).map(move |i| Vector2::new((i as f64 + 0.5) * dx, (j as f64 + 0.5) * dx))
+        }));
         for layer in 0..layers {
             let out = -(layer as f64 + 0.5) * dx;
             for i in -layers..cols + layers {
