@@ -144,6 +144,18 @@ fn reductions_match_closed_forms() {
     assert_eq!(stats.quantile(0, 0.05).unwrap(), 5.0);
     assert!((stats.quantile(0, 0.333).unwrap() - 33.3).abs() < 1e-12);
     assert!(stats.quantile(0, 1.5).is_err() && stats.quantile(1, 0.5).is_err());
+
+    // One member of 101 returning NaN used to shift every quantile silently (NaN sorts last,
+    // so the median read 51 here); now the quantiles are NaN, like the mean (NumPy's rule).
+    let stats = ensemble
+        .run(|i, _| Ok(vec![if i == 7 { f64::NAN } else { i as f64 }]))
+        .unwrap()
+        .statistics()
+        .unwrap();
+    assert!(stats.mean[0].is_nan());
+    for q in [0.0, 0.5, 1.0] {
+        assert!(stats.quantile(0, q).unwrap().is_nan(), "q = {q}");
+    }
 }
 
 /// Hit-or-miss π: each point lands in the quarter disc with probability p = π/4, so the estimate

@@ -385,6 +385,8 @@ impl Statistics {
     /// The `q`-quantile of observation `k`, interpolated linearly between order statistics
     /// (Hyndman & Fan 1996, definition 7, NumPy's and R's default): position (M − 1)·q.
     ///
+    /// NaN when any member's value is NaN (NumPy's rule), as the mean is.
+    ///
     /// Errors: [`Error::InvalidInput`] for `q` outside [0, 1] or `k` out of range.
     pub fn quantile(&self, k: usize, q: f64) -> Result<f64> {
         let values = self.sorted.get(k).ok_or_else(|| {
@@ -395,6 +397,11 @@ impl Statistics {
                 "quantile",
                 format!("must be in [0, 1], got {q}"),
             ));
+        }
+        // NumPy's rule: a NaN among the values makes every quantile NaN, as it does the mean
+        // (`total_cmp` sorts NaNs to the ends, where they would shift the others silently).
+        if values.first().is_some_and(|v| v.is_nan()) || values.last().is_some_and(|v| v.is_nan()) {
+            return Ok(f64::NAN);
         }
         let position = q * (values.len() - 1) as f64;
         let (lo, frac) = (position.floor() as usize, position.fract());
