@@ -553,6 +553,29 @@ fn a_nan_event_condition_or_change_is_a_typed_error() {
         "{error}"
     );
 
+    // NaN only near the crossing at t = π/2, inside a step whose ends are finite: the search
+    // for the crossing meets it.
+    let error = osc
+        .simulate()
+        .integrator(Method::Tsit5)
+        .duration(3.0)
+        .event(
+            Event::crossing("inside", |t, s: &OscillatorState| {
+                if (t - std::f64::consts::FRAC_PI_2).abs() < 1e-3 {
+                    f64::NAN
+                } else {
+                    s.x
+                }
+            })
+            .record(),
+        )
+        .run()
+        .unwrap_err();
+    assert!(
+        matches!(&error, Error::BadEvent { t, .. } if (t - std::f64::consts::FRAC_PI_2).abs() < 1e-3),
+        "{error}"
+    );
+
     // x crosses 0 at t = π/2; the change sets v to NaN there.
     let error = osc
         .simulate()

@@ -343,8 +343,8 @@ impl<'a, S: State> Watch<'a, S> {
     /// `at` holds the state at the returned time (the event's, after its action), or `y1` when
     /// the step went through.
     ///
-    /// Errors: [`Error::BadEvent`] when a change leaves the state non-finite, or a condition is
-    /// NaN on the changed state.
+    /// Errors: [`Error::BadEvent`] when a condition is NaN where a crossing is sought, or a change
+    /// leaves the state non-finite or its condition NaN.
     pub(crate) fn handle(
         &mut self,
         dense: &DenseStep<S>,
@@ -360,9 +360,15 @@ impl<'a, S: State> Watch<'a, S> {
                     condition,
                     direction,
                 } => {
+                    // The first time inside the step where the condition was NaN, if any.
+                    let mut nan_at = None;
                     let mut g = |t: f64| {
                         dense.eval((t - dense.t) / dense.h, at);
-                        condition(t, at)
+                        let value = condition(t, at);
+                        if value.is_nan() {
+                            nan_at.get_or_insert(t);
+                        }
+                        value
                     };
                     // g on zero at the start (a state just reset onto it) has no sign: read it
                     // a little into the step, past the tolerance the event was located to.
@@ -375,10 +381,13 @@ impl<'a, S: State> Watch<'a, S> {
                         (dense.t, self.g[i])
                     };
                     if crosses(start.1, self.g_end[i], *direction) {
-                        let t = locate(g, start, (t1, self.g_end[i]), self.tolerance);
+                        let t = locate(&mut g, start, (t1, self.g_end[i]), self.tolerance);
                         if t > self.changed_at[i] + self.tolerance {
                             found.push((t, i));
                         }
+                    }
+                    if let Some(t) = nan_at {
+                        finite_condition(e, t, f64::NAN)?;
                     }
                 }
                 Trigger::Times(times) => {
