@@ -669,9 +669,9 @@ fn ulp(t: f64) -> f64 {
 }
 
 /// Whether fixed steps of `dt` from grid index `first` to `last` (t = t₀ + n·dt) all advance the
-/// time (one test per block of steps). Each grid time is rounded twice (n·dt, then t₀ +), by at most one ulp of the largest
-/// magnitude on the way in all, so two neighbours differ by at least dt − 2 ulp: more than two
-/// ulps of dt guarantees every step a positive length.
+/// time (one test per block of steps). Each grid time is rounded twice (n·dt, then t₀ +), by at
+/// most one ulp of the largest magnitude on the way in all, so two neighbours differ by at least
+/// dt − 2 ulp: more than two ulps of dt guarantees every step a positive length.
 ///
 /// Errors: [`Error::InvalidInput`] naming `dt` when it is not that large.
 fn check_resolution(t0: f64, dt: f64, first: u64, last: u64) -> Result<()> {
@@ -697,9 +697,9 @@ fn check_resolution(t0: f64, dt: f64, first: u64, last: u64) -> Result<()> {
 }
 
 /// `count` steps of `integrator` from grid index `n` (t = t₀ + i·dt), as a bare loop; false as
-/// soon as a step fails, or when the last state is outside `limit`. Small plain states (no heap parts, at most 256 bytes)
-/// are stepped in local copies the optimiser keeps in registers, as a hand-written loop's would
-/// be; the others in place. A function of its own, one call per block.
+/// soon as a step fails, or when the last state is outside `limit`. Small plain states (no heap
+/// parts, at most 256 bytes) are stepped in local copies the optimiser keeps in registers, as a
+/// hand-written loop's would be; the others in place. A function of its own, one call per block.
 #[inline(never)]
 fn bare_steps<M: Model, I: Integrator<M>>(
     integrator: &mut I,
