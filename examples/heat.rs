@@ -9,9 +9,9 @@
 //! at 0 by `Boundary::Dirichlet(0.0)`.
 //!
 //! The example prints explicit Euler's and RK4's limits as Gershgorin's discs of the assembled
-//! Jacobian predict them (dx²/(4D) for explicit Euler) and as long runs measure them, then runs explicit Euler just inside the
-//! limit, implicit Euler at 120× the limit, and Rodas5P (adaptive), reporting each one's error
-//! against the exact solution, steps and time.
+//! Jacobian predict them (dx²/(4D) for explicit Euler) and as long runs measure them, then runs
+//! explicit Euler just inside the limit, implicit Euler at 120× the limit, and Rodas5P
+//! (adaptive), reporting each one's error against the exact solution, steps and time.
 //!
 //! `cargo run --release --example heat` writes under `out/heat/`: `heat.csv` (method, t, the
 //! largest nodal error), `error.png` (those errors over time), and `start.png` /

@@ -2,8 +2,7 @@
 //! implicit Euler with its sparse Newton solve by Cholesky (heat), counted by a global
 //! allocator; by LU (Gray–Scott, whose Newton matrix is unsymmetric) only faer's numeric
 //! factorization allocates, the same number of times every call (as in `tests/allocations.rs`
-//! for particles). One test in its own binary, so
-//! no other test's allocations are counted.
+//! for particles). One test in its own binary, so no other test's allocations are counted.
 
 mod common;
 

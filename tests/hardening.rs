@@ -22,6 +22,15 @@ fn spring() -> Spring {
     }
 }
 
+/// ẍ = −ω²x from (1, 0).
+fn oscillator(omega: f64) -> Oscillator {
+    Oscillator {
+        x: 1.0,
+        v: 0.0,
+        omega,
+    }
+}
+
 fn invalid_field<T: std::fmt::Debug>(result: odyn::Result<T>) -> String {
     match result {
         Err(Error::InvalidInput { field, .. }) => field,
@@ -41,11 +50,7 @@ fn scratch(test: &str, name: &str) -> PathBuf {
 /// at the divergence with a typed error naming the step.
 #[test]
 fn a_huge_step_count_stops_at_the_divergence() {
-    let osc = Oscillator {
-        x: 1.0,
-        v: 0.0,
-        omega: 10.0,
-    };
+    let osc = oscillator(10.0);
     let error = osc
         .simulate()
         .integrator(Method::SymplecticEuler)
@@ -389,11 +394,7 @@ fn output_files_respect_permissions_and_links() {
 /// reported 0, `precision: 0` bisected forever.
 #[test]
 fn stability_probe_settings_are_validated() {
-    let osc = Oscillator {
-        x: 1.0,
-        v: 0.0,
-        omega: 5.0,
-    };
+    let osc = oscillator(5.0);
     let measure =
         |probe: StabilityProbe| measured_limit(&osc, &osc.state(), Method::Leapfrog, 0.2, &probe);
     for (probe, field) in [
@@ -437,11 +438,7 @@ fn stability_probe_settings_are_validated() {
 /// never returned on NaN input; the prediction is an error, not a silent ∞.
 #[test]
 fn a_nan_jacobian_has_no_predicted_limit() {
-    let osc = Oscillator {
-        x: 1.0,
-        v: 0.0,
-        omega: f64::NAN,
-    };
+    let osc = oscillator(f64::NAN);
     let result = odyn::stability::predicted_limit(&osc, 0.0, &osc.state(), Method::Rk4);
     assert_eq!(invalid_field(result), "jacobian");
 }
@@ -451,11 +448,7 @@ fn a_nan_jacobian_has_no_predicted_limit() {
 /// velocities of 1e12, under the old absolute 1e100, and return Ok).
 #[test]
 fn an_exploded_run_is_a_divergence() {
-    let stiff = Oscillator {
-        x: 1.0,
-        v: 0.0,
-        omega: 1000.0,
-    };
+    let stiff = oscillator(1000.0);
     let error = stiff
         .simulate()
         .integrator(Method::Rk4)
@@ -489,11 +482,7 @@ fn error_messages_print_numbers_compactly() {
 /// recorded times).
 #[test]
 fn a_step_below_the_resolution_of_t_is_an_input_error() {
-    let osc = Oscillator {
-        x: 1.0,
-        v: 0.0,
-        omega: 1.0,
-    };
+    let osc = oscillator(1.0);
     let t0: f64 = 1e12;
     let ulp = f64::from_bits(t0.to_bits() + 1) - t0; // 2⁻¹³ = 1.22e-4 at 10¹²
     let run = osc.simulate().dt(1e-6).steps(10).start_time(t0).run();
@@ -519,11 +508,7 @@ fn a_step_below_the_resolution_of_t_is_an_input_error() {
 /// now `BadEvent`, naming the event, the time and what was wrong.
 #[test]
 fn a_nan_event_condition_or_change_is_a_typed_error() {
-    let osc = Oscillator {
-        x: 1.0,
-        v: 0.0,
-        omega: 1.0,
-    };
+    let osc = oscillator(1.0);
     // √x is NaN once x < 0, first at t = π/2: the first step ending past it reports.
     let error = osc
         .simulate()

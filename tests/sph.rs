@@ -181,8 +181,9 @@ fn bad_input_is_a_typed_error() {
         .unwrap()
         .contains("too small")
     );
-    // A spacing far below the box: 10¹⁶ particles used to exhaust memory (an abort), 10⁶⁰ to
-    // overflow the count; a box of 10³⁰⁰ spacings made the wall loop run away.
+    // A spacing far below the box: (5·10⁷)² = 2.5·10¹⁵ particles used to exhaust memory (an
+    // abort), (5·10²⁹)² to overflow the count; a box of 10³⁰⁰ spacings made the wall loop run
+    // away.
     for (spacing, domain) in [
         (1e-8, (1.0, 1.0)),
         (1e-30, (1.0, 1.0)),

@@ -258,6 +258,7 @@ pub(crate) struct Watch<'a, S> {
 }
 
 impl<'a, S: State> Watch<'a, S> {
+    /// The events of a run from (t₀, y₀), every condition evaluated there.
     ///
     /// Errors: [`Error::BadEvent`] when a condition is NaN at (t₀, y₀).
     pub(crate) fn new(events: Vec<Event<'a, S>>, t0: f64, y0: &S, tolerance: f64) -> Result<Self> {
@@ -387,7 +388,7 @@ impl<'a, S: State> Watch<'a, S> {
                         }
                     }
                     if let Some(t) = nan_at {
-                        finite_condition(e, t, f64::NAN)?;
+                        return Err(nan_condition(e, t));
                     }
                 }
                 Trigger::Times(times) => {
@@ -467,15 +468,20 @@ impl<'a, S: State> Watch<'a, S> {
 /// `g`, the value of `event`'s condition at `t`, if it is not NaN (infinities have a sign).
 fn finite_condition<S>(event: &Event<'_, S>, t: f64, g: f64) -> Result<f64> {
     if g.is_nan() {
-        return Err(Error::BadEvent {
-            event: event.name.clone(),
-            t,
-            reason: "its condition returned NaN, which has no sign, so a crossing there would \
-                     be missed; a condition must be a number wherever the run goes"
-                .to_owned(),
-        });
+        return Err(nan_condition(event, t));
     }
     Ok(g)
+}
+
+/// The error for `event`'s condition returning NaN at `t`.
+fn nan_condition<S>(event: &Event<'_, S>, t: f64) -> Error {
+    Error::BadEvent {
+        event: event.name.clone(),
+        t,
+        reason: "its condition returned NaN, which has no sign, so a crossing there would be \
+                 missed; a condition must be a number wherever the run goes"
+            .to_owned(),
+    }
 }
 
 /// Whether g going from `g0` to `g1` crosses zero in `direction`. A g that reaches zero exactly

@@ -75,7 +75,8 @@ impl StableFluids {
     /// A fluid at rest with no smoke; builds and factorizes the Poisson matrix.
     ///
     /// Errors: [`Error::InvalidInput`] for a grid under 3×3 cells or of more cells than memory
-    /// holds, a cell size that is not finite and positive, a negative or non-finite viscosity or a non-finite buoyancy.
+    /// holds, a cell size that is not finite and positive, a negative or non-finite viscosity or
+    /// a non-finite buoyancy.
     pub fn new(options: FluidOptions) -> Result<StableFluids> {
         let FluidOptions {
             nx,
