@@ -509,14 +509,17 @@ fn a_step_below_the_resolution_of_t_is_an_input_error() {
 #[test]
 fn a_nan_event_condition_or_change_is_a_typed_error() {
     let osc = oscillator(1.0);
+    // Tsit5 to t = 3 with one event; the error it must stop with.
+    let tsit5 = |event: Event<'_, OscillatorState>| {
+        osc.simulate()
+            .integrator(Method::Tsit5)
+            .duration(3.0)
+            .event(event)
+            .run()
+            .unwrap_err()
+    };
     // √x is NaN once x < 0, first at t = π/2: the first step ending past it reports.
-    let error = osc
-        .simulate()
-        .integrator(Method::Tsit5)
-        .duration(3.0)
-        .event(Event::crossing("root", |_, s: &OscillatorState| s.x.sqrt() - 0.5).record())
-        .run()
-        .unwrap_err();
+    let error = tsit5(Event::crossing("root", |_, s: &OscillatorState| s.x.sqrt() - 0.5).record());
     match &error {
         Error::BadEvent { event, t, reason } => {
             assert_eq!(event, "root");
@@ -540,38 +543,26 @@ fn a_nan_event_condition_or_change_is_a_typed_error() {
 
     // NaN only near the crossing at t = π/2, inside a step whose ends are finite: the search
     // for the crossing meets it.
-    let error = osc
-        .simulate()
-        .integrator(Method::Tsit5)
-        .duration(3.0)
-        .event(
-            Event::crossing("inside", |t, s: &OscillatorState| {
-                if (t - std::f64::consts::FRAC_PI_2).abs() < 1e-3 {
-                    f64::NAN
-                } else {
-                    s.x
-                }
-            })
-            .record(),
-        )
-        .run()
-        .unwrap_err();
+    let error = tsit5(
+        Event::crossing("inside", |t, s: &OscillatorState| {
+            if (t - std::f64::consts::FRAC_PI_2).abs() < 1e-3 {
+                f64::NAN
+            } else {
+                s.x
+            }
+        })
+        .record(),
+    );
     assert!(
         matches!(&error, Error::BadEvent { t, .. } if (t - std::f64::consts::FRAC_PI_2).abs() < 1e-3),
         "{error}"
     );
 
     // x crosses 0 at t = π/2; the change sets v to NaN there.
-    let error = osc
-        .simulate()
-        .integrator(Method::Tsit5)
-        .duration(3.0)
-        .event(
-            Event::crossing("zero", |_, s: &OscillatorState| s.x)
-                .change(|_, s: &mut OscillatorState| s.v = f64::NAN),
-        )
-        .run()
-        .unwrap_err();
+    let error = tsit5(
+        Event::crossing("zero", |_, s: &OscillatorState| s.x)
+            .change(|_, s: &mut OscillatorState| s.v = f64::NAN),
+    );
     match &error {
         Error::BadEvent { event, t, reason } => {
             assert_eq!(event, "zero");
