@@ -41,6 +41,21 @@ pub enum Error {
         /// What was wrong.
         reason: String,
     },
+    /// An event fired without end: after a change the state came back to the event's surface
+    /// sooner than the event tolerance resolves (its events accumulate at one time — Zeno
+    /// behaviour, a ball bouncing ever lower), or the run's events passed
+    /// [`crate::RunOptions::max_events`]. Integrating on would pass through the surface.
+    #[error("event `{event}` fired {count} times up to t = {t:?}: {reason}")]
+    EventsAccumulate {
+        /// The event's name.
+        event: String,
+        /// How often it fired in the run.
+        count: u64,
+        /// Where the run stopped.
+        t: f64,
+        /// Which limit was hit, and what to do.
+        reason: String,
+    },
     /// The chosen method cannot integrate this model.
     #[error("{method} cannot integrate `{model}`: {reason}")]
     Unsupported {

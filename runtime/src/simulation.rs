@@ -63,8 +63,11 @@ pub struct RunOptions {
     /// First step, step bounds, step budget and controller of adaptive runs.
     pub step_control: StepControl,
     /// Events are located to within this time (default 1e-12, or the resolution of t if
-    /// coarser).
+    /// coarser). Crossings within it of each other are one instant (see [`Event`]).
     pub event_tolerance: f64,
+    /// The most events one run records (default 100 000): past it the run ends with
+    /// [`Error::EventsAccumulate`] rather than fill memory with an event that fires without end.
+    pub max_events: u64,
 }
 
 impl Default for RunOptions {
@@ -81,6 +84,7 @@ impl Default for RunOptions {
             newton: NewtonOptions::default(),
             step_control: StepControl::default(),
             event_tolerance: 1e-12,
+            max_events: 100_000,
         }
     }
 }
@@ -517,7 +521,7 @@ impl<M: Model> Plan<'_, '_, M> {
             &o.newton,
             self.limit,
             self.simulation.events.clone(),
-            o.event_tolerance,
+            (o.event_tolerance, o.max_events),
             recording,
         )?;
         let outcome = match &self.span {

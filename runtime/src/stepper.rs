@@ -75,7 +75,17 @@ impl<'m, M: Model, I: Integrator<M>> Stepper<'m, M, I> {
         // into each frame on the way to the bigger stack.
         let state = Box::new(state);
         let driver = crate::stack::with_room::<M::State, _>(move || {
-            Driver::new(model, t0, *state, newton, limit, Vec::new(), 0.0, quiet).map(Box::new)
+            Driver::new(
+                model,
+                t0,
+                *state,
+                newton,
+                limit,
+                Vec::new(),
+                (0.0, 0),
+                quiet,
+            )
+            .map(Box::new)
         })?;
         Ok(Stepper {
             driver,

@@ -91,8 +91,25 @@ impl<S> Clone for Trigger<'_, S> {
 /// in t, so events work with every method (fixed-step ones through a cubic Hermite
 /// interpolant). Several crossings within one step are handled in time order; two crossings of
 /// the same condition within one step cancel and are not seen (shorten `dt_max` if that can
-/// happen). After a [`Action::Change`], a crossing of that event within the time tolerance of the
-/// change is ignored, so a reset state sitting on g = 0 does not trigger again.
+/// happen).
+///
+/// **Simultaneous events.** Crossings located within the event tolerance of each other are one
+/// instant. Every event there fires: each is recorded at that instant, and their actions apply
+/// in the order the events were added to the run — each change sees the state the previous one
+/// left, and each record holds the state before and after its own action. The run stops there
+/// if any of them stops it.
+///
+/// **After a change** the state starts on the surface g = 0 of each event that fired (to within
+/// the tolerance, on either side). Such an event is latched: it does not fire again as the state
+/// leaves the surface. A state that moves back to the side it came from (a bounce) re-arms it —
+/// even when it returns within the same step, however short the hop — and one that moves on
+/// through (a change that did not reverse the crossing) releases it.
+///
+/// **Zeno behaviour.** A ball bouncing with restitution e < 1 bounces infinitely often before a
+/// finite time. When a change event fires again sooner than the tolerance resolves, or its hop
+/// no longer reaches the surface it left, the run ends with [`Error::EventsAccumulate`] naming
+/// the event, its count and the time, rather than pass through the surface. A run also ends with
+/// that error past [`crate::RunOptions::max_events`] events (default 100 000).
 pub struct Event<'a, S> {
     name: String,
     trigger: Trigger<'a, S>,
@@ -239,6 +256,31 @@ pub(crate) enum Outcome {
     Changed(f64),
 }
 
+/// An event whose condition sits on zero at the start of a step: the sign it has there is no
+/// guide to the next crossing.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Latch {
+    /// Not on zero: the next crossing is a sign change from g at the start of the step.
+    Off,
+    /// On zero with no side known (a run or a change from outside that starts there): the side
+    /// is read a little into the step.
+    Unknown,
+    /// The event fired at a change and the state goes on from its surface, where g is zero to
+    /// within the location tolerance (on either side of it by rounding). `side` is the sign g
+    /// had before the crossing: a state that moves back to that side (a bounce) re-arms the
+    /// event there, one that moves on (a change that did not reverse the crossing) releases it.
+    Fired { side: f64 },
+}
+
+/// A crossing located in the step being handled.
+#[derive(Clone, Copy, Debug)]
+struct Found {
+    t: f64,
+    event: usize,
+    /// The sign of g before the crossing (0 for time events).
+    side: f64,
+}
+
 /// The events of a run and what they remember between steps.
 pub(crate) struct Watch<'a, S> {
     events: Vec<Event<'a, S>>,
@@ -246,22 +288,32 @@ pub(crate) struct Watch<'a, S> {
     g: Vec<f64>,
     /// g at the end of the current step.
     g_end: Vec<f64>,
-    /// The time of each event's last change, so it does not re-trigger on the reset state.
-    changed_at: Vec<f64>,
-    /// Per event, whether g sits on zero at the start of the step (just reset there, or started
-    /// there): its sign is then read a little into the step, on the dense output.
-    ahead: Vec<bool>,
+    /// Per event, whether g sits on zero at the start of the step.
+    latch: Vec<Latch>,
     /// Per time event, the index of its next time.
     next_time: Vec<usize>,
+    /// Per event, how often it fired and when it last changed the state.
+    fired: Vec<(u64, f64)>,
+    /// Events recorded so far in the run, against `max_events`.
+    total: u64,
+    max_events: u64,
     /// Tolerance in t for locating crossings.
     tolerance: f64,
+    /// The crossings of the step being handled (kept to reuse its allocation).
+    found: Vec<Found>,
 }
 
 impl<'a, S: State> Watch<'a, S> {
     /// The events of a run from (t₀, y₀), every condition evaluated there.
     ///
     /// Errors: [`Error::BadEvent`] when a condition is NaN at (t₀, y₀).
-    pub(crate) fn new(events: Vec<Event<'a, S>>, t0: f64, y0: &S, tolerance: f64) -> Result<Self> {
+    pub(crate) fn new(
+        events: Vec<Event<'a, S>>,
+        t0: f64,
+        y0: &S,
+        tolerance: f64,
+        max_events: u64,
+    ) -> Result<Self> {
         let n = events.len();
         let mut watch = Watch {
             next_time: events
@@ -274,9 +326,12 @@ impl<'a, S: State> Watch<'a, S> {
             events,
             g: vec![0.0; n],
             g_end: vec![0.0; n],
-            changed_at: vec![f64::NEG_INFINITY; n],
-            ahead: vec![false; n],
+            latch: vec![Latch::Off; n],
+            fired: vec![(0, f64::NEG_INFINITY); n],
+            total: 0,
+            max_events,
             tolerance,
+            found: Vec::new(),
         };
         watch.reset(t0, y0)?;
         Ok(watch)
@@ -296,10 +351,20 @@ impl<'a, S: State> Watch<'a, S> {
         for (i, e) in self.events.iter().enumerate() {
             if let Trigger::Crossing { condition, .. } = &e.trigger {
                 self.g[i] = finite_condition(e, t, condition(t, y))?;
-                self.ahead[i] = self.g[i] == 0.0;
+                self.latch[i] = if self.g[i] == 0.0 {
+                    Latch::Unknown
+                } else {
+                    Latch::Off
+                };
             }
         }
         Ok(())
+    }
+
+    /// Whether an event is latched on a surface it fired at: handling the next step then needs
+    /// f at its start, the direction the state leaves the surface in.
+    pub(crate) fn latched(&self) -> bool {
+        self.latch.iter().any(|l| matches!(l, Latch::Fired { .. }))
     }
 
     /// The next time a time event needs a step to land on, after `t`.
@@ -328,7 +393,7 @@ impl<'a, S: State> Watch<'a, S> {
                 } => {
                     let g1 = finite_condition(e, t1, condition(t1, y1))?;
                     self.g_end[i] = g1;
-                    any |= self.ahead[i] || crosses(self.g[i], g1, *direction);
+                    any |= self.latch[i] != Latch::Off || crosses(self.g[i], g1, *direction);
                 }
                 Trigger::Times(times) => {
                     any |= times.get(self.next_time[i]).is_some_and(|&s| s <= t1);
@@ -339,28 +404,69 @@ impl<'a, S: State> Watch<'a, S> {
     }
 
     /// Handles the events of the accepted step `dense` (from t to t1 = t + h, ending at `y1`),
-    /// after [`Watch::scan`] found something: locates each crossing, then takes them in time
-    /// order — recording, and stopping or changing the state at the first that does. On return
-    /// `at` holds the state at the returned time (the event's, after its action), or `y1` when
-    /// the step went through.
+    /// after [`Watch::scan`] found something (`f0` is f at the start when [`Watch::latched`]): locates each crossing, then takes them in time
+    /// order, instant by instant. Crossings within the location tolerance of each other are one
+    /// instant: every event there is recorded on the state at that instant, and their actions
+    /// apply in the order of the run's event list (each change sees the state the previous one
+    /// left); a change or a stop among them ends the step there. On return `at` holds the state
+    /// at the returned time (after the actions), or `y1` when the step went through.
     ///
     /// Errors: [`Error::BadEvent`] when a condition is NaN where a crossing is sought, or a change
-    /// leaves the state non-finite or its condition NaN.
+    /// leaves the state non-finite or its condition NaN; [`Error::EventsAccumulate`] when a
+    /// change event fires again sooner than the tolerance resolves, or the run's events exceed
+    /// its `max_events`.
     pub(crate) fn handle(
         &mut self,
         dense: &DenseStep<S>,
         t1: f64,
         y1: &S,
+        f0: &S,
         at: &mut S,
         records: &mut Vec<EventRecord<S>>,
     ) -> Result<Outcome> {
-        let mut found: Vec<(f64, usize)> = Vec::new();
-        for (i, e) in self.events.iter().enumerate() {
+        let mut found = std::mem::take(&mut self.found);
+        found.clear();
+        let located = self.locate_all(dense, t1, f0, at, &mut found);
+        let outcome = located.and_then(|()| self.act(&found, dense, t1, y1, at, records));
+        self.found = found;
+        let outcome = outcome?;
+        if let Outcome::Continue = outcome {
+            at.clone_from(y1);
+            self.advance();
+        }
+        Ok(outcome)
+    }
+
+    /// Locates every event's first crossing in the step (and its times inside it), into `found`
+    /// sorted by time, then by position in the event list.
+    fn locate_all(
+        &mut self,
+        dense: &DenseStep<S>,
+        t1: f64,
+        f0: &S,
+        at: &mut S,
+        found: &mut Vec<Found>,
+    ) -> Result<()> {
+        for i in 0..self.events.len() {
+            let e = &self.events[i];
             match &e.trigger {
                 Trigger::Crossing {
                     condition,
                     direction,
                 } => {
+                    // Whether a latched event's state leaves the surface back towards the side
+                    // it came from, along the tangent: a hop shorter than the search for its top
+                    // resolves still shows in that.
+                    let back = if let Latch::Fired { side } = self.latch[i] {
+                        let dt = 1e-6 * dense.h;
+                        let y0 = dense.coefficients()[0].as_slice();
+                        for ((a, y), f) in at.as_mut_slice().iter_mut().zip(y0).zip(f0.as_slice()) {
+                            *a = y + dt * f;
+                        }
+                        side * (condition(dense.t + dt, at) - self.g[i]) > 0.0
+                    } else {
+                        false
+                    };
                     // The first time inside the step where the condition was NaN, if any.
                     let mut nan_at = None;
                     let mut g = |t: f64| {
@@ -371,97 +477,289 @@ impl<'a, S: State> Watch<'a, S> {
                         }
                         value
                     };
-                    // g on zero at the start (a state just reset onto it) has no sign: read it
-                    // a little into the step, past the tolerance the event was located to.
-                    let start = if self.ahead[i] {
-                        let delta = (10.0 * self.tolerance)
-                            .max(1e-9 * (t1 - dense.t))
-                            .min(0.01 * (t1 - dense.t));
-                        (dense.t + delta, g(dense.t + delta))
-                    } else {
-                        (dense.t, self.g[i])
-                    };
-                    if crosses(start.1, self.g_end[i], *direction) {
-                        let t = locate(&mut g, start, (t1, self.g_end[i]), self.tolerance);
-                        if t > self.changed_at[i] + self.tolerance {
-                            found.push((t, i));
+                    let end = (t1, self.g_end[i]);
+                    let mut latch = self.latch[i];
+                    let start = match latch {
+                        Latch::Off => Some((dense.t, self.g[i])),
+                        Latch::Unknown => {
+                            // g on zero at the start (a run or a state from outside starting
+                            // there) has no sign: read it a little into the step.
+                            let delta = (10.0 * self.tolerance)
+                                .max(1e-9 * (t1 - dense.t))
+                                .min(0.01 * (t1 - dense.t));
+                            Some((dense.t + delta, g(dense.t + delta)))
                         }
+                        Latch::Fired { side } => {
+                            let start = (dense.t, self.g[i]);
+                            match rearm(&mut g, side, back, start, end, self.tolerance) {
+                                Rearm::Armed(point) => {
+                                    latch = Latch::Off;
+                                    Some(point)
+                                }
+                                Rearm::Held => None,
+                                Rearm::Released => {
+                                    latch = Latch::Off;
+                                    None
+                                }
+                                Rearm::Unresolved(t) => {
+                                    return Err(self.accumulating(i, t));
+                                }
+                            }
+                        }
+                    };
+                    if let Some(start) = start
+                        && crosses(start.1, end.1, *direction)
+                    {
+                        let t = locate(&mut g, start, end, self.tolerance);
+                        found.push(Found {
+                            t,
+                            event: i,
+                            side: start.1.signum(),
+                        });
                     }
                     if let Some(t) = nan_at {
                         return Err(nan_condition(e, t));
                     }
+                    self.latch[i] = latch;
                 }
                 Trigger::Times(times) => {
                     let mut k = self.next_time[i];
                     while let Some(&s) = times.get(k).filter(|&&s| s <= t1) {
-                        found.push((s, i));
+                        found.push(Found {
+                            t: s,
+                            event: i,
+                            side: 0.0,
+                        });
                         k += 1;
                     }
                 }
             }
         }
-        found.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        for (t, i) in found {
-            if let Trigger::Times(_) = self.events[i].trigger {
-                self.next_time[i] += 1;
-            }
+        found.sort_unstable_by(|a, b| a.t.total_cmp(&b.t).then(a.event.cmp(&b.event)));
+        Ok(())
+    }
+
+    /// Takes the located events instant by instant (see [`Watch::handle`]).
+    fn act(
+        &mut self,
+        found: &[Found],
+        dense: &DenseStep<S>,
+        t1: f64,
+        y1: &S,
+        at: &mut S,
+        records: &mut Vec<EventRecord<S>>,
+    ) -> Result<Outcome> {
+        let mut rest = found;
+        while let Some(first) = rest.first() {
+            let window = self.tolerance.max(4.0 * ulp(first.t));
+            let count = rest.partition_point(|f| f.t <= first.t + window);
+            let (instant, later) = rest.split_at(count);
+            rest = later;
+            // The latest crossing of the instant: past every one of them.
+            let t = instant.iter().fold(first.t, |m, f| m.max(f.t));
             if t == t1 {
                 at.clone_from(y1);
             } else {
                 dense.eval((t - dense.t) / dense.h, at);
             }
-            let before = at.clone();
-            let event = &self.events[i];
-            let outcome = match &event.action {
-                Action::Record => Outcome::Continue,
-                Action::Stop => Outcome::Stop(t),
-                Action::Change(change) => {
-                    change(t, at);
-                    if let Some(k) = at.as_slice().iter().position(|x| !x.is_finite()) {
-                        return Err(Error::BadEvent {
-                            event: event.name.clone(),
-                            t,
-                            reason: format!(
-                                "its change left component `{}` = {:?}; the state after a \
-                                 change must be finite",
-                                at.component_name(k),
-                                at.as_slice()[k]
-                            ),
-                        });
+            let (mut changed, mut stop) = (false, false);
+            for event in (0..self.events.len()).filter(|&i| instant.iter().any(|f| f.event == i)) {
+                // A time event may list several times within the window.
+                let times = instant.iter().filter(|f| f.event == event).count();
+                if let Trigger::Times(_) = self.events[event].trigger {
+                    self.next_time[event] += times;
+                }
+                let before = at.clone();
+                match &self.events[event].action {
+                    Action::Record => {}
+                    Action::Stop => stop = true,
+                    Action::Change(change) => {
+                        change(t, at);
+                        self.check_change(event, t, at)?;
+                        changed = true;
                     }
-                    Outcome::Changed(t)
                 }
-            };
-            records.push(EventRecord {
-                t,
-                event: i,
-                name: event.name.clone(),
-                before,
-                after: at.clone(),
-            });
-            match outcome {
-                Outcome::Continue => {}
-                Outcome::Changed(t) => {
-                    self.changed_at[i] = t;
-                    self.reset(t, at)?;
-                    // The event left its condition at (or a rounding away from) zero.
-                    self.ahead[i] = true;
-                    return Ok(outcome);
+                self.count(event, t)?;
+                records.push(EventRecord {
+                    t,
+                    event,
+                    name: self.events[event].name.clone(),
+                    before,
+                    after: at.clone(),
+                });
+            }
+            if changed {
+                self.reset(t, at)?;
+                // The events of the instant left their conditions on (or a rounding away from)
+                // zero: each is latched on the side it came from.
+                for f in instant.iter().filter(|f| f.side != 0.0) {
+                    self.latch[f.event] = Latch::Fired { side: f.side };
                 }
-                Outcome::Stop(_) => return Ok(outcome),
+            }
+            if stop {
+                return Ok(Outcome::Stop(t));
+            }
+            if changed {
+                return Ok(Outcome::Changed(t));
             }
         }
-        at.clone_from(y1);
-        self.advance();
         Ok(Outcome::Continue)
     }
 
-    /// The step went through: the end values are the next step's start values.
+    /// Counts a firing of `event` at `t` against the run's budget and, for a change, against
+    /// the last change: a change that comes back sooner than the tolerance resolves is an
+    /// accumulation of events.
+    fn count(&mut self, event: usize, t: f64) -> Result<()> {
+        self.total += 1;
+        let (count, last) = &mut self.fired[event];
+        *count += 1;
+        let window = self.tolerance.max(4.0 * ulp(t));
+        if let Action::Change(_) = self.events[event].action {
+            if t - *last <= window {
+                return Err(self.accumulating(event, t));
+            }
+            *last = t;
+        }
+        if self.total > self.max_events {
+            let (count, _) = self.fired[event];
+            return Err(Error::EventsAccumulate {
+                event: self.events[event].name.clone(),
+                count,
+                t,
+                reason: format!(
+                    "the run's events passed `max_events` = {}; raise it if so many are expected, \
+                     or stop the run sooner",
+                    self.max_events
+                ),
+            });
+        }
+        Ok(())
+    }
+
+    /// The error for `event`'s changes accumulating at `t`.
+    fn accumulating(&self, event: usize, t: f64) -> Error {
+        Error::EventsAccumulate {
+            event: self.events[event].name.clone(),
+            count: self.fired[event].0,
+            t,
+            reason: format!(
+                "after its last change the state comes back to its surface sooner than the event \
+                 tolerance ({:e}) resolves: its events accumulate at this time (Zeno behaviour, \
+                 like a ball bouncing ever lower) and integrating on would pass through the \
+                 surface; end the run before, e.g. with a stop event when the bounce speed falls \
+                 below a threshold",
+                self.tolerance
+            ),
+        }
+    }
+
+    /// Checks the state a change left.
+    fn check_change(&self, event: usize, t: f64, at: &S) -> Result<()> {
+        match at.as_slice().iter().position(|x| !x.is_finite()) {
+            None => Ok(()),
+            Some(k) => Err(Error::BadEvent {
+                event: self.events[event].name.clone(),
+                t,
+                reason: format!(
+                    "its change left component `{}` = {:?}; the state after a change must be \
+                     finite",
+                    at.component_name(k),
+                    at.as_slice()[k]
+                ),
+            }),
+        }
+    }
+
+    /// The step went through: the end values are the next step's start values. An event that
+    /// fired at a change stays latched while g has not left its surface for either side.
     pub(crate) fn advance(&mut self) {
         std::mem::swap(&mut self.g, &mut self.g_end);
-        for (ahead, g) in self.ahead.iter_mut().zip(&self.g) {
-            *ahead = *g == 0.0;
+        for (latch, g) in self.latch.iter_mut().zip(&self.g) {
+            *latch = match *latch {
+                // Held: `rearm` releases or re-arms it once g leaves the surface.
+                Latch::Fired { .. } => *latch,
+                _ if *g == 0.0 => Latch::Unknown,
+                _ => Latch::Off,
+            };
         }
+    }
+}
+
+/// Where a latched event stands after a step.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Rearm {
+    /// g reached the side it came from at this point (t, g): a crossing after it counts.
+    Armed((f64, f64)),
+    /// g is still on its way back to the surface: no crossing in this step.
+    Held,
+    /// g moved away from the surface on the far side: the change did not reverse the crossing.
+    Released,
+    /// g turned back towards the surface and away again without reaching it, at this time: a
+    /// return sooner than the tolerance resolves.
+    Unresolved(f64),
+}
+
+/// Where the event latched on the `side` it came from stands after the step from `start` to
+/// `end` (each (t, g)): the highest point of side·g on the step, by golden-section search to
+/// within `tolerance` in t (Kiefer, Proc. AMS 4 (1953) 502), says whether the state came back;
+/// `back` says whether it leaves the surface towards that side, for a hop too short to find.
+fn rearm(
+    mut g: impl FnMut(f64) -> f64,
+    side: f64,
+    back: bool,
+    start: (f64, f64),
+    end: (f64, f64),
+    tolerance: f64,
+) -> Rearm {
+    let phi = |g: f64| side * g;
+    let (a, b) = (start.0, end.0);
+    let mut best = if phi(end.1) >= phi(start.1) {
+        end
+    } else {
+        start
+    };
+    let ratio = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut lo, mut hi) = (a, b);
+    let mut x1 = hi - ratio * (hi - lo);
+    let mut x2 = lo + ratio * (hi - lo);
+    let (mut f1, mut f2) = (g(x1), g(x2));
+    for _ in 0..200 {
+        for (x, f) in [(x1, f1), (x2, f2)] {
+            if phi(f) > phi(best.1) {
+                best = (x, f);
+            }
+        }
+        if phi(best.1) > 0.0 || hi - lo <= tolerance.max(4.0 * ulp(hi)) {
+            break;
+        }
+        if phi(f1) >= phi(f2) {
+            (hi, x2, f2) = (x2, x1, f1);
+            x1 = hi - ratio * (hi - lo);
+            f1 = g(x1);
+        } else {
+            (lo, x1, f1) = (x1, x2, f2);
+            x2 = lo + ratio * (hi - lo);
+            f2 = g(x2);
+        }
+    }
+    if phi(best.1) > 0.0 {
+        Rearm::Armed(best)
+    } else if best.0 == b {
+        Rearm::Held
+    } else if best.0 == a && !back {
+        Rearm::Released
+    } else {
+        Rearm::Unresolved(best.0)
+    }
+}
+
+/// The spacing of floats at `t`.
+fn ulp(t: f64) -> f64 {
+    let t = t.abs();
+    if t == 0.0 {
+        f64::MIN_POSITIVE
+    } else {
+        f64::from_bits(t.to_bits() + 1) - t
     }
 }
 

@@ -132,7 +132,7 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
         newton: &NewtonOptions,
         limit: f64,
         events: Vec<Event<'a, M::State>>,
-        event_tolerance: f64,
+        (event_tolerance, max_events): (f64, u64),
         recording: Recording<'a>,
     ) -> Result<Self> {
         if !t0.is_finite() {
@@ -183,7 +183,7 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
             f_start: false,
             dense: DenseStep::new(&y0, I::DENSE_DEGREE.max(3)),
             stats,
-            watch: Watch::new(events, t0, &y0, event_tolerance)?,
+            watch: Watch::new(events, t0, &y0, event_tolerance, max_events)?,
             limit,
             max_halvings: newton.max_halvings,
             pending: Vec::with_capacity(newton.max_halvings as usize + 2),
@@ -489,12 +489,18 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
             .recording
             .save_at
             .is_some_and(|times| times.get(self.next_save).is_some_and(|&s| s <= t1));
+        if events && self.watch.latched() && !self.f_start {
+            self.model.derivative(self.t, &self.y, &mut self.ends[0]);
+            self.stats.evaluations += 1;
+            self.f_start = true;
+        }
         let hermite = (events || saves || self.record.dense.is_some()) && self.build_dense(t1);
         let outcome = if events {
             self.watch.handle(
                 &self.dense,
                 t1,
                 &self.y_new,
+                &self.ends[0],
                 &mut self.at,
                 &mut self.record.events,
             )?
