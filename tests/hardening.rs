@@ -400,10 +400,10 @@ fn stability_probe_settings_are_validated() {
     for (probe, field) in [
         (
             StabilityProbe {
-                max_doublings: u32::MAX,
+                scan_ratio: 1.0,
                 ..StabilityProbe::default()
             },
-            "StabilityProbe::max_doublings",
+            "StabilityProbe::scan_ratio",
         ),
         (
             StabilityProbe {
@@ -760,5 +760,74 @@ fn simultaneous_events_all_fire_in_list_order() {
             "{:?}",
             run.events
         );
+    }
+}
+
+/// `measured_limit` used to answer with whichever edge its doublings straddled: Yoshida6 on
+/// ω = 1 reported 2.817 although runs diverge from 2.269 to 2.328, Kahan–Li 6 reported 3.329
+/// against a first edge at 2.533; and it depended on the guess: RK4 gave 0 for a guess of 1e300
+/// and ∞ for 1e-300. It scans from below now and reports the first instability from any guess:
+/// the first ωh with |tr P(ωh)| = 2 for the composed leapfrog matrices and RK4's 2√2, in 40-digit
+/// arithmetic by scripts/stability_boundaries.py.
+#[test]
+fn measured_limits_are_the_first_instability_from_any_guess() {
+    let osc = oscillator(1.0);
+    let probe = StabilityProbe::default();
+    let cases = [
+        (Method::Yoshida6, 2.269_057_996_397_659, 1.0),
+        (Method::Yoshida6, 2.269_057_996_397_659, 2.5),
+        (Method::KahanLi6, 2.532_627_388_334_297, 1.0),
+        (Method::KahanLi6, 2.532_627_388_334_297, 3.0),
+        (Method::Rk4, 2.0 * 2f64.sqrt(), 1e300),
+        (Method::Rk4, 2.0 * 2f64.sqrt(), 1e-300),
+        (Method::Leapfrog, 2.0, f64::MAX),
+    ];
+    for (method, first_edge, guess) in cases {
+        let measured = measured_limit(&osc, &osc.state(), method, guess, &probe).unwrap();
+        assert!(
+            (measured / first_edge - 1.0).abs() < 1e-4,
+            "{method} from {guess:e}: {measured} vs {first_edge}"
+        );
+    }
+    // A-stable methods are stable at every dt, from any guess.
+    for guess in [1e-300, 1.0, 1e300] {
+        let measured =
+            measured_limit(&osc, &osc.state(), Method::ImplicitEuler, guess, &probe).unwrap();
+        assert_eq!(measured, f64::INFINITY, "from {guess:e}");
+    }
+}
+
+/// `divergence_limit(f64::INFINITY)` let an infinite state through (y′ = y² under RK4 returned
+/// Ok with y = inf): a non-finite state always stops the run.
+#[test]
+fn an_infinite_divergence_limit_still_stops_an_infinite_state() {
+    // y′ = y² from y = 1 blows up at t = 1; RK4 at dt = 0.1 overflows to inf past it.
+    let model = Riccati { y: 1.0 };
+    let error = model
+        .simulate()
+        .integrator(Method::Rk4)
+        .dt(0.1)
+        .steps(40)
+        .divergence_limit(f64::INFINITY)
+        .run()
+        .unwrap_err();
+    match &error {
+        Error::Diverged { value, .. } => assert!(!value.is_finite(), "{error}"),
+        other => panic!("expected Diverged, got {other:?}"),
+    }
+}
+
+/// y′ = y², which blows up at t = 1/y₀.
+#[system]
+pub struct Riccati {
+    /// The solution.
+    #[state]
+    pub y: f64,
+}
+
+#[system]
+impl Riccati {
+    fn derivative(&self) -> RiccatiState {
+        RiccatiState { y: self.y * self.y }
     }
 }

@@ -56,7 +56,8 @@ pub struct RunOptions {
     /// |component| beyond which a step counts as diverged. Default: 10¹⁰ × max(1, largest
     /// |component| of the initial state) — far beyond anything an accurate run of a bounded model
     /// reaches, and where an exploded explicit run of a stiff model is caught before its values
-    /// overflow.
+    /// overflow. A non-finite state always stops the run, whatever the limit (`f64::INFINITY`
+    /// catches only infinities and NaN).
     pub divergence_limit: Option<f64>,
     /// Newton's method in implicit steps (see [`NewtonOptions`] for the defaults).
     pub newton: NewtonOptions,
@@ -89,10 +90,23 @@ impl Default for RunOptions {
     }
 }
 
-/// The default divergence limit for a run from `state` (see [`RunOptions::divergence_limit`]).
-pub(crate) fn default_divergence_limit<S: State>(state: &S) -> f64 {
-    let scale = state.as_slice().iter().fold(1.0f64, |m, x| m.max(x.abs()));
-    1e10 * scale
+/// The divergence limit of a run from `state`: the `option` given (see
+/// [`RunOptions::divergence_limit`]) or the default. An infinite limit still stops at a
+/// non-finite state: it is kept as the largest finite number.
+///
+/// Errors: [`Error::InvalidInput`] for a limit that is not positive (NaN included).
+pub(crate) fn divergence_limit<S: State>(option: Option<f64>, state: &S) -> Result<f64> {
+    match option {
+        None => {
+            let scale = state.as_slice().iter().fold(1.0f64, |m, x| m.max(x.abs()));
+            Ok((1e10 * scale).min(f64::MAX))
+        }
+        Some(limit) if limit > 0.0 => Ok(limit.min(f64::MAX)),
+        Some(limit) => Err(Error::invalid(
+            "divergence_limit",
+            format!("must be positive, got {limit:?}"),
+        )),
+    }
 }
 
 /// A progress callback (see [`Simulation::progress`]).
@@ -418,16 +432,7 @@ impl<'m, M: Model> Simulation<'m, M> {
                 ));
             }
         }
-        let limit = match o.divergence_limit {
-            None => default_divergence_limit(&initial),
-            Some(limit) if limit > 0.0 => limit,
-            Some(limit) => {
-                return Err(Error::invalid(
-                    "divergence_limit",
-                    format!("must be positive, got {limit:?}"),
-                ));
-            }
-        };
+        let limit = divergence_limit(o.divergence_limit, &initial)?;
         if !(o.event_tolerance.is_finite() && o.event_tolerance >= 0.0) {
             return Err(Error::invalid(
                 "event_tolerance",

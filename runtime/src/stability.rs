@@ -23,9 +23,9 @@ pub struct StabilityProbe {
     /// Bisection stops when the bracket is this narrow relative to its lower end, from 1e-15
     /// (about the resolution of `f64`) to 1 (default 1e-6).
     pub precision: f64,
-    /// The bracket search gives up — the limit is 0 or ∞ — after this many halvings or
-    /// doublings of the first guess, at most 1000 (default 40).
-    pub max_doublings: u32,
+    /// The scan from below raises dt by this ratio a trial, from 1.001 to 2 (default 1.01): a
+    /// band of unstable dt narrower than this ratio may be stepped over.
+    pub scan_ratio: f64,
 }
 
 impl StabilityProbe {
@@ -51,10 +51,10 @@ impl StabilityProbe {
                 format!("must be from 1e-15 to 1, got {:?}", self.precision),
             ));
         }
-        if self.max_doublings > 1000 {
+        if !(1.001..=2.0).contains(&self.scan_ratio) {
             return Err(Error::invalid(
-                "StabilityProbe::max_doublings",
-                format!("must be at most 1000, got {}", self.max_doublings),
+                "StabilityProbe::scan_ratio",
+                format!("must be from 1.001 to 2, got {:?}", self.scan_ratio),
             ));
         }
         Ok(())
@@ -67,19 +67,35 @@ impl Default for StabilityProbe {
             steps: 20_000,
             growth: 1e-3,
             precision: 1e-6,
-            max_doublings: 40,
+            scan_ratio: 1.01,
         }
     }
 }
 
-/// The largest dt at which `method` keeps `model` bounded from `state`, by bisection, starting
-/// the bracket search from `guess`.
+/// The range of dt the search covers: far beyond any step a run takes either way, with room
+/// for the products of dt with the model's rates (ω²dt² stays finite for |ω| < 10¹⁰⁰).
+const SMALLEST_DT: f64 = 1e-150;
+const LARGEST_DT: f64 = 1e150;
+
+/// The largest dt at which `method` keeps `model` bounded from `state`: the first instability,
+/// met scanning dt upwards.
 ///
 /// The energy is the model's own when it defines one, else the squared norm of the state.
 ///
-/// Bisection finds *an* edge between a stable and an unstable dt: for a method whose stable set
-/// has gaps (the sixth-order compositions, stable again past their first limit) it may be a
-/// later edge than the first one [`predicted_limit`] reports.
+/// The search, whatever the `guess` (it only sets where the search starts):
+///
+/// 1. **bracket**: from the guess, dt is multiplied (or divided) by 2, 4, 16, 256, … — the
+///    factor squares each trial, so any dt from 10⁻¹⁵⁰ to 10¹⁵⁰ is reached in about 10 trials —
+///    until stability changes; a method stable at 10¹⁵⁰ is stable everywhere (∞), one unstable
+///    at 10⁻¹⁵⁰ nowhere (0);
+/// 2. the bracket is halved geometrically until its ends are within a factor 2;
+/// 3. **scan from below**: from half the stable end, dt rises by `probe.scan_ratio` a trial to
+///    the first unstable dt, so a method whose stable set has gaps (the sixth-order
+///    compositions, stable again past their first limit) reports its first edge;
+/// 4. bisection between the last stable and the first unstable dt to `probe.precision`.
+///
+/// An unstable band below half the stable end the bracket found, or narrower than
+/// `probe.scan_ratio`, is not seen.
 ///
 /// Errors: [`Error::InvalidInput`] for a guess that is not finite and positive or a `probe`
 /// setting out of range (see [`StabilityProbe::check`]); the run's own input errors.
@@ -98,32 +114,59 @@ pub fn measured_limit<M: Model>(
     }
     probe.check()?;
     let stable = |dt: f64| bounded(model, state, method, dt, probe);
-    let mut tries = 0..=probe.max_doublings;
+    let largest = LARGEST_DT;
+    let guess = guess.clamp(SMALLEST_DT, largest);
+    // 1. Bracket: lo stable, hi unstable.
     let (mut lo, mut hi) = if stable(guess)? {
-        let mut lo = guess;
+        let (mut lo, mut factor) = (guess, 2.0f64);
         loop {
-            if tries.next().is_none() {
+            if lo >= largest {
                 return Ok(f64::INFINITY);
             }
-            if !stable(2.0 * lo)? {
-                break (lo, 2.0 * lo);
+            let next = (lo * factor).min(largest);
+            if !stable(next)? {
+                break (lo, next);
             }
-            lo *= 2.0;
+            (lo, factor) = (next, factor * factor);
         }
     } else {
-        let mut hi = guess;
+        let (mut hi, mut factor) = (guess, 2.0f64);
         loop {
-            if tries.next().is_none() {
+            if hi <= SMALLEST_DT {
                 return Ok(0.0);
             }
-            if stable(0.5 * hi)? {
-                break (0.5 * hi, hi);
+            let next = (hi / factor).max(SMALLEST_DT);
+            if stable(next)? {
+                break (next, hi);
             }
-            hi *= 0.5;
+            (hi, factor) = (next, factor * factor);
         }
     };
-    // precision ≥ 1e-15 ends this within ~50 halvings; the cap guards against lo reaching a
-    // subnormal where the relative test could not shrink.
+    // 2. To within a factor 2, halving the bracket's logarithm.
+    while hi > 2.0 * lo {
+        let mid = lo.sqrt() * hi.sqrt();
+        if stable(mid)? { lo = mid } else { hi = mid }
+    }
+    // 3. Scan from below, from a stable start.
+    let mut from = 0.5 * lo;
+    while !stable(from)? {
+        if from <= SMALLEST_DT {
+            return Ok(0.0);
+        }
+        (hi, from) = (from, 0.5 * from);
+    }
+    let (mut lo, mut hi) = loop {
+        let next = from * probe.scan_ratio;
+        if next >= hi {
+            break (from, hi);
+        }
+        if !stable(next)? {
+            break (from, next);
+        }
+        from = next;
+    };
+    // 4. Bisection. precision ≥ 1e-15 ends this within ~50 halvings; the cap guards against a
+    // bracket the relative test cannot shrink.
     for _ in 0..200 {
         if hi - lo <= probe.precision * lo {
             break;

@@ -1,7 +1,6 @@
 //! [`Stepper`]: a model, an integrator and a state, advanced one checked step at a time.
 
 use crate::drive::{Driver, Recording};
-use crate::simulation::default_divergence_limit;
 use crate::{Error, Integrator, Model, NewtonOptions, Result, Stats};
 
 /// Advances one state with a fixed method and a fixed dt, refusing non-finite results.
@@ -55,16 +54,7 @@ impl<'m, M: Model, I: Integrator<M>> Stepper<'m, M, I> {
         divergence_limit: Option<f64>,
     ) -> Result<Self> {
         check_dt(dt)?;
-        let limit = match divergence_limit {
-            None => default_divergence_limit(&state),
-            Some(limit) if limit > 0.0 => limit,
-            Some(limit) => {
-                return Err(Error::invalid(
-                    "divergence_limit",
-                    format!("must be positive, got {limit:?}"),
-                ));
-            }
-        };
+        let limit = crate::simulation::divergence_limit(divergence_limit, &state)?;
         let quiet = Recording {
             every: 0,
             save_at: None,
