@@ -11,8 +11,9 @@
 use std::f64::consts::PI;
 
 use odyn::grid::{Boundary, Grid, GridState, Stencil};
+use odyn::integrators::Rk4;
 use odyn::stability::{StabilityProbe, gershgorin_limit, measured_limit};
-use odyn::{Jacobian, Method, Model, State, system};
+use odyn::{Error, Jacobian, Method, Model, State, Stepper, system};
 
 /// u_t = D∇²u.
 #[system(integrator = ImplicitEuler, dt = 1e-3)]
@@ -560,4 +561,38 @@ fn gray_scott_matches_scipy() {
     let mean = |s: &[f64]| s.iter().sum::<f64>() / s.len() as f64;
     assert!((mean(&y[..n * n]) - 9.969918721584972e-01).abs() < 1e-10);
     assert!((mean(&y[n * n..]) - 1.407236166694929e-03).abs() < 1e-10);
+}
+
+/// Replacing the state through `Stepper::state_mut` by one of another size used to step on
+/// silently, the state quietly back at the old size; a grid of the same number of cells but
+/// another shape stepped as if the model's grid were that shape.
+#[test]
+fn a_replaced_state_of_another_size_is_a_typed_error() {
+    let model = heat(8);
+    let mut stepper = Stepper::<Heat, Rk4<_>>::new(&model, model.state(), 0.0, 1e-4).unwrap();
+    stepper.step().unwrap();
+    *stepper.state_mut() = heat(6).state();
+    let error = stepper.step().unwrap_err();
+    assert!(
+        matches!(&error, Error::InvalidInput { field, .. } if field == "state")
+            && error.to_string().contains("36 components")
+            && error.to_string().contains("64"),
+        "{error}"
+    );
+    assert_eq!(stepper.steps(), 1);
+
+    // 4×16 cells in place of 8×8: as many values, another grid.
+    let wide = Heat {
+        u: Grid::from_fn(4, 16, Boundary::Dirichlet(0.0), |_, _| 1.0).unwrap(),
+        ..heat(8)
+    };
+    *stepper.state_mut() = wide.state();
+    let error = stepper.step().unwrap_err();
+    assert!(error.to_string().contains("4×16"), "{error}");
+
+    // Values changed in place go on stepping.
+    *stepper.state_mut() = model.state();
+    stepper.state_mut().as_mut_slice()[9] = 2.0;
+    stepper.step().unwrap();
+    assert_eq!(stepper.steps(), 2);
 }
