@@ -232,6 +232,27 @@ impl Error {
             reason: reason.into(),
         }
     }
+
+    /// A copy of a state that cannot be allocated: `field` and `what` name the state (`grid`,
+    /// `is 16384×16384 with 2 fields`), which has `components` values; `smaller` is what to use
+    /// instead (`a coarser grid`).
+    pub(crate) fn copy_refused(
+        field: &str,
+        what: String,
+        components: usize,
+        smaller: &str,
+    ) -> Self {
+        let bytes = components as u128 * std::mem::size_of::<f64>() as u128;
+        Error::invalid(
+            field,
+            format!(
+                "{what}: a copy of its state ({}) cannot be allocated, and a run holds a dozen or \
+                 more (the method's stages, the driver's buffers); use {smaller}, or a method \
+                 with fewer stages (explicit or symplectic Euler)",
+                bytes_text(bytes)
+            ),
+        )
+    }
 }
 
 /// `bytes` in SI units with two significant digits or more: `512 B`, `4.3 GB`, `79 TB`.
