@@ -3,7 +3,10 @@
 //! falling as 1/√N.
 
 use std::f64::consts::PI;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::{Duration, Instant};
 
+use odyn::Error;
 use odyn::ensemble::{Ensemble, MemberRng, Members, Shard};
 use odyn::rand::Rng;
 
@@ -222,4 +225,161 @@ fn monte_carlo_error_falls_as_one_over_sqrt_n() {
     let slope = points.iter().map(|(x, y)| (x - mx) * (y - my)).sum::<f64>()
         / points.iter().map(|(x, _)| (x - mx) * (x - mx)).sum::<f64>();
     assert!((slope + 0.5).abs() <= 0.05, "slope {slope}");
+}
+
+// ----- bad input ---------------------------------------------------------------------------
+
+/// A directory of its own per test (tests run in parallel in one process).
+fn scratch(test: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("odyn-ensemble-{}-{test}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// A shard whose index is not below its count used to take members past the last
+/// (`Shard { index: 5, count: 2 }.range(10)` was 25..30), and a count of 0 divided by zero.
+#[test]
+fn a_shard_outside_its_count_is_a_typed_error() {
+    for (index, count) in [(5, 2), (2, 2), (0, 0)] {
+        let shard = Shard { index, count };
+        let error = shard.range(10).unwrap_err();
+        assert!(
+            matches!(&error, Error::InvalidInput { field, .. } if field == "shard")
+                && error
+                    .to_string()
+                    .contains(&format!("{index}/{count} does not exist")),
+            "{error}"
+        );
+        let run = Ensemble {
+            members: 10,
+            shard,
+            ..Ensemble::default()
+        }
+        .run(|_, _| Ok(vec![0.0]));
+        assert!(matches!(run, Err(Error::InvalidInput { .. })), "{run:?}");
+    }
+    assert_eq!(Shard { index: 1, count: 3 }.range(10).unwrap(), 3..6);
+    assert_eq!(Shard { index: 3, count: 4 }.range(3).unwrap(), 2..3);
+    assert_eq!(Shard::WHOLE.range(10).unwrap(), 0..10);
+}
+
+/// `Members` has public fields: rows of different lengths used to panic in `statistics` (index
+/// out of bounds), and a member listed twice was counted twice in the mean.
+#[test]
+fn members_edited_into_an_inconsistent_state_are_a_typed_error() {
+    let edited = |edit: &dyn Fn(&mut Members)| {
+        let mut members = pi_ensemble(4, Shard::WHOLE);
+        edit(&mut members);
+        members
+    };
+    let ragged = edited(&|m| {
+        m.rows[2].1.pop();
+    });
+    let twice = edited(&|m| m.rows[1].0 = 0);
+    let beyond = edited(&|m| m.rows[3].0 = 9);
+    for (members, expected) in [
+        (&ragged, "member 2 has 1 observations, member 0 has 2"),
+        (&twice, "member 0 comes after member 0"),
+        (&beyond, "member 9 is past the last of 4 members"),
+    ] {
+        let error = members.statistics().unwrap_err();
+        assert!(
+            matches!(&error, Error::InvalidInput { field, .. } if field == "members")
+                && error.to_string().contains(expected),
+            "{error}"
+        );
+    }
+    // Nor are they written: the file could not be read back.
+    let path = scratch("edited").join("ragged.csv");
+    assert!(ragged.write_csv(&path).is_err());
+    assert!(!path.exists());
+}
+
+/// 2⁴⁰ members used to allocate 79 TB for their results before the first ran (an abort), and
+/// u64::MAX members overflowed the capacity (a panic). The error comes back at once: the system
+/// refuses the reservation (or it overflows) before any member runs.
+#[test]
+fn an_ensemble_too_big_to_hold_is_a_typed_error_before_any_member_runs() {
+    let ran = AtomicU64::new(0);
+    // The slots alone: 104 bytes a member on 64-bit targets (114 TB), more than any machine.
+    for (members, needs) in [
+        (1 << 40, "1.1e12 members need 1"),
+        (u64::MAX, "1.8e19 members"),
+    ] {
+        let ensemble = Ensemble {
+            members,
+            ..Ensemble::default()
+        };
+        let start = Instant::now();
+        let error = ensemble
+            .run(|_, _| {
+                ran.fetch_add(1, Ordering::Relaxed);
+                Ok(vec![0.0])
+            })
+            .unwrap_err();
+        assert!(start.elapsed() < Duration::from_secs(5));
+        assert!(
+            matches!(&error, Error::InvalidInput { field, .. } if field == "members")
+                && error.to_string().contains(needs)
+                && error.to_string().contains("cannot be allocated"),
+            "{error}"
+        );
+    }
+    assert_eq!(ran.load(Ordering::Relaxed), 0);
+}
+
+/// Reading a shard file that is missing or cut short said "cannot write CSV"; a value that is
+/// not a number named only its row.
+#[test]
+fn an_unreadable_shard_file_says_what_is_wrong_with_it() {
+    let dir = scratch("unreadable");
+    let missing = Members::read_csv(dir.join("missing.csv")).unwrap_err();
+    assert!(
+        matches!(missing, Error::Read { .. }) && missing.to_string().starts_with("cannot read"),
+        "{missing}"
+    );
+
+    let path = dir.join("shard.csv");
+    pi_ensemble(4, Shard::WHOLE).write_csv(&path).unwrap();
+    let text = std::fs::read_to_string(&path).unwrap();
+    // Cut in the last row, as a copy interrupted part-way leaves it.
+    std::fs::write(&path, &text[..text.len() - 30]).unwrap();
+    let truncated = Members::read_csv(&path).unwrap_err().to_string();
+    assert!(
+        truncated.contains("row 5")
+            && truncated.contains("truncated")
+            && !truncated.contains("write"),
+        "{truncated}"
+    );
+
+    let mut lines: Vec<String> = text.lines().map(str::to_owned).collect();
+    lines[1] = "0,4,2026,3.1,abc".to_owned();
+    std::fs::write(&path, lines.join("\n") + "\n").unwrap();
+    let nan = Members::read_csv(&path).unwrap_err().to_string();
+    assert!(
+        nan.contains("row 2") && nan.contains("column `y1`") && nan.contains("`abc`"),
+        "{nan}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Merging with an empty `Members` (no members, no rows) said "shards of different ensembles:
+/// 4 members with seed 1 and 0 members with seed 0".
+#[test]
+fn merging_an_empty_shard_says_it_is_empty() {
+    let empty = Members {
+        members: 0,
+        seed: 0,
+        rows: Vec::new(),
+    };
+    for parts in [
+        vec![pi_ensemble(4, Shard::WHOLE), empty.clone()],
+        vec![empty.clone(), pi_ensemble(4, Shard::WHOLE)],
+    ] {
+        let error = Members::merge(parts).unwrap_err().to_string();
+        assert!(
+            error.contains("empty") && !error.contains("different ensembles"),
+            "{error}"
+        );
+    }
 }

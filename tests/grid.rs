@@ -8,11 +8,14 @@
 //! system). Comparing against the first measures the spatial error, against the second the
 //! time integrator's alone.
 
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
 use std::f64::consts::PI;
 
 use odyn::grid::{Boundary, Grid, GridState, Stencil};
+use odyn::integrators::Rk4;
 use odyn::stability::{StabilityProbe, gershgorin_limit, measured_limit};
-use odyn::{Jacobian, Method, Model, State, system};
+use odyn::{Error, Jacobian, Method, Model, State, Stepper, system};
 
 /// u_t = D∇²u.
 #[system(integrator = ImplicitEuler, dt = 1e-3)]
@@ -560,4 +563,151 @@ fn gray_scott_matches_scipy() {
     let mean = |s: &[f64]| s.iter().sum::<f64>() / s.len() as f64;
     assert!((mean(&y[..n * n]) - 9.969918721584972e-01).abs() < 1e-10);
     assert!((mean(&y[n * n..]) - 1.407236166694929e-03).abs() < 1e-10);
+}
+
+/// Replacing the state through `Stepper::state_mut` by one of another size used to step on
+/// silently, the state quietly back at the old size; a grid of the same number of cells but
+/// another shape stepped as if the model's grid were that shape.
+#[test]
+fn a_replaced_state_of_another_size_is_a_typed_error() {
+    let model = heat(8);
+    let mut stepper = Stepper::<Heat, Rk4<_>>::new(&model, model.state(), 0.0, 1e-4).unwrap();
+    stepper.step().unwrap();
+    *stepper.state_mut() = heat(6).state();
+    let error = stepper.step().unwrap_err();
+    assert!(
+        matches!(&error, Error::InvalidInput { field, .. } if field == "state")
+            && error.to_string().contains("36 components")
+            && error.to_string().contains("64"),
+        "{error}"
+    );
+    assert_eq!(stepper.steps(), 1);
+
+    // 4×16 cells in place of 8×8: as many values, another grid.
+    let wide = Heat {
+        u: Grid::from_fn(4, 16, Boundary::Dirichlet(0.0), |_, _| 1.0).unwrap(),
+        ..heat(8)
+    };
+    *stepper.state_mut() = wide.state();
+    let error = stepper.step().unwrap_err();
+    assert!(error.to_string().contains("4×16"), "{error}");
+
+    // Values changed in place go on stepping.
+    *stepper.state_mut() = model.state();
+    stepper.state_mut().as_mut_slice()[9] = 2.0;
+    stepper.step().unwrap();
+    assert_eq!(stepper.steps(), 2);
+}
+
+/// The system allocator, except that a thread given a budget ([`within_budget`]) gets a null
+/// pointer for an allocation beyond what is left of it, as from a machine out of memory.
+struct Budgeted;
+
+thread_local! {
+    /// Bytes this thread may still allocate; `None` for no limit.
+    static LEFT: Cell<Option<usize>> = const { Cell::new(None) };
+}
+
+/// Whether `bytes` more fit the budget (taking them if so).
+fn take(bytes: usize) -> bool {
+    LEFT.try_with(|left| match left.get() {
+        Some(n) if bytes > n => false,
+        Some(n) => {
+            left.set(Some(n - bytes));
+            true
+        }
+        None => true,
+    })
+    .unwrap_or(true)
+}
+
+fn give(bytes: usize) {
+    let _ = LEFT.try_with(|left| left.set(left.get().map(|n| n.saturating_add(bytes))));
+}
+
+// SAFETY: every call is passed on to the system allocator unchanged, or refused with null.
+unsafe impl GlobalAlloc for Budgeted {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        if !take(layout.size()) {
+            return std::ptr::null_mut();
+        }
+        // SAFETY: as the caller's contract.
+        unsafe { System.alloc(layout) }
+    }
+
+    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
+        if !take(layout.size()) {
+            return std::ptr::null_mut();
+        }
+        // SAFETY: as the caller's contract.
+        unsafe { System.alloc_zeroed(layout) }
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        give(layout.size());
+        // SAFETY: as the caller's contract.
+        unsafe { System.dealloc(ptr, layout) }
+    }
+
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        if new_size > layout.size() && !take(new_size - layout.size()) {
+            return std::ptr::null_mut();
+        }
+        // SAFETY: as the caller's contract.
+        let moved = unsafe { System.realloc(ptr, layout, new_size) };
+        if new_size < layout.size() && !moved.is_null() {
+            give(layout.size() - new_size);
+        }
+        moved
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Budgeted = Budgeted;
+
+/// `f`, with this thread allowed `bytes` of new allocations.
+fn within_budget<T>(bytes: usize, f: impl FnOnce() -> T) -> T {
+    LEFT.with(|left| left.set(Some(bytes)));
+    let out = f();
+    LEFT.with(|left| left.set(None));
+    out
+}
+
+/// A grid that fits in memory, with room for its state, but not for the copies a run makes of
+/// it (the method's stages, the driver's buffers: ten to twenty) used to abort the process at
+/// its first run (the probe's 16384² grid). Now the run stops at the first copy that
+/// cannot be allocated with a typed error; modelled here by an allocator that refuses
+/// allocations beyond a budget of three copies of a 256² grid's state (512 KiB each).
+#[test]
+fn a_grid_whose_run_copies_do_not_fit_is_a_typed_error() {
+    let model = heat(256);
+    let copy = 256 * 256 * std::mem::size_of::<f64>();
+    for method in [
+        Method::ExplicitEuler,
+        Method::Rk4,
+        Method::Tsit5,
+        Method::Dop853,
+    ] {
+        let run = within_budget(3 * copy + (64 << 10), || {
+            model.simulate().integrator(method).dt(1e-6).steps(1).run()
+        });
+        let error = run.unwrap_err();
+        assert!(
+            matches!(&error, Error::InvalidInput { field, .. } if field == "grid")
+                && error.to_string().contains(
+                    "is 256×256 with 1 field: a copy of its state (524 kB) cannot be allocated"
+                ),
+            "{method}: {error}"
+        );
+    }
+    // With room for them, the same run goes through.
+    let run = within_budget(64 * copy, || {
+        model
+            .simulate()
+            .integrator(Method::Rk4)
+            .dt(1e-6)
+            .steps(1)
+            .run()
+    });
+    assert_eq!(run.unwrap().steps(), 1);
 }

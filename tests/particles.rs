@@ -512,3 +512,30 @@ fn sparse_velocity_solve_equals_the_dense_first_order_newton_solve_every_time() 
         "{counts:?}"
     );
 }
+
+/// Replacing the state through `Stepper::state_mut` by one of another size used to panic in the
+/// force sum (`copy_from_slice` of slices of different lengths).
+#[test]
+fn a_replaced_state_of_another_size_is_a_typed_error() {
+    let model = chain(8);
+    let mut stepper = Stepper::<Chain, odyn::integrators::SymplecticEuler<_>>::new(
+        &model,
+        model.state(),
+        0.0,
+        1e-3,
+    )
+    .unwrap();
+    stepper.step().unwrap();
+    *stepper.state_mut() = chain(5).state();
+    let error = stepper.step().unwrap_err();
+    assert!(
+        matches!(&error, Error::InvalidInput { field, .. } if field == "state")
+            && error.to_string().contains("20 components")
+            && error.to_string().contains("32"),
+        "{error}"
+    );
+    // Back to a state of the model's size, it steps on.
+    *stepper.state_mut() = model.state();
+    stepper.step().unwrap();
+    assert_eq!(stepper.steps(), 2);
+}

@@ -12,7 +12,7 @@
 //! # Ensembles larger than one machine
 //!
 //! [`Ensemble::shard`] runs a deterministic share of the members: shard `k` of `n` takes members
-//! `⌊kM/n⌋ … ⌊(k+1)M/n⌋ − 1`. Each shard writes its members' raw observations
+//! `⌊kM/n⌋ … ⌊(k+1)M/n⌋ − 1` ([`Shard::range`]). Each shard writes its members' raw observations
 //! ([`Members::write_csv`], numbers printed so they read back to the same bits); [`Members::merge`]
 //! reads them back, checks that together they are every member exactly once under one seed, and
 //! gives a result bit-identical to a one-machine run. With a batch scheduler's job array (e.g.
@@ -26,6 +26,7 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
+use crate::error::{bytes_text, count_text};
 use crate::output::{number, write_table};
 use crate::{Error, Result};
 
@@ -40,6 +41,8 @@ pub fn member_rng(seed: u64, member: u64) -> MemberRng {
 }
 
 /// Which share of the members a run takes: shard `index` of `count` (0-based).
+///
+/// Plain data: [`Shard::range`] and [`Ensemble::run`] check that `index < count`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Shard {
     /// This shard, `0 ≤ index < count`.
@@ -73,10 +76,25 @@ impl Shard {
         Ok(shard)
     }
 
-    /// The members this shard runs, out of `members`.
-    pub fn range(self, members: u64) -> std::ops::Range<u64> {
+    /// The members this shard runs, out of `members`: ⌊kM/n⌋ … ⌊(k+1)M/n⌋ − 1, a part of
+    /// 0 … M − 1 (empty when there are more shards than members).
+    ///
+    /// Errors: [`Error::InvalidInput`] unless `index < count`: shard 5 of 2 would take members
+    /// past the last (25 … 29 of 10), and a count of 0 has no shares.
+    pub fn range(self, members: u64) -> Result<std::ops::Range<u64>> {
+        if self.index >= self.count {
+            return Err(Error::invalid(
+                "shard",
+                format!(
+                    "{}/{} does not exist: shard k of n needs 0 ≤ k < n \
+                     (`Shard {{ index: k, count: n }}`)",
+                    self.index, self.count
+                ),
+            ));
+        }
+        // Below `members` for k ≤ n, so the conversion back is exact.
         let edge = |k: u64| (u128::from(k) * u128::from(members) / u128::from(self.count)) as u64;
-        edge(self.index)..edge(self.index + 1)
+        Ok(edge(self.index)..edge(self.index + 1))
     }
 }
 
@@ -108,9 +126,15 @@ impl Ensemble {
     /// Runs this shard's members in parallel (rayon's global pool, or the pool it is called in)
     /// and returns their observations in member order.
     ///
-    /// Errors: [`Error::InvalidInput`] for no members, a shard count of 0 or above the member
-    /// count, or members that return different numbers of observations; otherwise the error of
-    /// the lowest-numbered member that failed (the same one whatever the threads did).
+    /// The results of this shard's members are held until the run ends: their slots are
+    /// allocated before the first member runs, and a shard too large for the machine's memory
+    /// is an error then, not an abort.
+    ///
+    /// Errors: [`Error::InvalidInput`] for no members, a shard that does not exist
+    /// ([`Shard::range`]) or a shard count above the member count, members whose results cannot
+    /// be allocated (2⁴⁰ of them need over 100 TB: split them into shards), or members that return
+    /// different numbers of observations; otherwise the error of the lowest-numbered member that
+    /// failed (the same one whatever the threads did).
     pub fn run<F>(&self, member: F) -> Result<Members>
     where
         F: Fn(u64, &mut MemberRng) -> Result<Vec<f64>> + Sync,
@@ -121,21 +145,38 @@ impl Ensemble {
                 "an ensemble needs at least one member",
             ));
         }
-        if self.shard.count == 0
-            || self.shard.count > self.members
-            || self.shard.index >= self.shard.count
-        {
+        let range = self.shard.range(self.members)?;
+        if self.shard.count > self.members {
             return Err(Error::invalid(
                 "shard",
                 format!(
-                    "shard {}/{} of {} members: need 0 ≤ k < n ≤ members",
-                    self.shard.index, self.shard.count, self.members
+                    "{}/{} of {} members: some shards would be empty; use at most {} shards",
+                    self.shard.index, self.shard.count, self.members, self.members
                 ),
             ));
         }
-        let range = self.shard.range(self.members);
+        let count = range.end - range.start;
+        let mut outputs: Vec<Result<Vec<f64>>> = Vec::new();
+        let mut rows = Vec::new();
+        let room = usize::try_from(count).is_ok_and(|n| {
+            outputs.try_reserve_exact(n).is_ok() && rows.try_reserve_exact(n).is_ok()
+        });
+        if !room {
+            let slot =
+                std::mem::size_of::<Result<Vec<f64>>>() + std::mem::size_of::<(u64, Vec<f64>)>();
+            return Err(Error::invalid(
+                "members",
+                format!(
+                    "{} members need {} for their results before any runs, which cannot be \
+                     allocated; split them into shards (`Ensemble::shard`), each holding only its \
+                     own members",
+                    count_text(count),
+                    bytes_text(u128::from(count) * slot as u128)
+                ),
+            ));
+        }
         let bar = if self.progress {
-            let bar = ProgressBar::new(range.end - range.start);
+            let bar = ProgressBar::new(count);
             if let Ok(style) = ProgressStyle::with_template(
                 "{msg} {bar:40} {pos}/{len} members, {elapsed} elapsed, ETA {eta}",
             ) {
@@ -146,17 +187,14 @@ impl Ensemble {
         } else {
             ProgressBar::hidden()
         };
-        let outputs: Vec<Result<Vec<f64>>> = range
-            .clone()
-            .into_par_iter()
-            .map(|i| {
-                let out = member(i, &mut member_rng(self.seed, i));
-                bar.inc(1);
-                out
-            })
-            .collect();
+        // Into the slots reserved above (a range knows its length, so `par_extend` reserves
+        // only what is missing: nothing).
+        outputs.par_extend(range.clone().into_par_iter().map(|i| {
+            let out = member(i, &mut member_rng(self.seed, i));
+            bar.inc(1);
+            out
+        }));
         bar.finish_and_clear();
-        let mut rows = Vec::with_capacity(outputs.len());
         for (i, out) in range.zip(outputs) {
             rows.push((i, out?));
         }
@@ -165,12 +203,16 @@ impl Ensemble {
             seed: self.seed,
             rows,
         };
-        members.check_widths()?;
+        members.check()?;
         Ok(members)
     }
 }
 
 /// The observations of some or all members of an ensemble, in member order.
+///
+/// Plain data: what [`Ensemble::run`], [`Members::read_csv`] and [`Members::merge`] return holds
+/// rows of one width in ascending member order below `members`; [`Members::statistics`] and
+/// [`Members::write_csv`] check that again, for rows edited since.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Members {
     /// Members in the whole ensemble.
@@ -187,18 +229,35 @@ impl Members {
         self.rows.len() as u64 == self.members
     }
 
-    fn check_widths(&self) -> Result<()> {
+    /// Checks that the rows have one width and ascend by member index below `members`.
+    fn check(&self) -> Result<()> {
         if let Some((first, rest)) = self.rows.split_first()
             && let Some((i, row)) = rest.iter().find(|(_, r)| r.len() != first.1.len())
         {
             return Err(Error::invalid(
                 "members",
                 format!(
-                    "member {i} returned {} observations, member {} returned {}",
+                    "member {i} has {} observations, member {} has {}; every member must return \
+                     as many",
                     row.len(),
                     first.0,
                     first.1.len()
                 ),
+            ));
+        }
+        let mut previous: Option<u64> = None;
+        for &(i, _) in &self.rows {
+            let reason = if i >= self.members {
+                format!("member {i} is past the last of {} members", self.members)
+            } else if let Some(p) = previous.filter(|&p| p >= i) {
+                format!("member {i} comes after member {p}")
+            } else {
+                previous = Some(i);
+                continue;
+            };
+            return Err(Error::invalid(
+                "members",
+                format!("{reason}: rows must ascend by member index, each once, below `members`"),
             ));
         }
         Ok(())
@@ -206,7 +265,11 @@ impl Members {
 
     /// Writes the rows atomically as CSV: `member,members,seed,y0,y1,…`, every number printed so
     /// it reads back to the same bits.
+    ///
+    /// Errors: [`Error::InvalidInput`] for rows of different widths or out of member order
+    /// (nothing is written); [`Error::Io`] when the file cannot be written.
     pub fn write_csv(&self, path: impl AsRef<Path>) -> Result<()> {
+        self.check()?;
         let width = self.rows.first().map_or(0, |(_, r)| r.len());
         let mut header = vec!["member".to_string(), "members".into(), "seed".into()];
         header.extend((0..width).map(|k| format!("y{k}")));
@@ -228,59 +291,132 @@ impl Members {
 
     /// Reads what [`Members::write_csv`] wrote.
     ///
-    /// Errors: [`Error::Io`] or [`Error::Csv`] when the file cannot be read; [`Error::InvalidInput`]
-    /// for a row that is not `member,members,seed,values…` or rows out of member order.
+    /// Errors: [`Error::Read`] when the file is missing or cannot be read;
+    /// [`Error::InvalidInput`] naming the row (and column) when it is not what `write_csv`
+    /// writes: empty, cut short in a row (truncated), a header other than
+    /// `member,members,seed,y0,…`, a row of another length, text where a number belongs, or rows
+    /// out of member order.
     pub fn read_csv(path: impl AsRef<Path>) -> Result<Members> {
         let path = path.as_ref();
-        let bytes = std::fs::read(path).map_err(|source| Error::Io {
+        let bytes = std::fs::read(path).map_err(|source| Error::Read {
             path: path.to_path_buf(),
             source,
         })?;
-        let mut reader = csv::Reader::from_reader(bytes.as_slice());
-        let field = |what: &str| format!("{} ({what})", path.display());
+        let bad =
+            |reason: String| Error::invalid(format!("shard file `{}`", path.display()), reason);
+        if bytes.is_empty() {
+            return Err(bad(
+                "it is empty: the file is truncated; copy it again from where its shard wrote it, \
+                 or run that shard again"
+                    .into(),
+            ));
+        }
+        // Every row `write_csv` writes ends in a newline: a file that does not was cut short.
+        if bytes.last().is_some_and(|&b| b != b'\n') {
+            let row = bytes.iter().filter(|&&b| b == b'\n').count() + 1;
+            return Err(bad(format!(
+                "it ends in the middle of row {row}: the file is truncated; copy it again from \
+                 where its shard wrote it, or run that shard again"
+            )));
+        }
+        // Lengths are checked below, to say which row is short.
+        let mut reader = csv::ReaderBuilder::new()
+            .flexible(true)
+            .from_reader(bytes.as_slice());
+        let header = reader
+            .headers()
+            .map_err(|e| bad(format!("row 1: {e}")))?
+            .clone();
+        if header.iter().take(3).ne(["member", "members", "seed"]) {
+            return Err(bad(format!(
+                "its header is `{}`, not `member,members,seed,y0,…`: it is not a shard file \
+                 written by `Members::write_csv`",
+                header.iter().collect::<Vec<_>>().join(",")
+            )));
+        }
         let mut members = Members {
             members: 0,
             seed: 0,
             rows: Vec::new(),
         };
         for (line, record) in reader.records().enumerate() {
-            let record = record.map_err(|source| Error::Csv {
-                path: path.to_path_buf(),
-                source,
-            })?;
-            let bad = |what: &str| Error::invalid(field(what), format!("row {}", line + 2));
-            let int = |k: usize| -> Result<u64> {
-                record
-                    .get(k)
-                    .and_then(|s| s.parse().ok())
-                    .ok_or_else(|| bad("an integer column"))
+            let row = line + 2;
+            let record = record.map_err(|e| bad(format!("row {row}: {e}")))?;
+            if record.len() != header.len() {
+                return Err(bad(format!(
+                    "row {row} has {} fields but the header {}: the file is truncated or was \
+                     changed; run its shard again",
+                    record.len(),
+                    header.len()
+                )));
+            }
+            let not = |k: usize, what: &str| {
+                bad(format!(
+                    "row {row}, column `{}`: `{}` is not {what}; the file was changed since \
+                     `Members::write_csv` wrote it: run its shard again",
+                    &header[k], &record[k]
+                ))
+            };
+            let int = |k: usize| {
+                record[k]
+                    .parse::<u64>()
+                    .map_err(|_| not(k, "a whole number"))
             };
             let (i, total, seed) = (int(0)?, int(1)?, int(2)?);
             let values = (3..record.len())
-                .map(|k| record[k].parse::<f64>().map_err(|_| bad("a number")))
+                .map(|k| record[k].parse::<f64>().map_err(|_| not(k, "a number")))
                 .collect::<Result<Vec<f64>>>()?;
             if line == 0 {
                 (members.members, members.seed) = (total, seed);
             } else if (total, seed) != (members.members, members.seed) {
-                return Err(bad("members and seed must be the same on every row"));
+                return Err(bad(format!(
+                    "row {row} is of {total} members with seed {seed}, row 2 of {} with seed {}: \
+                     one file holds one shard of one ensemble",
+                    members.members, members.seed
+                )));
             }
-            if members.rows.last().is_some_and(|(last, _)| *last >= i) || i >= total {
-                return Err(bad("member indices must ascend and stay below `members`"));
+            let last = members.rows.last().map(|(last, _)| *last);
+            if last.is_some_and(|last| last >= i) || i >= total {
+                return Err(bad(format!(
+                    "row {row} is member {i}{}: members must ascend, each below `members` \
+                     ({total})",
+                    last.map_or(String::new(), |last| format!(" after member {last}"))
+                )));
             }
             members.rows.push((i, values));
         }
-        members.check_widths()?;
+        if members.rows.is_empty() {
+            return Err(bad(
+                "it has no rows, and every shard has at least one member: the file is truncated; \
+                 copy it again, or run its shard again"
+                    .into(),
+            ));
+        }
+        members.check()?;
         Ok(members)
     }
 
     /// Combines shards into one result, bit-identical to a run of all members at once.
     ///
-    /// Errors: [`Error::InvalidInput`] when the parts disagree on the member count or seed, or do
-    /// not hold every member exactly once.
+    /// Errors: [`Error::InvalidInput`] when a part is empty (0 members, as an empty `Members` has),
+    /// the parts disagree on the member count or seed, or they do not hold every member exactly
+    /// once.
     pub fn merge(parts: Vec<Members>) -> Result<Members> {
         let Some(first) = parts.first() else {
             return Err(Error::invalid("shards", "nothing to merge"));
         };
+        if let Some(k) = parts.iter().position(|p| p.members == 0) {
+            return Err(Error::invalid(
+                "shards",
+                format!(
+                    "part {} of {} is empty (0 members), as a `Members` built by hand with \
+                     nothing in it is: no run or shard file gives one; leave it out, or merge \
+                     the file its shard wrote",
+                    k + 1,
+                    parts.len()
+                ),
+            ));
+        }
         let (total, seed) = (first.members, first.seed);
         if let Some(other) = parts.iter().find(|p| (p.members, p.seed) != (total, seed)) {
             return Err(Error::invalid(
@@ -322,14 +458,16 @@ impl Members {
             seed,
             rows,
         };
-        merged.check_widths()?;
+        merged.check()?;
         Ok(merged)
     }
 
     /// Mean, sample variance and sorted values of each observation over the members.
     ///
-    /// Errors: [`Error::InvalidInput`] unless every member is present.
+    /// Errors: [`Error::InvalidInput`] unless every member is present, once, in order, with as
+    /// many observations as the others.
     pub fn statistics(&self) -> Result<Statistics> {
+        self.check()?;
         if !self.is_complete() {
             return Err(Error::invalid(
                 "members",

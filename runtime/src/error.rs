@@ -143,7 +143,7 @@ pub enum Error {
         /// The budget, accepted and rejected steps together.
         steps: u64,
     },
-    /// Reading or writing a file failed.
+    /// Writing a file failed (reading one is [`Error::Read`]).
     #[error("cannot write `{}`: {source}", path.display())]
     Io {
         /// The file odyn was writing.
@@ -166,6 +166,15 @@ pub enum Error {
         path: PathBuf,
         /// What the plotting backend reported.
         reason: String,
+    },
+    /// Reading a file failed: it is missing or cannot be opened. (A file that reads but holds
+    /// something other than what odyn wrote is [`Error::InvalidInput`], naming the row.)
+    #[error("cannot read `{}`: {source}", path.display())]
+    Read {
+        /// The file odyn was reading.
+        path: PathBuf,
+        /// The operating-system error.
+        source: std::io::Error,
     },
 }
 
@@ -237,5 +246,67 @@ impl Error {
             field: field.into(),
             reason: reason.into(),
         }
+    }
+
+    /// A copy of a state that cannot be allocated: `field` and `what` name the state (`grid`,
+    /// `is 16384×16384 with 2 fields`), which has `components` values; `smaller` is what to use
+    /// instead (`a coarser grid`).
+    pub(crate) fn copy_refused(
+        field: &str,
+        what: String,
+        components: usize,
+        smaller: &str,
+    ) -> Self {
+        let bytes = components as u128 * std::mem::size_of::<f64>() as u128;
+        Error::invalid(
+            field,
+            format!(
+                "{what}: a copy of its state ({}) cannot be allocated, and a run holds a dozen or \
+                 more (the method's stages, the driver's buffers); use {smaller}, or a method \
+                 with fewer stages (explicit or symplectic Euler)",
+                bytes_text(bytes)
+            ),
+        )
+    }
+}
+
+/// `bytes` in SI units with two significant digits or more: `512 B`, `4.3 GB`, `79 TB`.
+pub(crate) fn bytes_text(bytes: u128) -> String {
+    const UNITS: [&str; 9] = ["B", "kB", "MB", "GB", "TB", "PB", "EB", "ZB", "YB"];
+    let mut value = bytes as f64;
+    let mut unit = 0;
+    while value >= 999.5 && unit + 1 < UNITS.len() {
+        value /= 1000.0;
+        unit += 1;
+    }
+    if unit == 0 || value >= 9.95 {
+        format!("{value:.0} {}", UNITS[unit])
+    } else {
+        format!("{value:.1} {}", UNITS[unit])
+    }
+}
+
+/// A count as a person reads it: exact below a million, else `1.1e12`.
+pub(crate) fn count_text(count: u64) -> String {
+    if count < 1_000_000 {
+        count.to_string()
+    } else {
+        format!("{:.1e}", count as f64)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{bytes_text, count_text};
+
+    #[test]
+    fn sizes_read_compactly() {
+        assert_eq!(bytes_text(512), "512 B");
+        assert_eq!(bytes_text(4_294_967_296), "4.3 GB");
+        assert_eq!(bytes_text(79_164_837_199_872), "79 TB");
+        assert_eq!(bytes_text(999_999), "1.0 MB");
+        assert_eq!(bytes_text(u128::MAX), "340282366920938 YB");
+        assert_eq!(count_text(999_999), "999999");
+        assert_eq!(count_text(1 << 40), "1.1e12");
     }
 }

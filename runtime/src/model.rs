@@ -19,6 +19,20 @@ pub trait State: Clone + PartialEq + Debug {
     fn as_mut_slice(&mut self) -> &mut [f64];
     /// The name of component `index` as CSV headers and errors show it (`x`, `r[1]`).
     fn component_name(&self, index: usize) -> String;
+
+    /// A copy, allocated fallibly: how a run makes its copies of the state (the method's stages,
+    /// the driver's buffers, the first sample), so that a state too large for the machine's
+    /// memory ends the run with an error rather than aborting the process. Steps copy into
+    /// these buffers with `clone_from` and allocate nothing.
+    ///
+    /// The default clones: a fixed-size state has no heap memory. [`crate::grid::GridState`]
+    /// and [`crate::particles::ParticleState`] reserve their values with `try_reserve_exact`.
+    ///
+    /// Errors: [`crate::Error::InvalidInput`] naming the state's size when the copy cannot be
+    /// allocated.
+    fn try_clone(&self) -> Result<Self> {
+        Ok(self.clone())
+    }
 }
 
 /// A system of ordinary differential equations, y′ = f(t, y), with optional energy.

@@ -271,8 +271,10 @@ impl<'m, M: Model> Simulation<'m, M> {
 
     /// Runs and returns the trajectory.
     ///
-    /// Errors: [`Error::InvalidInput`] for bad options or a non-finite initial state,
-    /// [`Error::Unsupported`] when the method cannot integrate this model, [`Error::Diverged`]
+    /// Errors: [`Error::InvalidInput`] for bad options, a non-finite initial state, or a state
+    /// too large for the run's copies of it to be allocated ([`crate::State::try_clone`]: a
+    /// grid that fits in memory once, not a dozen times), [`Error::Unsupported`] when the method
+    /// cannot integrate this model, [`Error::Diverged`]
     /// when the state blows up, [`Error::StepSizeTooSmall`] and [`Error::MaxSteps`] when an
     /// adaptive run cannot go on (use [`Simulation::run_partial`] to keep the samples recorded
     /// before any of these).
@@ -348,7 +350,10 @@ impl<'m, M: Model> Simulation<'m, M> {
     fn plan(&self) -> Result<Plan<'_, 'm, M>> {
         let o = &self.options;
         let method = o.method;
-        let initial = self.initial.clone().unwrap_or_else(|| self.model.state());
+        let initial = match &self.initial {
+            Some(initial) => initial.try_clone()?,
+            None => self.model.state(),
+        };
         let stepping = match (&o.stepping, method.is_adaptive()) {
             (Some(Stepping::Fixed(dt)), _) => {
                 check_dt(*dt)?;

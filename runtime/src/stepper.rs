@@ -1,7 +1,7 @@
 //! [`Stepper`]: a model, an integrator and a state, advanced one checked step at a time.
 
 use crate::drive::{Driver, Recording};
-use crate::{Error, Integrator, Model, NewtonOptions, Result, Stats};
+use crate::{Error, Integrator, Model, NewtonOptions, Result, State, Stats};
 
 /// Advances one state with a fixed method and a fixed dt, refusing non-finite results.
 ///
@@ -15,6 +15,10 @@ pub struct Stepper<'m, M: Model, I: Integrator<M>> {
     driver: Box<Driver<'static, 'm, M, I>>,
     dt: f64,
     steps: u64,
+    /// Components of the state stepped: a run's buffers are sized to it, once.
+    components: usize,
+    /// Whether [`Stepper::state_mut`] lent the state out since it was last checked.
+    lent: bool,
 }
 
 impl<'m, M: Model, I: Integrator<M>> Stepper<'m, M, I> {
@@ -63,6 +67,7 @@ impl<'m, M: Model, I: Integrator<M>> Stepper<'m, M, I> {
         };
         // The closure captures the state boxed: a megabyte state captured by value is copied
         // into each frame on the way to the bigger stack.
+        let components = state.as_slice().len();
         let state = Box::new(state);
         let driver = crate::stack::with_room::<M::State, _>(move || {
             Driver::new(
@@ -81,6 +86,8 @@ impl<'m, M: Model, I: Integrator<M>> Stepper<'m, M, I> {
             driver,
             dt,
             steps: 0,
+            components,
+            lent: false,
         })
     }
 
@@ -93,9 +100,13 @@ impl<'m, M: Model, I: Integrator<M>> Stepper<'m, M, I> {
     ///
     /// Errors with [`Error::Diverged`] when a component of the new state is non-finite or beyond
     /// the divergence limit, and with [`Error::NewtonDidNotConverge`] when an implicit step
-    /// fails even after halving; the state is then the last good one.
+    /// fails even after halving; the state is then the last good one. A state set through
+    /// [`Stepper::state_mut`] that no longer fits the run is refused without a step (see there).
     #[inline]
     pub fn step(&mut self) -> Result<()> {
+        if self.lent {
+            self.check_lent()?;
+        }
         let (dt, steps) = (self.dt, self.steps);
         let stepped =
             crate::stack::with_room::<M::State, _>(|| self.driver.run_fixed(dt, steps, 1));
@@ -112,7 +123,16 @@ impl<'m, M: Model, I: Integrator<M>> Stepper<'m, M, I> {
 
     /// The current state, to change between steps (an impulse, a user's drag): the method
     /// restarts from the changed state at the next step, as after an event.
+    ///
+    /// The state keeps its size: the run's buffers were made for it. The next
+    /// [`Stepper::step`] checks a state changed here and refuses, without stepping, one of
+    /// another number of components ([`Error::InvalidInput`] naming both sizes: a particle
+    /// state of other particles, a grid state of another grid) or one the model's own check
+    /// rejects ([`Error::BadModel`]: a grid state of as many cells in another shape); the
+    /// state stays as set until it is set right. Change values in place, or start a new
+    /// `Stepper` for a state of another size.
     pub fn state_mut(&mut self) -> &mut M::State {
+        self.lent = true;
         self.driver.state_mut()
     }
 
@@ -139,6 +159,28 @@ impl<'m, M: Model, I: Integrator<M>> Stepper<'m, M, I> {
     /// The model being stepped.
     pub fn model(&self) -> &'m M {
         self.driver.model()
+    }
+
+    /// Checks a state lent out by [`Stepper::state_mut`] before it is stepped: one length
+    /// comparison, then [`Model::check`] (a particle model's topology against it, a grid's shape).
+    #[cold]
+    fn check_lent(&mut self) -> Result<()> {
+        let state = self.driver.state();
+        let found = state.as_slice().len();
+        if found != self.components {
+            return Err(Error::invalid(
+                "state",
+                format!(
+                    "was replaced through `Stepper::state_mut` by one of {found} components, but \
+                     this stepper's has {}: a state keeps its size for a run; change its values \
+                     in place, or start a new `Stepper` for a state of another size",
+                    self.components
+                ),
+            ));
+        }
+        self.driver.model().check(state)?;
+        self.lent = false;
+        Ok(())
     }
 }
 

@@ -21,13 +21,17 @@ pub struct DenseStep<S> {
 
 impl<S: State> DenseStep<S> {
     /// Room for polynomials of degree up to `degree`, every buffer shaped like `like`.
-    pub(crate) fn new(like: &S, degree: usize) -> Self {
-        DenseStep {
+    ///
+    /// Errors: [`Error::InvalidInput`] when a buffer cannot be allocated ([`State::try_clone`]).
+    pub(crate) fn new(like: &S, degree: usize) -> Result<Self> {
+        Ok(DenseStep {
             t: 0.0,
             h: 0.0,
-            coefficients: (0..=degree).map(|_| like.clone()).collect(),
+            coefficients: (0..=degree)
+                .map(|_| like.try_clone())
+                .collect::<Result<_>>()?,
             len: 0,
-        }
+        })
     }
 
     /// Starts filling a polynomial of `degree` for the step (t, h); returns its coefficient

@@ -168,20 +168,22 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
         let next_save = recording
             .save_at
             .map_or(0, |times| times.partition_point(|&s| s < t0));
+        // The run's copies of the state, allocated fallibly: a state that fits in memory once
+        // may not fit a dozen times over.
         if !quiet {
-            record.samples.push(sample(model, 0, t0, y0.clone()));
+            record.samples.push(sample(model, 0, t0, y0.try_clone()?));
         }
         let mut driver = Driver {
             model,
             integrator,
             t: t0,
             t0,
-            y_new: y0.clone(),
-            at: y0.clone(),
-            saved: y0.clone(),
-            ends: [y0.clone(), y0.clone()],
+            y_new: y0.try_clone()?,
+            at: y0.try_clone()?,
+            saved: y0.try_clone()?,
+            ends: [y0.try_clone()?, y0.try_clone()?],
             f_start: false,
-            dense: DenseStep::new(&y0, I::DENSE_DEGREE.max(3)),
+            dense: DenseStep::new(&y0, I::DENSE_DEGREE.max(3))?,
             stats,
             watch: Watch::new(events, t0, &y0, event_tolerance, max_events)?,
             limit,

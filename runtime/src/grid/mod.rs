@@ -301,6 +301,31 @@ impl State for GridState {
         let k = index % n;
         format!("{name}[{},{}]", k % self.nx.max(1), k / self.nx.max(1))
     }
+
+    /// A copy whose values are reserved with `try_reserve_exact`.
+    ///
+    /// Errors: [`Error::InvalidInput`] (field `grid`) giving the grid's size when the copy cannot
+    /// be allocated.
+    fn try_clone(&self) -> Result<Self> {
+        let mut values = Vec::new();
+        if values.try_reserve_exact(self.values.len()).is_err() {
+            let fields = self.names.len();
+            let what = format!(
+                "is {}×{} with {fields} field{}",
+                self.nx,
+                self.ny,
+                if fields == 1 { "" } else { "s" }
+            );
+            return Err(Error::copy_refused(
+                "grid",
+                what,
+                self.values.len(),
+                "a coarser grid",
+            ));
+        }
+        values.extend_from_slice(&self.values);
+        Ok(GridState { values, ..*self })
+    }
 }
 
 impl Clone for GridState {

@@ -51,12 +51,12 @@ impl<M: SecondOrder, W: Weights> Integrator<M> for Composition<M::State, W> {
         _: &NewtonOptions,
         stats: &mut Stats,
     ) -> Result<Self> {
-        let mut accel = y0.clone();
+        let mut accel = y0.try_clone()?;
         model.acceleration(t0, y0, &mut accel);
         stats.evaluations += 1;
         Ok(Composition {
-            stage: accel.clone(),
-            next: accel.clone(),
+            stage: accel.try_clone()?,
+            next: accel.try_clone()?,
             accel,
             weights: PhantomData,
         })

@@ -1,7 +1,7 @@
 //! DOP853: Dormand and Prince's order-8 Runge–Kutta method with Hairer's 8(5,3) error estimate.
 
 use super::tableaux::dop853::{A, A_EXTRA, B, C, C_EXTRA, D, E3, E5, STAGES};
-use super::{Integrator, Step, stage, weighted};
+use super::{Integrator, Step, copies, stage, weighted};
 use crate::drive::DenseStep;
 use crate::{Controller, Method, Model, NewtonOptions, Result, State, Stats};
 
@@ -48,8 +48,8 @@ impl<M: Model> Integrator<M> for Dop853<M::State> {
 
     fn prepare(_: &M, _: f64, y0: &M::State, _: &NewtonOptions, _: &mut Stats) -> Result<Self> {
         Ok(Dop853 {
-            k: std::array::from_fn(|_| y0.clone()),
-            probe: y0.clone(),
+            k: copies(y0)?,
+            probe: y0.try_clone()?,
             have_k1: false,
             fsal: false,
         })

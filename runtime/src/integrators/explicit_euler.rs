@@ -25,7 +25,9 @@ impl<M: Model> Integrator<M> for ExplicitEuler<M::State> {
     const METHOD: Method = Method::ExplicitEuler;
 
     fn prepare(_: &M, _: f64, y0: &M::State, _: &NewtonOptions, _: &mut Stats) -> Result<Self> {
-        Ok(ExplicitEuler { dydt: y0.clone() })
+        Ok(ExplicitEuler {
+            dydt: y0.try_clone()?,
+        })
     }
 
     #[inline]

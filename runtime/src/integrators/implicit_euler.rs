@@ -55,8 +55,8 @@ impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
         jacobian.configure(newton);
         Ok(ImplicitEuler {
             newton: *newton,
-            force: y0.clone(),
-            update: y0.clone(),
+            force: y0.try_clone()?,
+            update: y0.try_clone()?,
             factors: jacobian.factors(),
             jacobian,
         })

@@ -37,12 +37,12 @@ impl<M: SecondOrder> Integrator<M> for Leapfrog<M::State> {
         _: &NewtonOptions,
         stats: &mut Stats,
     ) -> Result<Self> {
-        let mut accel = y0.clone();
+        let mut accel = y0.try_clone()?;
         model.acceleration(t0, y0, &mut accel);
         stats.evaluations += 1;
         Ok(Leapfrog {
-            next: accel.clone(),
-            probe: y0.clone(),
+            next: accel.try_clone()?,
+            probe: y0.try_clone()?,
             accel,
         })
     }

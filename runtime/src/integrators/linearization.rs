@@ -21,17 +21,19 @@ pub(super) struct Linearization<M: Jacobian> {
 }
 
 impl<M: Jacobian> Linearization<M> {
-    pub(super) fn new(model: &M, y0: &M::State) -> Self {
+    /// Errors: [`Error::InvalidInput`] when ∂f/∂t's state cannot be allocated
+    /// ([`crate::State::try_clone`]).
+    pub(super) fn new(model: &M, y0: &M::State) -> Result<Self> {
         let jacobian = model.jacobian_matrix(y0);
-        let mut dfdt = y0.clone();
+        let mut dfdt = crate::State::try_clone(y0)?;
         crate::State::as_mut_slice(&mut dfdt).fill(0.0);
-        Linearization {
+        Ok(Linearization {
             factors: jacobian.factors(),
             jacobian,
             dfdt,
             current: false,
             factored: None,
-        }
+        })
     }
 
     /// Evaluates J and ∂f/∂t at (t, y) unless they are already the current state's.

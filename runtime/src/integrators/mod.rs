@@ -88,7 +88,8 @@ pub trait Integrator<M: Model>: Sized {
     ///
     /// Errors: [`crate::Error::BadModel`] when [`Model::check`] fails (a particle model's link to
     /// a particle that does not exist); [`crate::Error::InvalidInput`] for a non-finite initial
-    /// state or bad [`NewtonOptions`]; an implicit method's linear solver that cannot be set up.
+    /// state, bad [`NewtonOptions`], or scratch states that cannot be allocated
+    /// ([`State::try_clone`]); an implicit method's linear solver that cannot be set up.
     fn start(
         model: &M,
         t0: f64,
@@ -107,12 +108,13 @@ pub trait Integrator<M: Model>: Sized {
         Self::prepare(model, t0, y0, newton, stats)
     }
 
-    /// Allocates scratch states like `y0` and makes any start-up evaluation (the Verlet
-    /// family's first force), counted in `stats`; `newton` configures the nonlinear solve of
-    /// implicit methods and is ignored by explicit ones. Called by [`Integrator::start`] after
-    /// its checks; call that instead.
+    /// Allocates scratch states like `y0` (fallibly, [`State::try_clone`]) and makes any
+    /// start-up evaluation (the Verlet family's first force), counted in `stats`; `newton`
+    /// configures the nonlinear solve of implicit methods and is ignored by explicit ones. Called
+    /// by [`Integrator::start`] after its checks; call that instead.
     ///
-    /// Errors only for an implicit method whose linear solver cannot be set up.
+    /// Errors: [`crate::Error::InvalidInput`] when a scratch state cannot be allocated; an
+    /// implicit method whose linear solver cannot be set up.
     fn prepare(
         model: &M,
         t0: f64,
@@ -191,6 +193,17 @@ pub trait Integrator<M: Model>: Sized {
         let _ = (model, step, y_new, dense);
         false
     }
+}
+
+/// `N` copies of `y`, each allocated fallibly ([`State::try_clone`]): an integrator's stages.
+pub(crate) fn copies<S: State, const N: usize>(y: &S) -> Result<[S; N]> {
+    let mut copies = Vec::with_capacity(N);
+    for _ in 0..N {
+        copies.push(y.try_clone()?);
+    }
+    Ok(copies
+        .try_into()
+        .unwrap_or_else(|_| unreachable!("exactly N copies were made")))
 }
 
 /// One step as the driver asks for it.

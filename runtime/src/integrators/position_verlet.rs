@@ -49,14 +49,14 @@ impl<M: SecondOrder> Integrator<M> for PositionVerlet<M::State> {
         _: &NewtonOptions,
         stats: &mut Stats,
     ) -> Result<Self> {
-        let mut accel = y0.clone();
+        let mut accel = y0.try_clone()?;
         model.acceleration(t0, y0, &mut accel);
         stats.evaluations += 1;
         Ok(PositionVerlet {
             last_h: None,
-            previous: y0.clone(),
-            current: y0.clone(),
-            next: accel.clone(),
+            previous: y0.try_clone()?,
+            current: y0.try_clone()?,
+            next: accel.try_clone()?,
             accel,
             h: 0.0,
         })

@@ -1,6 +1,6 @@
 //! The classical fourth-order Runge–Kutta method.
 
-use super::{Integrator, Step, set_axpy};
+use super::{Integrator, Step, copies, set_axpy};
 use crate::{Method, Model, NewtonOptions, Result, State, Stats};
 
 /// Classical Runge–Kutta: k₁ = f(tₙ, yₙ), k₂ = f(tₙ + h/2, yₙ + h/2·k₁),
@@ -25,8 +25,8 @@ impl<M: Model> Integrator<M> for Rk4<M::State> {
 
     fn prepare(_: &M, _: f64, y0: &M::State, _: &NewtonOptions, _: &mut Stats) -> Result<Self> {
         Ok(Rk4 {
-            k: std::array::from_fn(|_| y0.clone()),
-            probe: y0.clone(),
+            k: copies(y0)?,
+            probe: y0.try_clone()?,
         })
     }
 

@@ -2,7 +2,7 @@
 
 use super::linearization::Linearization;
 use super::tableaux::rodas5p::{A, C, COUPLING, D, GAMMA, H, STAGES};
-use super::{Integrator, Step, axpy};
+use super::{Integrator, Step, axpy, copies};
 use crate::drive::DenseStep;
 use crate::{Controller, Jacobian, Method, NewtonOptions, Result, State, Stats};
 
@@ -57,15 +57,15 @@ impl<M: Jacobian> Integrator<M> for Rodas5P<M> {
         newton: &NewtonOptions,
         _: &mut Stats,
     ) -> Result<Self> {
-        let mut linear = Linearization::new(model, y0);
+        let mut linear = Linearization::new(model, y0)?;
         crate::NewtonMatrix::configure(&mut linear.jacobian, newton);
         Ok(Rodas5P {
             linear,
-            u: std::array::from_fn(|_| y0.clone()),
-            f0: y0.clone(),
+            u: copies(y0)?,
+            f0: y0.try_clone()?,
             have_f0: false,
-            stage: y0.clone(),
-            rhs: y0.clone(),
+            stage: y0.try_clone()?,
+            rhs: y0.try_clone()?,
         })
     }
 

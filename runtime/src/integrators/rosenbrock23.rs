@@ -1,7 +1,7 @@
 //! Rosenbrock23: the modified Rosenbrock method of MATLAB's `ode23s`.
 
 use super::linearization::Linearization;
-use super::{Integrator, Step, axpy, set_axpy};
+use super::{Integrator, Step, axpy, copies, set_axpy};
 use crate::drive::DenseStep;
 use crate::{Controller, Jacobian, Method, NewtonOptions, Result, State, Stats};
 
@@ -62,13 +62,13 @@ impl<M: Jacobian> Integrator<M> for Rosenbrock23<M> {
         newton: &NewtonOptions,
         _: &mut Stats,
     ) -> Result<Self> {
-        let mut linear = Linearization::new(model, y0);
+        let mut linear = Linearization::new(model, y0)?;
         crate::NewtonMatrix::configure(&mut linear.jacobian, newton);
         Ok(Rosenbrock23 {
             linear,
-            f: std::array::from_fn(|_| y0.clone()),
-            k: std::array::from_fn(|_| y0.clone()),
-            probe: y0.clone(),
+            f: copies(y0)?,
+            k: copies(y0)?,
+            probe: y0.try_clone()?,
             have_f0: false,
             fsal: false,
         })

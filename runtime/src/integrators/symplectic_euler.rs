@@ -25,7 +25,9 @@ impl<M: SecondOrder> Integrator<M> for SymplecticEuler<M::State> {
     const METHOD: Method = Method::SymplecticEuler;
 
     fn prepare(_: &M, _: f64, y0: &M::State, _: &NewtonOptions, _: &mut Stats) -> Result<Self> {
-        Ok(SymplecticEuler { accel: y0.clone() })
+        Ok(SymplecticEuler {
+            accel: y0.try_clone()?,
+        })
     }
 
     #[inline]

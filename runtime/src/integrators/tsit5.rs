@@ -1,7 +1,7 @@
 //! Tsit5: Tsitouras' 5(4) Runge–Kutta pair with its free order-4 interpolant.
 
 use super::tableaux::tsit5::{A, B, BTILDE, C, DENSE, STAGES};
-use super::{Integrator, Step, axpy, stage, weighted};
+use super::{Integrator, Step, axpy, copies, stage, weighted};
 use crate::drive::DenseStep;
 use crate::{Controller, Method, Model, NewtonOptions, Result, State, Stats};
 
@@ -44,8 +44,8 @@ impl<M: Model> Integrator<M> for Tsit5<M::State> {
 
     fn prepare(_: &M, _: f64, y0: &M::State, _: &NewtonOptions, _: &mut Stats) -> Result<Self> {
         Ok(Tsit5 {
-            k: std::array::from_fn(|_| y0.clone()),
-            probe: y0.clone(),
+            k: copies(y0)?,
+            probe: y0.try_clone()?,
             have_k1: false,
             fsal: false,
         })

@@ -155,6 +155,28 @@ impl<const D: usize> State for ParticleState<D> {
         let axis = AXES.get(i % D).copied().unwrap_or("?");
         format!("{name}[{}].{axis}", i / D)
     }
+
+    /// A copy whose components are reserved with `try_reserve_exact`.
+    ///
+    /// Errors: [`Error::InvalidInput`] (field `particle state`) giving the number of particles
+    /// when the copy cannot be allocated.
+    fn try_clone(&self) -> Result<Self> {
+        let mut components = Vec::new();
+        if components.try_reserve_exact(self.components.len()).is_err() {
+            let what = format!("has {} particles in {D}-D", self.len());
+            return Err(Error::copy_refused(
+                "particle state",
+                what,
+                self.components.len(),
+                "fewer particles",
+            ));
+        }
+        components.extend_from_slice(&self.components);
+        Ok(ParticleState {
+            components,
+            names: self.names,
+        })
+    }
 }
 
 /// `components` (a multiple of D long) as D-vectors, without copying.
