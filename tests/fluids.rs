@@ -2,6 +2,7 @@
 //! CFL 1 (no energy is created), diffusion only removes energy, and bad settings are typed
 //! errors.
 
+use odyn::Error;
 use odyn::fluids::{FluidOptions, StableFluids};
 
 /// A fluid on an n×n grid over the unit square with a smooth, strongly divergent velocity field
@@ -40,14 +41,14 @@ fn projection_leaves_no_divergence() {
     for n in [8, 33, 64] {
         let mut fluid = stirred(n, 0.0);
         let before = max_abs(&fluid.divergence());
-        fluid.project(0.01);
+        fluid.project().unwrap();
         let after = max_abs(&fluid.divergence());
         eprintln!("{n}²: max |div| {before:e} → {after:e}");
         assert!(before > 1.0, "the test field is divergent ({before})");
         assert!(after <= 1e-10, "{n}²: max |div| after projection {after:e}");
         // Projection is idempotent: a divergence-free field is left as it is.
         let (u, v) = (fluid.u.clone(), fluid.v.clone());
-        fluid.project(0.01);
+        fluid.project().unwrap();
         let moved = u
             .iter()
             .zip(&fluid.u)
@@ -67,7 +68,7 @@ fn projection_leaves_no_divergence() {
 fn stable_far_above_cfl_one() {
     let n = 48;
     let mut fluid = stirred(n, 0.0);
-    fluid.project(1.0);
+    fluid.project().unwrap();
     let h = 1.0 / n as f64;
     let dt = 5.0 * h / fluid.max_speed();
     let mut energy = fluid.kinetic_energy();
@@ -97,7 +98,7 @@ fn diffusion_only_removes_energy() {
     let mut viscous = stirred(n, 1e-3);
     let mut huge = stirred(n, 1000.0 / (n * n) as f64 / dt);
     for f in [&mut inviscid, &mut viscous, &mut huge] {
-        f.project(dt);
+        f.project().unwrap();
     }
     for _ in 0..20 {
         inviscid.step(dt).unwrap();
@@ -155,4 +156,114 @@ fn bad_settings_are_typed_errors() {
             .to_string()
             .contains("density")
     );
+}
+
+/// The field and message of an `InvalidInput`, or a panic naming what came instead.
+fn invalid(result: odyn::Result<()>) -> (String, String) {
+    let error = result.expect_err("expected InvalidInput");
+    let message = error.to_string();
+    match error {
+        Error::InvalidInput { field, .. } => (field, message),
+        other => panic!("expected InvalidInput, got {other}"),
+    }
+}
+
+/// A cell size of 1e-200 or 1e200 used to be refused as "invalid matrix: not positive
+/// definite" (the Poisson matrix held 1/h²: ∞ or 0). The projection is now solved without h,
+/// so either is a working fluid; only a viscosity whose ν/h² overflows is refused, named.
+#[test]
+fn any_cell_size_projects_and_an_overflowing_viscosity_is_named() {
+    for cell in [1e-200, 1e200] {
+        let mut fluid = StableFluids::new(FluidOptions {
+            nx: 8,
+            ny: 8,
+            cell,
+            ..FluidOptions::default()
+        })
+        .unwrap();
+        fluid.u[4 + 3 * 9] = 1.0;
+        fluid.step(0.5).unwrap();
+        let flux = max_abs(&fluid.divergence()) * cell;
+        assert!(flux <= 1e-12 && fluid.max_speed() > 0.01, "{flux:e}");
+    }
+    let (field, message) = invalid(
+        StableFluids::new(FluidOptions {
+            cell: 1e-200,
+            viscosity: 1e-3,
+            ..FluidOptions::default()
+        })
+        .map(drop),
+    );
+    assert_eq!(field, "viscosity");
+    assert!(
+        message.contains("1e-200") && message.contains("overflows"),
+        "{message}"
+    );
+}
+
+/// `step(1e-310)` used to divide the divergence by Δt (1/Δt = ∞) and return Ok with NaN
+/// velocities. The projection solves for Δt·p, in which Δt cancels, so a tiny step is a correct
+/// one: finite and divergence-free, with or without viscosity.
+#[test]
+fn a_tiny_step_is_a_correct_step() {
+    for viscosity in [0.0, 1e-3] {
+        let mut fluid = stirred(16, viscosity);
+        fluid.step(1e-310).unwrap();
+        assert!(fluid.u.iter().chain(&fluid.v).all(|x| x.is_finite()));
+        assert!(max_abs(&fluid.divergence()) <= 1e-10);
+    }
+}
+
+/// A buoyancy of 1e300 over a step of 1e10 s overflows the velocity; it used to return Ok with
+/// a non-finite state. The fields are checked after every step and the error names the step.
+#[test]
+fn a_step_that_overflows_is_a_typed_error_naming_it() {
+    let mut fluid = StableFluids::new(FluidOptions {
+        nx: 8,
+        ny: 8,
+        cell: 1.0 / 8.0,
+        buoyancy: 1e300,
+        ..FluidOptions::default()
+    })
+    .unwrap();
+    fluid.density[3 + 3 * 8] = 1.0;
+    let error = fluid.step(1e10).unwrap_err();
+    assert!(
+        matches!(
+            error,
+            Error::NotFinite {
+                solver: "StableFluids",
+                step: 1,
+                ..
+            }
+        ),
+        "{error:?}"
+    );
+    let message = error.to_string();
+    assert!(
+        message.contains("non-finite at step 1") && message.contains("buoyancy"),
+        "{message}"
+    );
+}
+
+/// The walls are solid: a velocity written into a wall face (normal to the wall) is flow
+/// through it, which no pressure can remove (the divergence was 3.2e7 after a step). It is an
+/// input error naming the face.
+#[test]
+fn the_walls_take_no_normal_velocity() {
+    let n = 8;
+    // The left wall's face in row 2, then the top wall's face in column 5.
+    for (u, v, field) in [(2 * (n + 1), None, "u[18]"), (0, Some(5 + n * n), "v[69]")] {
+        let mut fluid = stirred(n, 0.0);
+        match v {
+            Some(k) => fluid.v[k] = 1.0,
+            None => fluid.u[u] = 1.0,
+        }
+        let (name, message) = invalid(fluid.step(0.01));
+        assert_eq!(name, field);
+        assert!(
+            message.contains("wall") && message.contains("must be 0"),
+            "{message}"
+        );
+    }
 }

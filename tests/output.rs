@@ -128,3 +128,30 @@ fn plot_errors_are_typed() {
     );
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
 }
+
+/// A field whose width·height overflows usize used to panic counting its values (in
+/// `field_image`, and in `field_animation` even before that, sizing the image); both are input
+/// errors naming the field, and nothing is written.
+#[test]
+fn field_images_refuse_a_grid_whose_size_overflows() {
+    let dir = tempfile::tempdir().unwrap();
+    let style = plot::FieldStyle::default();
+    for (width, height) in [(usize::MAX, 2), (1 << 33, 1 << 33)] {
+        let field = plot::Field {
+            width,
+            height,
+            values: &[],
+        };
+        for error in [
+            plot::field_image(dir.path().join("f.png"), field, style).unwrap_err(),
+            plot::field_animation(dir.path().join("f.gif"), &[field], style, 100).unwrap_err(),
+        ] {
+            assert!(
+                matches!(error, Error::InvalidInput { ref field, .. } if field == "field"),
+                "{error:?}"
+            );
+            assert!(error.to_string().contains("overflows"), "{error}");
+        }
+    }
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+}

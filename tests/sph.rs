@@ -2,6 +2,7 @@
 //! the dam-break front against Martin & Moyce (1952), results independent of the thread count,
 //! and typed errors for bad input.
 
+use odyn::Error;
 use odyn::sph::{Sph, SphOptions};
 
 /// A column a wide and 2a high in a box 5a wide and 2a high, `resolution` particles across a.
@@ -219,11 +220,67 @@ fn bad_input_is_a_typed_error() {
             .to_string()
             .contains("cannot be added")
     );
-    sph.x[3].x = -1.0;
+    // A particle on the left wall that a step carries through it.
+    let mut fast = dam_break(0.2, 8);
+    fast.x[0].x = 0.0;
+    fast.v[0].x = -100.0;
+    let limit = fast.stable_dt();
     assert!(
-        sph.step(limit)
+        fast.step(limit)
             .unwrap_err()
             .to_string()
             .contains("left the box")
     );
+}
+
+/// A fluid particle moved by hand to 1e12, to infinity or to NaN used to panic in the neighbour
+/// grid (a multiply overflow in dev builds, a capacity overflow in release, an add overflow or
+/// an index out of bounds). It is now an input error naming the particle, before the step; so
+/// is a velocity that is not finite (an infinite one used to be reported as a bad `dt`).
+#[test]
+fn a_particle_out_of_the_box_is_named_before_the_step() {
+    let invalid = |sph: &mut Sph| {
+        let error = sph.step(1e-4).expect_err("expected InvalidInput");
+        let message = error.to_string();
+        match error {
+            Error::InvalidInput { field, .. } => (field, message),
+            other => panic!("expected InvalidInput, got {other}"),
+        }
+    };
+    for x in [1e12, f64::INFINITY, f64::NAN, -1.0] {
+        let mut sph = dam_break(0.2, 8);
+        sph.x[3].x = x;
+        let (field, message) = invalid(&mut sph);
+        assert_eq!(field, "x[3]");
+        assert!(message.contains("outside the box"), "{message}");
+    }
+    for v in [f64::INFINITY, f64::NAN] {
+        let mut sph = dam_break(0.2, 8);
+        sph.v[5].y = v;
+        let (field, message) = invalid(&mut sph);
+        assert_eq!(field, "v[5]");
+        assert!(message.contains("not finite"), "{message}");
+    }
+}
+
+/// Numbers in messages print in their shortest form: a box of 1e300 spacings and a step of
+/// 1e300 s used to print as 301-digit numbers.
+#[test]
+fn messages_print_numbers_compactly() {
+    let error = Sph::block(
+        SphOptions {
+            spacing: 1.0,
+            domain: (1e300, 1e300),
+            ..SphOptions::default()
+        },
+        5e299,
+        5e299,
+    )
+    .err()
+    .unwrap()
+    .to_string();
+    assert!(error.contains("1e300") && error.len() < 200, "{error}");
+    let mut sph = dam_break(0.2, 8);
+    let error = sph.step(1e300).unwrap_err().to_string();
+    assert!(error.contains("1e300") && error.len() < 200, "{error}");
 }

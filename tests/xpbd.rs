@@ -2,6 +2,7 @@
 //! stiffness 1/α whatever the iterations and the step, colliders are never entered, and bad
 //! input is a typed error.
 
+use odyn::Error;
 use odyn::nalgebra::Vector2;
 use odyn::xpbd::{Collider, Constraint, Xpbd, XpbdOptions};
 
@@ -268,4 +269,111 @@ fn bending_keeps_an_arm_straight_and_pins_hold() {
         held.step(1.0 / 60.0).unwrap();
     }
     assert_eq!(held.x[2], target);
+}
+
+/// The field and message of an `InvalidInput`, or a panic naming what came instead.
+fn invalid(result: odyn::Result<()>) -> (String, String) {
+    let error = result.expect_err("expected InvalidInput, got Ok");
+    let message = error.to_string();
+    match error {
+        Error::InvalidInput { field, .. } => (field, message),
+        other => panic!("expected InvalidInput, got {other}"),
+    }
+}
+
+/// Settings that used to return `Ok` with NaN positions are rejected before the step, each with
+/// what is wrong: a compliance whose α/h² overflows (1e308 at 1/60 s), a substep so short that
+/// 1/h² overflows (1e-200 with rigid links), a NaN position or velocity written into the public
+/// lists after `new`, a non-finite gravity. `u32::MAX` substeps used to run for hours: the
+/// substeps and iterations are at most `XpbdOptions::MAX`.
+#[test]
+fn extreme_settings_are_rejected_before_the_step() {
+    let mut rope = chain(3, 1.0, 1e308, true);
+    let (field, message) = invalid(rope.step(1.0 / 60.0));
+    assert_eq!(field, "constraints[0]");
+    assert!(message.contains("compliance 1e308"), "{message}");
+
+    let mut rope = chain(3, 1.0, 0.0, true);
+    let (field, message) = invalid(rope.step(1e-200));
+    assert_eq!(field, "dt");
+    assert!(
+        message.contains("1e-200") && message.contains("at least"),
+        "{message}"
+    );
+
+    let mut rope = chain(3, 1.0, 0.0, true);
+    rope.x[2].x = f64::NAN;
+    assert_eq!(invalid(rope.step(1.0 / 60.0)).0, "x[2]");
+    let mut rope = chain(3, 1.0, 0.0, true);
+    rope.v[1].y = f64::INFINITY;
+    assert_eq!(invalid(rope.step(1.0 / 60.0)).0, "v[1]");
+    let mut rope = chain(3, 1.0, 0.0, true);
+    rope.gravity.y = f64::NAN;
+    assert_eq!(invalid(rope.step(1.0 / 60.0)).0, "gravity");
+
+    for options in [
+        XpbdOptions {
+            substeps: u32::MAX,
+            iterations: 1,
+        },
+        XpbdOptions {
+            substeps: 1,
+            iterations: XpbdOptions::MAX + 1,
+        },
+    ] {
+        let mut rope = chain(3, 1.0, 0.0, true);
+        rope.options = options;
+        let (field, message) = invalid(rope.step(1.0 / 60.0));
+        assert_eq!(field, "options");
+        assert!(message.contains("at most 10000"), "{message}");
+    }
+}
+
+/// A step so large that the fall overflows (1e300 s under gravity) used to return `Ok` with
+/// NaN positions; now the state is checked after every step and the error names the step.
+#[test]
+fn a_step_that_overflows_is_a_typed_error_naming_it() {
+    let mut rope = chain(3, 1.0, 0.0, true);
+    rope.step(1.0 / 60.0).unwrap();
+    let error = rope.step(1e300).unwrap_err();
+    match &error {
+        Error::NotFinite {
+            solver, step, t, ..
+        } => {
+            assert_eq!((*solver, *step), ("Xpbd", 2));
+            assert_eq!(*t, 1.0 / 60.0 + 1e300);
+        }
+        other => panic!("expected NotFinite, got {other}"),
+    }
+    let message = error.to_string();
+    assert!(
+        message.contains("non-finite at step 2") && message.contains("reduce dt"),
+        "{message}"
+    );
+}
+
+/// A particle exactly at a sphere's centre has no direction out; it used to stay inside for
+/// ever. It is now pushed out towards where it was at the start of the substep, or along +y
+/// when that was the centre too.
+#[test]
+fn a_particle_at_a_sphere_centre_is_pushed_out() {
+    let sphere = Collider::Sphere {
+        centre: Vector2::zeros(),
+        radius: 0.5,
+    };
+    let one = |x: Vector2<f64>, v: Vector2<f64>| {
+        let mut xpbd = Xpbd::new(vec![x], vec![v], &[1.0], &[], Vector2::zeros()).unwrap();
+        xpbd.colliders.push(sphere.clone());
+        xpbd.options.substeps = 1;
+        xpbd
+    };
+    // Placed at the centre: out along +y.
+    let mut placed = one(Vector2::zeros(), Vector2::zeros());
+    placed.step(0.5).unwrap();
+    assert_eq!(placed.x[0], Vector2::new(0.0, 0.5));
+    // Arriving at the centre from (1, 0) in one substep (1 − 0.5·2 = 0 exactly): back out the
+    // way it came.
+    let mut arriving = one(Vector2::new(1.0, 0.0), Vector2::new(-2.0, 0.0));
+    arriving.step(0.5).unwrap();
+    assert_eq!(arriving.x[0], Vector2::new(0.5, 0.0));
 }

@@ -176,6 +176,31 @@ pub enum Error {
         /// The operating-system error.
         source: std::io::Error,
     },
+    /// A step of one of the solvers beside the ODE runner ([`crate::xpbd::Xpbd`],
+    /// [`crate::fluids::StableFluids`]) left its state NaN or infinite: the step was too large
+    /// for its forces, or a setting too extreme. The solver's state is left as that step made
+    /// it; discard the solver.
+    #[error(
+        "the state of `{solver}` became non-finite at step {step} (t = {t:?}, dt = {dt:?}): \
+         `{component}` = {value:?}; {advice}"
+    )]
+    NotFinite {
+        /// The solver's type name (`Xpbd`, `StableFluids`).
+        solver: &'static str,
+        /// The step whose result was non-finite, counted from 1 since the solver was made (for
+        /// [`crate::fluids::StableFluids::project`] called on its own: the steps before it).
+        step: u64,
+        /// Time at the end of that step: the sum of the step sizes since the solver was made.
+        t: f64,
+        /// The size of that step (0 for a projection called on its own).
+        dt: f64,
+        /// The first non-finite entry (`x[3]`, `v[17]`, `density[40]`).
+        component: String,
+        /// One of its non-finite values (NaN or ±∞).
+        value: f64,
+        /// What to change, in the solver's terms.
+        advice: &'static str,
+    },
 }
 
 /// Why an attempt at an implicit step's Newton iteration failed.

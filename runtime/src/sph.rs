@@ -110,7 +110,7 @@ impl Sph {
             if !(value.is_finite() && value > 0.0) {
                 return Err(Error::invalid(
                     name,
-                    format!("must be finite and positive, got {value}"),
+                    format!("must be finite and positive, got {value:?}"),
                 ));
             }
         }
@@ -128,13 +128,16 @@ impl Sph {
         if w < 4.0 * dx || h < 4.0 * dx {
             return Err(Error::invalid(
                 "domain",
-                format!("{w} × {h} is too small for a spacing of {dx}: at least 4 spacings a side"),
+                format!(
+                    "{w:?} × {h:?} is too small for a spacing of {dx:?}: at least 4 spacings a \
+                     side"
+                ),
             ));
         }
         if width > w || height > h {
             return Err(Error::invalid(
                 "block",
-                format!("{width} × {height} does not fit in the {w} × {h} box"),
+                format!("{width:?} × {height:?} does not fit in the {w:?} × {h:?} box"),
             ));
         }
         let (nx, ny) = (
@@ -156,7 +159,10 @@ impl Sph {
         let too_many = || {
             Error::invalid(
                 "spacing",
-                format!("{dx} in a {w} × {h} box is more particles than this machine can allocate"),
+                format!(
+                    "{dx:?} in a {w:?} × {h:?} box is more particles than this machine can \
+                     allocate"
+                ),
             )
         };
         let (Some(fluid), Some(wall)) = (fluid, wall) else {
@@ -219,18 +225,14 @@ impl Sph {
 
     /// One step of size `dt`.
     ///
-    /// Errors: [`Error::InvalidInput`] for a `dt` that is not finite and positive or above
-    /// [`Sph::stable_dt`], position or velocity lists whose length changed, or a fluid particle
-    /// that has left the box (through a wall: the step
-    /// was too large for the flow).
+    /// Errors: [`Error::InvalidInput`] before the step for position or velocity lists whose
+    /// length changed, a fluid particle set outside the region it may occupy (`x[i]`:
+    /// [0, width] × [0, 10·height], the box and the space above its open top; a NaN or infinite
+    /// position is outside), a velocity that is not finite (`v[i]`), or a `dt` that is not
+    /// finite and positive or above [`Sph::stable_dt`], or more cells of the neighbour grid
+    /// than the machine can allocate; after the step for a fluid particle that has left that
+    /// region (through a wall: the step was too large for the flow).
     pub fn step(&mut self, dt: f64) -> Result<()> {
-        let limit = self.stable_dt();
-        if !(dt.is_finite() && dt > 0.0 && dt <= limit * (1.0 + 1e-12)) {
-            return Err(Error::invalid(
-                "dt",
-                format!("must be finite, positive and at most the stable step {limit:e}, got {dt}"),
-            ));
-        }
         let fluid = self.acceleration.len();
         if self.x.len() != fluid || self.v.len() != fluid {
             return Err(Error::invalid(
@@ -243,9 +245,41 @@ impl Sph {
                 ),
             ));
         }
+        let (w, top) = self.options.domain;
+        if let Some(i) = self.x.iter().position(|x| !self.inside(x)) {
+            return Err(Error::invalid(
+                format!("x[{i}]"),
+                format!(
+                    "fluid particle {i} is at ({:?}, {:?}), outside the box and the space \
+                     above it, [0, {w:?}] × [0, {:?}] (splashes may rise to 10 times the box's \
+                     height); move it inside",
+                    self.x[i].x,
+                    self.x[i].y,
+                    10.0 * top
+                ),
+            ));
+        }
+        if let Some(i) = self.v.iter().position(|v| !v.iter().all(|c| c.is_finite())) {
+            return Err(Error::invalid(
+                format!("v[{i}]"),
+                format!(
+                    "({:?}, {:?}) is not finite; write only finite velocities",
+                    self.v[i].x, self.v[i].y
+                ),
+            ));
+        }
+        let limit = self.stable_dt();
+        if !(dt.is_finite() && dt > 0.0 && dt <= limit * (1.0 + 1e-12)) {
+            return Err(Error::invalid(
+                "dt",
+                format!(
+                    "must be finite, positive and at most the stable step {limit:e}, got {dt:?}"
+                ),
+            ));
+        }
         // The walls never move: only the fluid's part of `all` is refreshed.
         self.all[..fluid].copy_from_slice(&self.x);
-        self.grid.build(&self.all);
+        self.grid.build(&self.all)?;
         let all = &self.all;
         let o = &self.options;
         let h = o.smoothing * o.spacing;
@@ -299,19 +333,23 @@ impl Sph {
             *v += dt * a;
             *x += dt * *v;
         }
-        let (w, top) = self.options.domain;
-        if let Some(i) = self.x.iter().position(|x| {
-            !(x.x >= 0.0 && x.x <= w && x.y >= 0.0 && x.y.is_finite() && x.y <= 10.0 * top)
-        }) {
+        if let Some(i) = self.x.iter().position(|x| !self.inside(x)) {
             return Err(Error::invalid(
                 "particles",
                 format!(
-                    "fluid particle {i} left the box at {:?}; reduce dt",
-                    self.x[i]
+                    "fluid particle {i} left the box at ({:?}, {:?}); reduce dt",
+                    self.x[i].x, self.x[i].y
                 ),
             ));
         }
         Ok(())
+    }
+
+    /// Whether a fluid particle at `x` is where fluid may be: in the box, or above its open top
+    /// up to 10 times the box's height (a splash). False for NaN or infinite coordinates.
+    fn inside(&self, x: &Vector2<f64>) -> bool {
+        let (w, top) = self.options.domain;
+        (0.0..=w).contains(&x.x) && (0.0..=10.0 * top).contains(&x.y)
     }
 
     /// The fluid's total mass (constant: particles are never created or removed).
@@ -402,7 +440,11 @@ impl Grid {
         )
     }
 
-    fn build(&mut self, points: &[Vector2<f64>]) {
+    /// Sorts `points` (finite) into the cells of their bounding box.
+    ///
+    /// Errors: [`Error::InvalidInput`] when that box has more cells than this machine can
+    /// allocate (a domain far larger than the spacing).
+    fn build(&mut self, points: &[Vector2<f64>]) -> Result<()> {
         let (lo, hi) = points.iter().fold(
             (
                 Vector2::repeat(f64::INFINITY),
@@ -410,13 +452,38 @@ impl Grid {
             ),
             |(lo, hi), p| (lo.inf(p), hi.sup(p)),
         );
+        let cell = self.cell;
+        // Cells along an extent; `as` would saturate, so a count past usize::MAX (or ∞) is
+        // refused here.
+        let side = |extent: f64| {
+            let whole = (extent / cell).floor();
+            (whole < usize::MAX as f64).then(|| whole as usize + 1)
+        };
+        let too_many = || {
+            Error::invalid(
+                "domain",
+                format!(
+                    "the particles span {:e} × {:e}: more cells of the neighbour grid ({cell:e} \
+                     wide) than this machine can allocate; use a larger spacing or a smaller box",
+                    hi.x - lo.x,
+                    hi.y - lo.y
+                ),
+            )
+        };
+        let (Some(nx), Some(ny)) = (side(hi.x - lo.x), side(hi.y - lo.y)) else {
+            return Err(too_many());
+        };
+        // One start more than there are cells, so their count must be below usize::MAX.
+        let cells = nx
+            .checked_mul(ny)
+            .filter(|&cells| cells < usize::MAX)
+            .ok_or_else(too_many)?;
         self.origin = lo;
-        self.dims = (
-            ((hi.x - lo.x) / self.cell) as usize + 1,
-            ((hi.y - lo.y) / self.cell) as usize + 1,
-        );
-        let cells = self.dims.0 * self.dims.1;
+        self.dims = (nx, ny);
         self.starts.clear();
+        self.starts
+            .try_reserve_exact(cells + 1)
+            .map_err(|_| too_many())?;
         self.starts.resize(cells + 1, 0);
         self.cell_of.clear();
         for p in points {
@@ -435,6 +502,7 @@ impl Grid {
             self.order[self.next[c]] = p;
             self.next[c] += 1;
         }
+        Ok(())
     }
 
     /// Calls `visit` with every point in the 3×3 cells around `x`.

@@ -73,7 +73,10 @@ pub enum Collider<const D: usize> {
         /// n·x on the surface.
         offset: f64,
     },
-    /// A solid sphere (a disc in 2-D).
+    /// A solid sphere (a disc in 2-D). A particle inside is moved to the nearest point of the
+    /// surface; one exactly at the centre, which has no nearest point, is moved out towards
+    /// where it was at the start of the substep, or along +y (+x in 1-D) if that was the centre
+    /// too.
     Sphere {
         /// Centre.
         centre: SVector<f64, D>,
@@ -85,10 +88,18 @@ pub enum Collider<const D: usize> {
 /// Substeps and iterations: plain data with a [`Default`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct XpbdOptions {
-    /// Substeps per step (Small Steps: many substeps of one iteration each converge fastest).
+    /// Substeps per step, 1 to [`XpbdOptions::MAX`]; default 10 (Small Steps: many substeps of
+    /// one iteration each converge fastest).
     pub substeps: u32,
-    /// Constraint sweeps per substep.
+    /// Constraint sweeps per substep, 1 to [`XpbdOptions::MAX`]; default 1.
     pub iterations: u32,
+}
+
+impl XpbdOptions {
+    /// The most substeps, and the most iterations, a step may take: 10 000 (a million sweeps
+    /// of the constraints per step at both bounds). Far beyond what converges (Small Steps uses
+    /// tens), and it keeps a mistyped `u32::MAX` from running for hours.
+    pub const MAX: u32 = 10_000;
 }
 
 impl Default for XpbdOptions {
@@ -120,6 +131,9 @@ pub struct Xpbd<const D: usize> {
     /// λ of each constraint over the current substep.
     lambda: Vec<f64>,
     previous: Vec<SVector<f64, D>>,
+    /// Steps taken and the time they covered, to name the step that fails.
+    steps: u64,
+    t: f64,
 }
 
 impl<const D: usize> Xpbd<D> {
@@ -168,7 +182,7 @@ impl<const D: usize> Xpbd<D> {
         {
             return Err(Error::invalid(
                 "mass",
-                format!("particle {i}: must be finite and positive, got {m}"),
+                format!("particle {i}: must be finite and positive, got {m:?}"),
             ));
         }
         if !gravity.iter().all(|c| c.is_finite()) {
@@ -194,16 +208,20 @@ impl<const D: usize> Xpbd<D> {
             gravity,
             options: XpbdOptions::default(),
             lambda: Vec::new(),
+            steps: 0,
+            t: 0.0,
         })
     }
 
-    /// Checks the constraints, colliders and options ([`Xpbd::step`] does, every step).
+    /// Checks the particles, constraints, colliders and options ([`Xpbd::step`] does, every
+    /// step).
     ///
     /// Errors: [`Error::InvalidInput`] for position or velocity lists whose length changed, a
-    /// constraint on a particle that does not exist, a
-    /// negative or non-finite compliance or rest length, a non-finite pin position, a plane
-    /// whose normal is not a unit vector, a sphere with a non-positive radius, or zero substeps
-    /// or iterations.
+    /// position or velocity that is not finite (`x[i]`, `v[i]`), a non-finite gravity, a
+    /// constraint on a particle that does not exist, a negative or non-finite compliance or
+    /// rest length, a non-finite pin position, a plane whose normal is not a unit vector, a
+    /// sphere with a non-positive radius, or substeps or iterations outside 1 to
+    /// [`XpbdOptions::MAX`].
     pub fn check(&self) -> Result<()> {
         let n = self.inverse_mass.len();
         if self.x.len() != n || self.v.len() != n {
@@ -215,6 +233,23 @@ impl<const D: usize> Xpbd<D> {
                     self.x.len(),
                     self.v.len()
                 ),
+            ));
+        }
+        for (name, list) in [("x", &self.x), ("v", &self.v)] {
+            if let Some(i) = list.iter().position(|p| !p.iter().all(|c| c.is_finite())) {
+                return Err(Error::invalid(
+                    format!("{name}[{i}]"),
+                    format!(
+                        "{:?} is not finite; write only finite values into `Xpbd::{name}`",
+                        list[i].as_slice()
+                    ),
+                ));
+            }
+        }
+        if !self.gravity.iter().all(|c| c.is_finite()) {
+            return Err(Error::invalid(
+                "gravity",
+                format!("{:?} is not finite", self.gravity.as_slice()),
             ));
         }
         let exists = |i: usize, what: &str| {
@@ -253,7 +288,8 @@ impl<const D: usize> Xpbd<D> {
                 return Err(Error::invalid(
                     what,
                     format!(
-                        "rest length and compliance must be finite and ≥ 0, got {rest} and {compliance}"
+                        "rest length and compliance must be finite and ≥ 0, got {rest:?} and \
+                         {compliance:?}"
                     ),
                 ));
             }
@@ -275,10 +311,19 @@ impl<const D: usize> Xpbd<D> {
                 ));
             }
         }
-        if self.options.substeps == 0 || self.options.iterations == 0 {
+        let XpbdOptions {
+            substeps,
+            iterations,
+        } = self.options;
+        let allowed = 1..=XpbdOptions::MAX;
+        if !(allowed.contains(&substeps) && allowed.contains(&iterations)) {
             return Err(Error::invalid(
                 "options",
-                "substeps and iterations must be at least 1",
+                format!(
+                    "substeps and iterations must be at least 1 and at most {}, got {substeps} \
+                     and {iterations}",
+                    XpbdOptions::MAX
+                ),
             ));
         }
         Ok(())
@@ -286,18 +331,52 @@ impl<const D: usize> Xpbd<D> {
 
     /// Advances by `dt` in `options.substeps` substeps.
     ///
-    /// Errors: [`Error::InvalidInput`] for a `dt` that is not finite and positive, or what
-    /// [`Xpbd::check`] finds.
+    /// Errors, before the step: [`Error::InvalidInput`] for a `dt` that is not finite and
+    /// positive, a substep h = dt/substeps so short that 1/h² overflows (dt below
+    /// substeps·1.5e-154), a compliance α whose α/h² overflows (`constraints[k]`), or what
+    /// [`Xpbd::check`] finds. After it: [`Error::NotFinite`] when the step left a position or
+    /// velocity NaN or infinite (a step too large for gravity, a rest length or pin too far
+    /// away); the state is then that of the failed step.
     pub fn step(&mut self, dt: f64) -> Result<()> {
         if !(dt.is_finite() && dt > 0.0) {
             return Err(Error::invalid(
                 "dt",
-                format!("must be finite and positive, got {dt}"),
+                format!("must be finite and positive, got {dt:?}"),
             ));
         }
         self.check()?;
+        let substeps = f64::from(self.options.substeps);
+        let h = dt / substeps;
+        // α̃ = α/h²: past 1/h² = f64::MAX even a rigid link (α = 0) would give 0·∞ = NaN.
+        let inv_h2 = 1.0 / (h * h);
+        if !inv_h2.is_finite() {
+            // 2⁻⁵¹¹: the shortest substep whose 1/h² = 2¹⁰²² is finite.
+            let shortest = substeps * 2f64.powi(-511);
+            return Err(Error::invalid(
+                "dt",
+                format!(
+                    "must be at least {shortest:e} with {substeps} substeps (the solver divides \
+                     compliances by the substep squared), got {dt:?}"
+                ),
+            ));
+        }
+        if let Some((k, alpha)) = self
+            .constraints
+            .iter()
+            .map(Constraint::compliance)
+            .enumerate()
+            .find(|(_, alpha)| !(alpha * inv_h2).is_finite())
+        {
+            return Err(Error::invalid(
+                format!("constraints[{k}]"),
+                format!(
+                    "compliance {alpha:?} divided by the substep squared ({h:e} s)² overflows; \
+                     lower it below {:e} (so soft a link holds nothing) or take longer steps",
+                    f64::MAX / inv_h2
+                ),
+            ));
+        }
         self.lambda.resize(self.constraints.len(), 0.0);
-        let h = dt / f64::from(self.options.substeps);
         for _ in 0..self.options.substeps {
             self.previous.clone_from(&self.x);
             for ((x, v), &w) in self.x.iter_mut().zip(&mut self.v).zip(&self.inverse_mass) {
@@ -313,6 +392,31 @@ impl<const D: usize> Xpbd<D> {
             }
             for ((v, x), p) in self.v.iter_mut().zip(&self.x).zip(&self.previous) {
                 *v = (x - p) / h;
+            }
+        }
+        self.steps += 1;
+        self.t += dt;
+        self.check_finite(dt)
+    }
+
+    /// [`Error::NotFinite`] if the step just taken left a position or velocity non-finite.
+    fn check_finite(&self, dt: f64) -> Result<()> {
+        for (name, list) in [("x", &self.x), ("v", &self.v)] {
+            if let Some((i, value)) = list
+                .iter()
+                .enumerate()
+                .find_map(|(i, p)| p.iter().find(|c| !c.is_finite()).map(|c| (i, *c)))
+            {
+                return Err(Error::NotFinite {
+                    solver: "Xpbd",
+                    step: self.steps,
+                    t: self.t,
+                    dt,
+                    component: format!("{name}[{i}]"),
+                    value,
+                    advice: "reduce dt, or check that rest lengths, pin positions and \
+                             gravity are of the scene's size",
+                });
             }
         }
         Ok(())
@@ -356,7 +460,12 @@ impl<const D: usize> Xpbd<D> {
 
     /// Moves every particle inside a collider to its surface.
     fn collide(&mut self) {
-        for (x, &w) in self.x.iter_mut().zip(&self.inverse_mass) {
+        for ((x, &w), previous) in self
+            .x
+            .iter_mut()
+            .zip(&self.inverse_mass)
+            .zip(&self.previous)
+        {
             if w == 0.0 {
                 continue;
             }
@@ -371,8 +480,8 @@ impl<const D: usize> Xpbd<D> {
                     Collider::Sphere { centre, radius } => {
                         let d = *x - centre;
                         let distance = d.norm();
-                        if distance < *radius && distance > 0.0 {
-                            *x = centre + d * (radius / distance);
+                        if distance < *radius {
+                            *x = centre + *radius * outwards(d, distance, previous - centre);
                         }
                     }
                 }
@@ -392,4 +501,39 @@ impl<const D: usize> Xpbd<D> {
             })
             .fold(0.0, f64::max)
     }
+}
+
+impl<const D: usize> Constraint<D> {
+    /// The compliance α (0 for a pin, which is rigid).
+    fn compliance(&self) -> f64 {
+        match *self {
+            Constraint::Distance { compliance, .. } | Constraint::Bending { compliance, .. } => {
+                compliance
+            }
+            Constraint::Pin { .. } => 0.0,
+        }
+    }
+}
+
+/// The unit vector from a sphere's centre through a particle inside it at offset `d`
+/// (|d| = `distance`). At the centre no direction is nearest the surface, so it is the one
+/// towards `before`, the particle's offset at the start of the substep, and +y (+x in 1-D)
+/// when that is zero too.
+fn outwards<const D: usize>(
+    d: SVector<f64, D>,
+    distance: f64,
+    before: SVector<f64, D>,
+) -> SVector<f64, D> {
+    if distance > 0.0 {
+        return d / distance;
+    }
+    let norm = before.norm();
+    if norm > 0.0 {
+        return before / norm;
+    }
+    let mut up = SVector::zeros();
+    if D > 0 {
+        up[D.min(2) - 1] = 1.0;
+    }
+    up
 }

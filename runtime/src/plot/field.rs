@@ -55,9 +55,9 @@ pub fn field_image(path: impl AsRef<Path>, field: Field<'_>, style: FieldStyle) 
 /// Writes one colour-mapped frame per field as a looping animated GIF, `delay_ms` a frame.
 ///
 /// Errors: [`Error::InvalidInput`] for a path with the wrong extension, no frames, a field whose
-/// value count is not width·height, a range that is not finite and increasing, a scale of 0 or
-/// an image side over 16384 pixels; [`Error::Plot`] when encoding fails; [`Error::Io`] when the
-/// file cannot be written.
+/// width·height overflows or is not its value count, a range that is not finite and
+/// increasing, a scale of 0 or an image side over 16384 pixels; [`Error::Plot`] when encoding
+/// fails; [`Error::Io`] when the file cannot be written.
 pub fn field_animation(
     path: impl AsRef<Path>,
     frames: &[Field<'_>],
@@ -75,7 +75,9 @@ pub fn field_animation(
         return Err(Error::invalid("frames", "nothing to animate"));
     };
     // The image size of the first frame (an oversized one is refused by `render` below).
-    let side = |cells: usize| u32::try_from(cells * style.scale as usize).unwrap_or(u32::MAX);
+    let side = |cells: usize| {
+        u32::try_from(cells.saturating_mul(style.scale as usize)).unwrap_or(u32::MAX)
+    };
     let size = (side(first.width), side(first.height));
     let rendered = frames.iter().map(|field| {
         let (rgb, frame_size) = render(*field, style)?;
@@ -97,7 +99,16 @@ fn render(field: Field<'_>, style: FieldStyle) -> Result<(Vec<u8>, (u32, u32))> 
         height,
         values,
     } = field;
-    if width == 0 || height == 0 || values.len() != width * height {
+    let Some(cells) = width.checked_mul(height) else {
+        return Err(Error::invalid(
+            "field",
+            format!(
+                "{width}×{height}: width·height overflows, so no list of values can match; give \
+                 the grid's sides in cells"
+            ),
+        ));
+    };
+    if width == 0 || height == 0 || values.len() != cells {
         return Err(Error::invalid(
             "field",
             format!("{} values for a {width}×{height} grid", values.len()),
@@ -107,11 +118,11 @@ fn render(field: Field<'_>, style: FieldStyle) -> Result<(Vec<u8>, (u32, u32))> 
     if !(lo.is_finite() && hi.is_finite() && lo < hi) {
         return Err(Error::invalid(
             "range",
-            format!("must be finite and increasing, got ({lo}, {hi})"),
+            format!("must be finite and increasing, got ({lo:?}, {hi:?})"),
         ));
     }
     let scale = style.scale as usize;
-    let (w, h) = (width * scale, height * scale);
+    let (w, h) = (width.saturating_mul(scale), height.saturating_mul(scale));
     if scale == 0 || w > 16_384 || h > 16_384 {
         return Err(Error::invalid(
             "scale",
