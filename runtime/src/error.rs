@@ -120,17 +120,33 @@ pub enum Error {
         /// Its size.
         dt: f64,
     },
-    /// An adaptive run needed a step smaller than the resolution of t or `dt_min`: the problem
+    /// An adaptive run needed a step smaller than `dt_min` or the resolution of t: the problem
     /// is stiff for this method, or its solution blows up or jumps at t.
     #[error(
-        "the step size fell to {dt:e} at t = {t:?}, below what the run allows: the problem is \
-         probably stiff here (use an implicit method) or singular at t"
+        "the step size fell to {dt:e} at t = {t:?}, below {}: the problem is probably stiff here \
+         (use an implicit method) or singular at t{}",
+        if dt_min >= resolution {
+            format!("`dt_min` = {dt_min:e}")
+        } else {
+            format!("the resolution of t there ({resolution:e}, ten float spacings)")
+        },
+        if dt_min >= resolution {
+            ", or `dt_min` is too large"
+        } else if t.abs() >= 1e6 {
+            ", or t is so large there that its floats are coarse: start the run nearer 0"
+        } else {
+            ""
+        }
     )]
     StepSizeTooSmall {
         /// Where the run stopped.
         t: f64,
         /// The step it would have needed.
         dt: f64,
+        /// `StepControl::dt_min` in force.
+        dt_min: f64,
+        /// The smallest step t can take there: ten spacings of floats at t.
+        resolution: f64,
     },
     /// An adaptive run used up its step budget (`StepControl::max_steps`).
     #[error(

@@ -544,6 +544,7 @@ impl<M: Model> Plan<'_, '_, M> {
                 I::METHOD.order(),
             ),
         };
+        let outcome = outcome.map_err(|error| driver.explain(error));
         let stats = driver.stats;
         let record = driver.record;
         let trajectory = Trajectory {

@@ -223,6 +223,38 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
         &mut self.y
     }
 
+    /// `error`, or the cause behind it when the run failed before its first step because the
+    /// model's derivative is not finite at the initial state (a non-finite parameter, or values
+    /// so large that the force overflows): the step-size, divergence and Newton errors would
+    /// blame the step for what the input did.
+    pub(crate) fn explain(&mut self, error: Error) -> Error {
+        let blames_the_step = matches!(
+            error,
+            Error::StepSizeTooSmall { .. }
+                | Error::Diverged { .. }
+                | Error::NewtonDidNotConverge { .. }
+                | Error::SingularMatrix { .. }
+        );
+        if !(blames_the_step && self.t == self.t0 && self.stats.steps == 0) {
+            return error;
+        }
+        let f = &mut self.ends[0];
+        self.model.derivative(self.t, &self.y, f);
+        match f.as_slice().iter().position(|x| !x.is_finite()) {
+            None => error,
+            Some(k) => Error::BadModel {
+                model: M::NAME,
+                what: format!("its derivative at the initial state (t = {:?})", self.t),
+                reason: format!(
+                    "is not finite: component `{}` of f is {:?}; a parameter or the initial \
+                     state is not finite, or so large that the derivative overflows — check them",
+                    self.y.component_name(k),
+                    f.as_slice()[k]
+                ),
+            },
+        }
+    }
+
     /// The integrator.
     pub(crate) fn integrator(&self) -> &I {
         &self.integrator
@@ -370,7 +402,18 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
         order: u32,
     ) -> Result<()> {
         tolerances.check(self.y.as_slice().len())?;
+        tolerances.check_against(&self.y)?;
         control.check()?;
+        if control.dt_min > t_end - self.t {
+            return Err(Error::invalid(
+                "dt_min",
+                format!(
+                    "{:e} is longer than the run ({:e}): no step could be taken; lower it",
+                    control.dt_min,
+                    t_end - self.t
+                ),
+            ));
+        }
         let mut control_state = Control::new(control.controller.unwrap_or(controller));
         let mut h = match control.dt_initial {
             Some(h) => h,
@@ -404,12 +447,17 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
             } else {
                 self.t + h_try
             };
-            let floor = control.dt_min.max(10.0 * ulp(self.t));
+            let resolution = 10.0 * ulp(self.t);
+            let floor = control.dt_min.max(resolution);
+            let t = self.t;
+            let too_small = |dt: f64| Error::StepSizeTooSmall {
+                t,
+                dt,
+                dt_min: control.dt_min,
+                resolution,
+            };
             if h_try < floor && t1 != stop {
-                return Err(Error::StepSizeTooSmall {
-                    t: self.t,
-                    dt: h_try,
-                });
+                return Err(too_small(h_try));
             }
             if self.stats.steps + self.stats.rejected >= control.max_steps {
                 return Err(Error::MaxSteps {
@@ -437,7 +485,7 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
                     self.stats.rejected += 1;
                     h = control_state.rejected(h_try, err);
                     if h < floor {
-                        return Err(Error::StepSizeTooSmall { t: self.t, dt: h });
+                        return Err(too_small(h));
                     }
                 }
                 Err(error) if error.is_retriable() => {

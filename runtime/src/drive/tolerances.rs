@@ -108,6 +108,32 @@ impl Tolerances {
         Ok(())
     }
 
+    /// Checks that every non-zero component of `state` can be held to the tolerances: a
+    /// tolerance below the spacing of floats at a component's value (atol 1e-300 with rtol 0 on
+    /// a value of 1) cannot be met by any step.
+    ///
+    /// Errors: [`Error::InvalidInput`] naming the first such component.
+    pub(crate) fn check_against<S: crate::State>(&self, state: &S) -> Result<()> {
+        for (i, &y) in state.as_slice().iter().enumerate() {
+            let tolerance = self.atol(i) + self.rtol * y.abs();
+            if y != 0.0 && tolerance < 4.0 * f64::EPSILON * y.abs() {
+                return Err(Error::invalid(
+                    "tolerances",
+                    format!(
+                        "rtol {:e} and atol {:e} ask component `{}` = {y:e} for an error of \
+                         {tolerance:e}, below the spacing of floats there ({:e}): no step can \
+                         meet it; raise rtol to 1e-14 or more, or atol",
+                        self.rtol,
+                        self.atol(i),
+                        state.component_name(i),
+                        f64::EPSILON * y.abs()
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
     /// The absolute tolerance of component `i`.
     #[inline]
     pub(crate) fn atol(&self, i: usize) -> f64 {
