@@ -533,7 +533,7 @@ impl Statistics {
         if !(0.0..=1.0).contains(&q) {
             return Err(Error::invalid(
                 "quantile",
-                format!("must be in [0, 1], got {q}"),
+                format!("must be in [0, 1], got {q:?}"),
             ));
         }
         // NumPy's rule: a NaN among the values makes every quantile NaN, as it does the mean
