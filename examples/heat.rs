@@ -88,6 +88,8 @@ fn main() -> odyn::Result<()> {
     let probe = StabilityProbe {
         steps: 20_000,
         precision: 1e-4,
+        // One stable interval on a real negative spectrum: a coarse scan from below suffices.
+        scan_ratio: 1.25,
         ..StabilityProbe::default()
     };
     let measured = measured_limit(&model, &start, Method::ExplicitEuler, limit, &probe)?;

@@ -715,7 +715,7 @@ fn sample<M: Model>(model: &M, step: u64, t: f64, state: M::State) -> Sample<M::
 }
 
 /// The spacing of floats at `t`.
-fn ulp(t: f64) -> f64 {
+pub(super) fn ulp(t: f64) -> f64 {
     let t = t.abs();
     if t == 0.0 {
         f64::MIN_POSITIVE
