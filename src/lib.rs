@@ -84,7 +84,8 @@ pub mod __private {
 
 /// The names a model file needs: `use odyn::prelude::*;`.
 pub mod prelude {
-    pub use crate::nalgebra::{SVector, Vector2, Vector3};
+    pub use crate::grid::{Boundary, Grid, Stencil};
+    pub use crate::nalgebra::{SVector, Vector1, Vector2, Vector3, Vector4, Vector5, Vector6};
     pub use crate::particles::ParticleSystem;
     pub use crate::{
         Direction, Error, Event, Jacobian, Method, Model, Result, SecondOrder, Simulation, State,

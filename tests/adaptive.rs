@@ -510,3 +510,26 @@ fn event_records_carry_the_state() {
     assert_eq!(record.before, record.after);
     assert!(record.before.y.abs() < 1e-9);
 }
+
+/// Saved samples are found by time without an exact float comparison (0.1·3 is not 0.3), and a
+/// time that was not recorded is a typed error naming the nearest sample.
+#[test]
+fn saved_samples_are_found_by_time() {
+    let (spring, exact) = damped();
+    let times: Vec<f64> = (1..=9).map(|k| k as f64 / 10.0).collect();
+    let run = spring
+        .simulate()
+        .integrator(Method::Tsit5)
+        .tolerances(1e-10, 1e-12)
+        .duration(1.0)
+        .save_at(&times)
+        .run()
+        .unwrap();
+    let sample = run.sample_at(0.1 * 3.0).unwrap();
+    assert_eq!(sample.t, 0.3);
+    assert!((sample.state.x - exact.state_at(1.0, 0.0, 0.3).0).abs() < 1e-8);
+    match run.sample_at(0.35) {
+        Err(Error::InvalidInput { reason, .. }) => assert!(reason.contains("0.3"), "{reason}"),
+        other => panic!("expected InvalidInput, got {other:?}"),
+    }
+}

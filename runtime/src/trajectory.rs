@@ -74,6 +74,39 @@ impl<S: State> Trajectory<S> {
         self.samples.iter().map(|s| s.t)
     }
 
+    /// The sample recorded at time `t` — a `save_at` time, a step, an event — found without an
+    /// exact float comparison: the last sample within 1e-9·max(1, |t|) of `t` (at an event that
+    /// changed the state, the one after the change). Samples are in time order, so this is a
+    /// binary search.
+    ///
+    /// Errors: [`Error::InvalidInput`] when no sample was recorded that near `t`, naming the
+    /// nearest one (record `t` with `.save_at(..)`, or read any time with [`Trajectory::at`]).
+    pub fn sample_at(&self, t: f64) -> Result<&Sample<S>> {
+        let tolerance = 1e-9 * t.abs().max(1.0);
+        let after = self.samples.partition_point(|s| s.t <= t + tolerance);
+        if let Some(sample) = after.checked_sub(1).map(|k| &self.samples[k])
+            && (sample.t - t).abs() <= tolerance
+        {
+            return Ok(sample);
+        }
+        let nearest = self.samples[after.saturating_sub(1)..]
+            .iter()
+            .take(2)
+            .map(|s| s.t)
+            .min_by(|a, b| (a - t).abs().total_cmp(&(b - t).abs()));
+        Err(Error::invalid(
+            "sample time",
+            match nearest {
+                Some(near) => format!(
+                    "no sample was recorded within {tolerance:e} of t = {t:?} (the nearest is at \
+                     {near:?}); record it with `.save_at(..)`, or read any time with `at(t)` on a \
+                     run with dense output"
+                ),
+                None => "the trajectory has no samples".to_owned(),
+            },
+        ))
+    }
+
     /// The state at time `t`, from the run's dense output: the method's own interpolant (order 4
     /// for Tsit5, 7 for DOP853) or the cubic Hermite one, never a straight line between samples.
     /// At an event that changed the state, the state after it.
