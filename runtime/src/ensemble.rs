@@ -237,11 +237,11 @@ impl Members {
             return Err(Error::invalid(
                 "members",
                 format!(
-                    "member {i} has {} observations, member {} has {}; every member must return \
-                     as many",
-                    row.len(),
+                    "member {i} has {}, member {} has {}; every member must return as many \
+                     observations",
+                    observations(row.len()),
                     first.0,
-                    first.1.len()
+                    observations(first.1.len())
                 ),
             ));
         }
@@ -546,4 +546,9 @@ impl Statistics {
         let hi = (lo + 1).min(values.len() - 1);
         Ok(values[lo] + frac * (values[hi] - values[lo]))
     }
+}
+
+/// "1 observation", "2 observations".
+fn observations(n: usize) -> String {
+    format!("{n} observation{}", if n == 1 { "" } else { "s" })
 }
