@@ -233,7 +233,10 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
         self.adaptive = s.tolerances.is_some();
         // Proposed should this attempt fail: SciPy halves a step whose Newton iteration fails.
         self.next = Some(0.5 * h);
-        if h != self.spacing {
+        // A fixed-step run's steps t₀ + (n + 1)·dt − (t₀ + n·dt) differ from dt by the rounding
+        // of t: within it, h is the spacing D has (re-sampling would refactorize every step and
+        // never let the order rise).
+        if (h - self.spacing).abs() > 4.0 * f64::EPSILON * (t.abs() + h.abs()) {
             change_d(&mut self.differences, k, h / self.spacing);
             self.spacing = h;
             self.equal_steps = 0;
