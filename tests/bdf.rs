@@ -320,7 +320,7 @@ fn orders_one_and_two_are_a_stable() {
             let newton = NewtonOptions::default();
             let mut bdf = Bdf::start(&osc, 0.0, &y, &newton, &mut stats).unwrap();
             bdf.set_max_order(order).unwrap();
-            let mut scratch = y.clone();
+            let mut scratch = y;
             let mut highest: f64 = 0.0;
             for n in 0..400 {
                 bdf.step(&osc, n as f64 * h, h, &mut y, &mut scratch, &mut stats)

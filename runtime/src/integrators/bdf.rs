@@ -316,7 +316,8 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
             return Ok(error);
         }
         self.next = Some(h);
-        if self.equal_steps + 1 >= k + 1 {
+        // This step, if accepted, is the (k + 1)-th at this h and order.
+        if self.equal_steps >= k {
             // The estimates of orders k − 1 and k + 1 from the differences the update will
             // make: ∇ᵏyₙ₊₁ = ∇ᵏyₙ + d and ∇ᵏ⁺²yₙ₊₁ = d − ∇ᵏ⁺¹yₙ.
             let max_order = self.max_order.unwrap_or(MAX_ORDER);
@@ -647,8 +648,10 @@ fn resample(k: usize, factor: f64) -> [[f64; MAX_ORDER + 1]; MAX_ORDER + 1] {
     let mut r = [[0.0; MAX_ORDER + 1]; MAX_ORDER + 1];
     r[0][..=k].fill(1.0);
     for i in 1..=k {
-        for j in 1..=k {
-            r[i][j] = r[i - 1][j] * (i as f64 - 1.0 - factor * j as f64) / i as f64;
+        let (above, row) = r.split_at_mut(i);
+        let cells = row[0].iter_mut().zip(&above[i - 1]).enumerate();
+        for (j, (x, a)) in cells.take(k + 1).skip(1) {
+            *x = a * (i as f64 - 1.0 - factor * j as f64) / i as f64;
         }
     }
     r
