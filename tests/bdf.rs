@@ -1,6 +1,6 @@
 //! BDF (`Method::Bdf`): its order at a fixed order, accuracy on stiff problems, step counts
 //! against SciPy's `BDF` (the algorithm it implements), Jacobian and factorization reuse,
-//! stability at a large fixed step, events and save times.
+//! stability at a large fixed step, events and save times, and a field model's sparse Jacobian.
 
 mod common;
 
@@ -414,4 +414,76 @@ fn bounces_and_save_times_land_on_the_closed_form() {
         );
     }
     eprintln!("{}", run.stats);
+}
+
+/// Heat flow on a 15 × 15 grid, u′ = D·∇²u (five-point Laplacian, u = 0 on the boundary): a field
+/// model, whose Jacobian is sparse. BDF's generic Newton matrix takes it as it takes the dense
+/// ones. From two modes sin(mπx)·sin(kπy), the semi-discrete solution decays each at the grid's
+/// own eigenvalue −(4D/dx²)·(sin²(mπdx/2) + sin²(kπdx/2)) (as in tests/grid.rs): at rtol 1e-8
+/// the state at t = 0.5 is within 1e-6 of it, with fewer than one Jacobian in five steps
+/// (measured: 4.4e-9, 133 steps, 1 J, 26 LU).
+#[test]
+fn a_field_model_steps_with_its_sparse_jacobian() {
+    use odyn::grid::{Boundary, Grid, Stencil};
+    use std::f64::consts::PI;
+
+    #[system]
+    struct Heat {
+        #[field]
+        u: Grid,
+        diffusivity: f64,
+        dx: f64,
+    }
+
+    #[system]
+    impl Heat {
+        #[cell]
+        fn diffusion(&self, u: Stencil) -> f64 {
+            self.diffusivity * u.laplacian() / (self.dx * self.dx)
+        }
+    }
+
+    let (n, d) = (15, 0.1);
+    let dx = 1.0 / (n as f64 + 1.0);
+    let modes = [(1.0, 1.0, 1.0), (2.0, 3.0, 0.5)];
+    let at = |i: usize, j: usize, t: f64| -> f64 {
+        let (x, y) = ((i + 1) as f64 * dx, (j + 1) as f64 * dx);
+        modes
+            .iter()
+            .map(|&(m, k, a): &(f64, f64, f64)| {
+                let s = |q: f64| (q * PI * dx / 2.0).sin().powi(2);
+                let rate = -4.0 * d / (dx * dx) * (s(m) + s(k));
+                a * (rate * t).exp() * (m * PI * x).sin() * (k * PI * y).sin()
+            })
+            .sum()
+    };
+    let u = Grid::from_fn(n, n, Boundary::Dirichlet(0.0), |i, j| at(i, j, 0.0)).unwrap();
+    let model = Heat {
+        u,
+        diffusivity: d,
+        dx,
+    };
+    let run = model
+        .simulate()
+        .integrator(Method::Bdf)
+        .tolerances(1e-8, 1e-12)
+        .duration(0.5)
+        .dense_output(false)
+        .run()
+        .unwrap();
+    let exact = Grid::from_fn(n, n, Boundary::Dirichlet(0.0), |i, j| at(i, j, 0.5)).unwrap();
+    let error = run
+        .last()
+        .state
+        .as_slice()
+        .iter()
+        .zip(exact.values())
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    let stats = run.stats;
+    eprintln!("heat: {stats}, error {error:.2e}");
+    assert!(error < 1e-6, "{error:e}");
+    assert!(
+        (stats.jacobian_evaluations as f64) < 0.2 * stats.steps as f64,
+        "{stats}"
+    );
 }
