@@ -123,8 +123,9 @@ const BASIS: [[f64; MAX_ORDER + 1]; MAX_ORDER + 1] = {
 /// - **Start and events**: order 1 from D = (y₀, h·f(t₀, y₀)); an event that changes the state
 ///   starts it again there.
 ///
-/// The method chooses its own step sizes ([`Integrator::next_step`]); the adaptive driver still
-/// caps them at `dt_max` and shortens them to land on the end, time events and save times.
+/// The method chooses its own step sizes ([`Integrator::next_step`]; a
+/// [`crate::StepControl::controller`] is not used); the adaptive driver still caps them at
+/// `dt_max` and shortens them to land on the end and on time events.
 ///
 /// **Fixed-step runs** have no error estimate to choose the order by: the order rises by one
 /// after every k + 1 steps, to 2 (the A-stable orders) unless [`Bdf::set_max_order`] says
@@ -168,9 +169,9 @@ pub struct Bdf<M: Jacobian> {
     /// Whether the last attempt was rejected by its error estimate: its LU is then kept for
     /// the retry at the proposed step (SciPy's rule).
     rejected: bool,
-    /// For an accepted adaptive attempt: the order and step ratio chosen for what follows, when
-    /// the step was the (k + 1)-th at this h.
-    change: Option<(usize, f64)>,
+    /// For an accepted adaptive attempt: the order chosen for what follows (with the step in
+    /// `next`), when the step was the (k + 1)-th at this h.
+    change: Option<usize>,
     /// The predictor yₙ₊₁⁽⁰⁾.
     predict: M::State,
     /// ψ.
@@ -350,7 +351,7 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
             }
             let order = (k + best).saturating_sub(1).clamp(1, max_order);
             let factor = MAX_FACTOR.min(safety * factors[best]);
-            self.change = Some((order, factor));
+            self.change = Some(order);
             self.next = Some(h * factor);
         }
         Ok(error)
@@ -381,7 +382,7 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
         self.fresh = false;
         self.rejected = false;
         match self.change.take() {
-            Some((order, _)) => {
+            Some(order) => {
                 // A new h (`next`) and order: re-sampled at the next attempt, refactorized.
                 self.order = order;
                 self.equal_steps = 0;
