@@ -54,6 +54,8 @@ fn a_longer_run_allocates_no_more() {
         (Method::Rodas5P, false),
         (Method::Rosenbrock23, false),
         (Method::Rodas5P, true),
+        (Method::Bdf, false),
+        (Method::Bdf, true),
     ] {
         let (short, short_steps) = count(method, 6.0, fixed);
         let (long, long_steps) = count(method, 60.0, fixed);

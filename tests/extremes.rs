@@ -54,8 +54,9 @@ fn every_cell_is_finite_or_a_typed_divergence_as_theory_predicts() {
                                 (ratio / (1.0 + h * h).powi(STEPS as i32) - 1.0).abs() < 1e-9,
                                 "{cell}: {ratio}"
                             ),
-                            // L-stable: damped at every step size, never gaining energy.
-                            Method::Rosenbrock23 | Method::Rodas5P => {
+                            // L-stable (BDF at a fixed step: orders 1–2, A-stable): damped at
+                            // every step size, never gaining energy.
+                            Method::Rosenbrock23 | Method::Rodas5P | Method::Bdf => {
                                 assert!(ratio <= 1.0 + 1e-9, "{cell}: {ratio}")
                             }
                             Method::ImplicitEuler => {
@@ -94,8 +95,11 @@ fn every_cell_is_finite_or_a_typed_divergence_as_theory_predicts() {
                         diverged += 1;
                         assert!(step <= STEPS, "{cell}");
                         match method {
-                            Method::ImplicitEuler | Method::Rosenbrock23 | Method::Rodas5P => {
-                                panic!("{cell}: an L-stable method diverged")
+                            Method::ImplicitEuler
+                            | Method::Rosenbrock23
+                            | Method::Rodas5P
+                            | Method::Bdf => {
+                                panic!("{cell}: an A-stable method diverged")
                             }
                             // Amplitude (1 + h²)^{n/2}, and |v| ≈ ω·|x|, passes the default limit
                             // 1e10 (× the initial scale 1) within n steps.

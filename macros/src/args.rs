@@ -40,7 +40,7 @@ const fn method(name: &'static str, needs: Needs, adaptive: bool) -> MethodInfo 
 
 /// The methods an attribute may name, mirroring `odyn::Method::info` (the integration test
 /// `tests/methods.rs` checks that the two tables agree).
-const METHODS: [MethodInfo; 14] = [
+const METHODS: [MethodInfo; 15] = [
     method("ExplicitEuler", Needs::F, false),
     method("SymplecticEuler", Needs::Split, false),
     method("PositionVerlet", Needs::VelocityFree, false),
@@ -55,6 +55,7 @@ const METHODS: [MethodInfo; 14] = [
     method("Dop853", Needs::F, true),
     method("Rosenbrock23", Needs::Jacobian, true),
     method("Rodas5P", Needs::Jacobian, true),
+    method("Bdf", Needs::Jacobian, true),
 ];
 
 /// The parsed arguments.

@@ -50,6 +50,11 @@ pub enum Method {
     /// Steinebach's Rosenbrock–Wanner method, order 5(4), stiffly accurate, L-stable, adaptive,
     /// dense output of order 4 (Steinebach 2023). Needs the generated Jacobian.
     Rodas5P,
+    /// The variable-order (1–5), variable-step numerical differentiation formulas of MATLAB's
+    /// `ode15s` as SciPy's `BDF` implements them, with the Jacobian and its factorization reused
+    /// across steps; dense output of the step's order (Shampine & Reichelt 1997). Order 2 at a
+    /// fixed step, where it stays at the A-stable orders. Needs the generated Jacobian.
+    Bdf,
 }
 
 /// What a [`Method`] is and needs: one row of the table every part of odyn reads (the runner,
@@ -103,7 +108,7 @@ const VELOCITY_FREE: (bool, bool, bool) = (true, false, true);
 
 impl Method {
     /// Every method, in the order of the comparison table.
-    pub const ALL: [Method; 14] = [
+    pub const ALL: [Method; 15] = [
         Method::ExplicitEuler,
         Method::SymplecticEuler,
         Method::PositionVerlet,
@@ -118,6 +123,7 @@ impl Method {
         Method::Dop853,
         Method::Rosenbrock23,
         Method::Rodas5P,
+        Method::Bdf,
     ];
 
     /// The method's row of the table.
@@ -186,6 +192,8 @@ impl Method {
                 JACOBIAN,
             ),
             Method::Rodas5P => row("rodas5p", "Rodas5P", "Rodas5P", 5, true, JACOBIAN),
+            // Variable order 1–5 when adaptive; a fixed step rises to order 2 only.
+            Method::Bdf => row("bdf", "Bdf", "BDF", 2, true, JACOBIAN),
         }
     }
 

@@ -2,7 +2,7 @@
 
 use crate::drive::{Driver, Progress, Recording, StepControl};
 use crate::integrators::{
-    Dop853, ExplicitEuler, ImplicitEuler, Integrator, KahanLi6, Leapfrog, PositionVerlet, Rk4,
+    Bdf, Dop853, ExplicitEuler, ImplicitEuler, Integrator, KahanLi6, Leapfrog, PositionVerlet, Rk4,
     Rodas5P, Rosenbrock23, SymplecticEuler, Tsit5, VelocityVerlet, Yoshida4, Yoshida6,
 };
 use crate::stepper::check_dt;
@@ -311,6 +311,7 @@ impl<'m, M: Model> Simulation<'m, M> {
             Method::ImplicitEuler => plan.drive::<_, ImplicitEuler<_>>(self.jacobian()?),
             Method::Rosenbrock23 => plan.drive::<_, Rosenbrock23<_>>(self.jacobian()?),
             Method::Rodas5P => plan.drive::<_, Rodas5P<_>>(self.jacobian()?),
+            Method::Bdf => plan.drive::<_, Bdf<_>>(self.jacobian()?),
         }
     }
 
@@ -541,7 +542,7 @@ impl<M: Model> Plan<'_, '_, M> {
                 tolerances,
                 &o.step_control,
                 I::CONTROLLER,
-                I::METHOD.order(),
+                I::START_ORDER,
             ),
         };
         let outcome = outcome.map_err(|error| driver.explain(error));

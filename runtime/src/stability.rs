@@ -275,12 +275,9 @@ where
 fn limit_on(points: &[Complex<f64>], fastest: f64, method: Method) -> f64 {
     let left_half = points.iter().all(|l| l.re <= 1e-12 * fastest);
     match method {
-        Method::ImplicitEuler | Method::Rosenbrock23 | Method::Rodas5P => {
-            if left_half {
-                f64::INFINITY
-            } else {
-                0.0
-            }
+        // BDF at a fixed step stays at its A-stable orders 1 and 2.
+        Method::ImplicitEuler | Method::Rosenbrock23 | Method::Rodas5P | Method::Bdf => {
+            if left_half { f64::INFINITY } else { 0.0 }
         }
         Method::SymplecticEuler
         | Method::PositionVerlet

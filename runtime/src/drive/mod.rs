@@ -6,7 +6,8 @@
 //! - the **fixed-step** loop walks the grid t₀ + n·dt, retrying a step whose implicit solve failed
 //!   as two half steps (up to [`crate::NewtonOptions::max_halvings`] deep);
 //! - the **adaptive** loop sizes each step with the [`Controller`] from the method's error
-//!   estimate, picks the first step by Hairer's algorithm, lands exactly on the end time and on
+//!   estimate (or takes the size a method that chooses its own proposes, BDF's step and order
+//!   being chosen together: `Integrator::next_step`), picks the first step by Hairer's algorithm, lands exactly on the end time and on
 //!   time events, and fails with a typed error when the step collapses or the step budget runs
 //!   out;
 //! - after every accepted step, both check for divergence, look for [`Event`]s, evaluate the
@@ -465,10 +466,13 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
                     steps: control.max_steps,
                 });
             }
+            // A method that sizes its own steps (`Integrator::next_step`) overrides the
+            // controller after each outcome; the caps and landings above still apply.
             match self.attempt(h_try, Some(tolerances)) {
                 Ok(err) if err <= 1.0 => {
-                    h = control_state.accepted(h_try, err);
+                    let controlled = control_state.accepted(h_try, err);
                     let flow = self.accept(t1)?;
+                    h = self.integrator.next_step().unwrap_or(controlled);
                     if flow == Flow::Stopped {
                         return Ok(());
                     }
@@ -483,14 +487,15 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
                 }
                 Ok(err) => {
                     self.stats.rejected += 1;
-                    h = control_state.rejected(h_try, err);
+                    let controlled = control_state.rejected(h_try, err);
+                    h = self.integrator.next_step().unwrap_or(controlled);
                     if h < floor {
                         return Err(too_small(h));
                     }
                 }
                 Err(error) if error.is_retriable() => {
                     self.stats.rejected += 1;
-                    h = 0.25 * h_try;
+                    h = self.integrator.next_step().unwrap_or(0.25 * h_try);
                 }
                 Err(error) => return Err(error),
             }

@@ -16,6 +16,7 @@
 //! | [`Dop853`] | 8 | 12 (FSAL) | orders 5 and 3 | own, order 7 (3 more f) | slow drift, set by the tolerance | f(t, y) |
 //! | [`Rosenbrock23`] | 2 | 2 (FSAL), 1 J, 1 LU, 3 solves | order 3 | own, order 2 | damped (L-stable) | ∂f/∂y, ∂f/∂t |
 //! | [`Rodas5P`] | 5 | 8, 1 J, 1 LU, 8 solves | order 4 | own, order 4 | damped (L-stable) | ∂f/∂y, ∂f/∂t |
+//! | [`Bdf`] | 1–5 (2 at a fixed step) | 2–4 (Newton); J and LU kept across steps | order k + 1 difference | own, order k | damped (orders 1–2 A-stable) | ∂f/∂y |
 //!
 //! Stability on an undamped oscillator of angular frequency ω: the split methods are stable for
 //! ω·dt < 2, RK4 for ω·dt < 2√2, explicit Euler for no dt at all, implicit Euler and the
@@ -35,6 +36,7 @@
 //! An integrator is created once per run by [`Integrator::start`], which allocates its scratch
 //! states; attempts then allocate nothing.
 
+mod bdf;
 mod composition;
 mod dop853;
 mod explicit_euler;
@@ -53,6 +55,7 @@ mod velocity_verlet;
 mod yoshida4;
 mod yoshida6;
 
+pub use bdf::Bdf;
 pub use composition::{Composition, Weights};
 pub use dop853::Dop853;
 pub use explicit_euler::ExplicitEuler;
@@ -82,6 +85,9 @@ pub trait Integrator<M: Model>: Sized {
     /// The step-size controller of adaptive runs (methods without an error estimate never use
     /// it).
     const CONTROLLER: Controller = Controller::dopri5(4);
+    /// The order Hairer's algorithm sizes the first step of an adaptive run for: the method's
+    /// own, or the one a variable-order method starts at (1 for [`Bdf`]).
+    const START_ORDER: u32 = Self::METHOD.order();
 
     /// Checks the model, the state and the options, then [`prepare`](Integrator::prepare)s the
     /// method: how every run begins, and how code that drives an integrator by hand must begin.
@@ -136,6 +142,21 @@ pub trait Integrator<M: Model>: Sized {
     /// The last attempt was accepted: keep what it computed that the next step reuses.
     #[inline]
     fn accept(&mut self) {}
+
+    /// The size the method wants for its next step, if it chooses its step sizes itself; `None`
+    /// (the default) leaves them to the driver's [`Controller`], which sizes steps from the
+    /// error norm alone.
+    ///
+    /// A method whose step size and order are chosen together ([`Bdf`]) proposes them here. The
+    /// adaptive driver asks after every attempt — after [`Integrator::accept`] for an accepted
+    /// step, after [`Integrator::attempt`] for one its error norm rejected (above 1) or whose
+    /// solve failed — and still caps the step at `dt_max` and shortens it to land on the end and
+    /// on time events; the method takes whatever step it is then given. Fixed-step runs ignore
+    /// it.
+    #[inline]
+    fn next_step(&self) -> Option<f64> {
+        None
+    }
 
     /// A copy of this integrator, if it can be copied cheaply (`None`, the default, when not).
     /// Fixed-step runs step small plain integrators in a local copy, which the optimiser keeps in
@@ -262,7 +283,8 @@ pub(crate) fn stability_polynomial(method: Method) -> Vec<f64> {
         | Method::KahanLi6
         | Method::ImplicitEuler
         | Method::Rosenbrock23
-        | Method::Rodas5P => Vec::new(),
+        | Method::Rodas5P
+        | Method::Bdf => Vec::new(),
     }
 }
 

@@ -1,0 +1,718 @@
+//! Bdf: the variable-order (1–5), variable-step backward differentiation formulas of SciPy's
+//! `BDF`, in the numerical differentiation (NDF) form of MATLAB's `ode15s`.
+
+use super::{Integrator, Step, copies};
+use crate::drive::DenseStep;
+use crate::{
+    Error, Jacobian, Method, NewtonFailure, NewtonMatrix, NewtonOptions, Result, State, Stats,
+};
+
+/// The highest order.
+const MAX_ORDER: usize = 5;
+/// Newton iterations allowed per attempt of an adaptive run (SciPy's `NEWTON_MAXITER`).
+const NEWTON_MAXITER: usize = 4;
+/// Bounds of the step-size ratio (SciPy's `MIN_FACTOR`, `MAX_FACTOR`).
+const MIN_FACTOR: f64 = 0.2;
+const MAX_FACTOR: f64 = 10.0;
+/// The orders a fixed-step run rises to when no other cap is set: the A-stable ones.
+const FIXED_STEP_ORDER: usize = 2;
+
+/// κₖ of the NDFs (Shampine & Reichelt 1997, Table 1; κ₅ = 0: order 5 is plain BDF5).
+const KAPPA: [f64; MAX_ORDER + 1] = [0.0, -0.1850, -1.0 / 9.0, -0.0823, -0.0415, 0.0];
+
+/// γₖ = Σⱼ₌₁ᵏ 1/j.
+const GAMMA: [f64; MAX_ORDER + 1] = {
+    let mut gamma = [0.0; MAX_ORDER + 1];
+    let mut k = 1;
+    while k <= MAX_ORDER {
+        gamma[k] = gamma[k - 1] + 1.0 / k as f64;
+        k += 1;
+    }
+    gamma
+};
+
+/// αₖ = (1 − κₖ)·γₖ: the step is solved for c = h/αₖ.
+const ALPHA: [f64; MAX_ORDER + 1] = {
+    let mut alpha = [0.0; MAX_ORDER + 1];
+    let mut k = 0;
+    while k <= MAX_ORDER {
+        alpha[k] = (1.0 - KAPPA[k]) * GAMMA[k];
+        k += 1;
+    }
+    alpha
+};
+
+/// The error constants κₖγₖ + 1/(k + 1): the local error of order k is ≈ this × ∇ᵏ⁺¹yₙ₊₁.
+const ERROR_CONST: [f64; MAX_ORDER + 2] = {
+    let mut c = [0.0; MAX_ORDER + 2];
+    let mut k = 0;
+    while k <= MAX_ORDER + 1 {
+        let kappa_gamma = if k <= MAX_ORDER {
+            KAPPA[k] * GAMMA[k]
+        } else {
+            0.0
+        };
+        c[k] = kappa_gamma + 1.0 / (k + 1) as f64;
+        k += 1;
+    }
+    c
+};
+
+/// Monomial coefficients of the Newton backward basis on the last step,
+/// pⱼ(θ) = Πₘ₌₀ʲ⁻¹ (θ − 1 + m)/(m + 1): `BASIS[j][i]` is the coefficient of θⁱ in pⱼ.
+const BASIS: [[f64; MAX_ORDER + 1]; MAX_ORDER + 1] = {
+    let mut basis = [[0.0; MAX_ORDER + 1]; MAX_ORDER + 1];
+    basis[0][0] = 1.0;
+    let mut j = 1;
+    while j <= MAX_ORDER {
+        // pⱼ = pⱼ₋₁ · (θ + j − 2)/j.
+        let shift = (j as f64 - 2.0) / j as f64;
+        let slope = 1.0 / j as f64;
+        let mut i = 0;
+        while i <= MAX_ORDER {
+            let from_shift = basis[j - 1][i] * shift;
+            let from_slope = if i > 0 {
+                basis[j - 1][i - 1] * slope
+            } else {
+                0.0
+            };
+            basis[j][i] = from_shift + from_slope;
+            i += 1;
+        }
+        j += 1;
+    }
+    basis
+};
+
+/// The variable-order, variable-step numerical differentiation formulas (NDFs) of Shampine &
+/// Reichelt, as SciPy's `scipy.integrate.BDF` implements them: the solution is carried as the
+/// backward differences D = (yₙ, ∇yₙ, …, ∇ᵏ⁺²yₙ) of the values at a constant step h, and a step
+/// of order k solves
+///
+/// ```text
+/// Σⱼ₌₁ᵏ γⱼ∇ʲyₙ₊₁ − h·f(tₙ₊₁, yₙ₊₁) − κₖγₖ·(yₙ₊₁ − yₙ₊₁⁽⁰⁾) = 0,   γⱼ = Σᵢ₌₁ʲ 1/i,
+/// ```
+///
+/// with the predictor yₙ₊₁⁽⁰⁾ = Σⱼ₌₀ᵏ ∇ʲyₙ (Shampine & Reichelt 1997, §2). Writing
+/// yₙ₊₁ = yₙ₊₁⁽⁰⁾ + d, it is d = c·f(tₙ₊₁, yₙ₊₁⁽⁰⁾ + d) − ψ with c = h/αₖ, αₖ = (1 − κₖ)γₖ and
+/// ψ = Σⱼ₌₁ᵏ γⱼ∇ʲyₙ/αₖ, solved by the simplified Newton iteration (I − c·J)·Δ = c·f − ψ − d with
+/// one J and one LU held across steps:
+///
+/// - **κ** = (−0.1850, −1/9, −0.0823, −0.0415, 0) for k = 1 … 5: the NDFs, which take steps 26 %
+///   longer than the BDFs at the same accuracy at orders 1–3 (12 % at order 4; order 5 is BDF5)
+///   for little loss of stability (NDF1, NDF2 are A-stable; NDF3–5 A(α)-stable, α = 80°, 66°,
+///   51°).
+/// - **Newton**: at most 4 iterations; converged when rate/(1 − rate)·‖Δ‖ < tol (rate the ratio of
+///   successive ‖Δ‖), abandoned when the rate reaches 1 or cannot reach tol in the iterations
+///   left; tol = max(10ε/rtol, min(0.03, √rtol)), norms weighted by atol + rtol·|yₙ₊₁⁽⁰⁾|.
+/// - **Reuse**: the LU of I − c·J is kept while c = h/αₖ is unchanged — across every step that
+///   neither changes h nor the order — and also after a step rejected by its error estimate
+///   (the fixed point d does not depend on the iteration matrix, only the rate does). J is
+///   re-evaluated only when Newton fails with a J older than the current step; if it fails
+///   with a fresh one, the step is halved ([`Error::NewtonDidNotConverge`], its residual the
+///   max-norm of c·f − ψ − d, is the retriable failure the driver sees).
+/// - **Error**: err = (κₖγₖ + 1/(k + 1))·d ≈ (κₖγₖ + 1/(k + 1))·∇ᵏ⁺¹yₙ₊₁, in the tolerances'
+///   norm at yₙ₊₁. A rejected step shrinks h by max(0.2, s·err^(−1/(k+1))), s =
+///   0.9·(2·4 + 1)/(2·4 + Newton iterations).
+/// - **Order and step**: after k + 1 steps at the same h, the estimates of orders k − 1, k and
+///   k + 1 (from ∇ᵏyₙ₊₁, d and ∇ᵏ⁺²yₙ₊₁) each propose a step, h·err_q^(−1/(q+1)); the largest
+///   wins, times s, at most ×10. When h changes, D is re-sampled at the new spacing from the
+///   same interpolating polynomial (`change_d`: D ← (R·U)ᵀ·D).
+/// - **Dense output**: that polynomial on the last step, Σⱼ₌₀ᵏ ∇ʲyₙ₊₁·pⱼ(θ) with
+///   pⱼ(θ) = Πₘ₌₀ʲ⁻¹ (θ − 1 + m)/(m + 1) (SciPy's `BdfDenseOutput`), of degree k.
+/// - **Start and events**: order 1 from D = (y₀, h·f(t₀, y₀)); an event that changes the state
+///   starts it again there.
+///
+/// The method chooses its own step sizes ([`Integrator::next_step`]; a
+/// [`crate::StepControl::controller`] is not used); the adaptive driver still caps them at
+/// `dt_max` and shortens them to land on the end and on time events.
+///
+/// **Fixed-step runs** have no error estimate to choose the order by: the order rises by one
+/// after every k + 1 steps, to 2 (the A-stable orders) unless [`Bdf::set_max_order`] says
+/// otherwise, and Newton follows [`NewtonOptions`] (`tol` on ‖Δ‖ weighted by 1 + |y|,
+/// `max_iters`); a failing solve is retried as two half steps by the driver. Steps that differ
+/// from dt only by the rounding of t₀ + n·dt count as equal.
+///
+/// - **Order** 1–5 (2 at a fixed step, so [`Method::order`] is 2).
+/// - **Stability**: A-stable at orders 1 and 2, A(α)-stable above; the adaptive order selection
+///   keeps a step within the region of its order.
+///
+/// References: L. F. Shampine, M. W. Reichelt, "The MATLAB ODE Suite", SIAM J. Sci. Comput. 18
+/// (1997) 1–22, §2; SciPy's `scipy/integrate/_ivp/bdf.py`; E. Hairer, G. Wanner, *Solving
+/// Ordinary Differential Equations I*, 2nd ed., §III.1 (the backward-difference form).
+pub struct Bdf<M: Jacobian> {
+    /// J, kept across steps.
+    jacobian: M::Matrix,
+    factors: <M::Matrix as NewtonMatrix>::Factors,
+    /// Whether `factors` hold a factorization to solve with.
+    factored: bool,
+    /// Whether J was evaluated during the current step (SciPy's `current_jac`): a Newton
+    /// failure then halves the step instead of re-evaluating J.
+    fresh: bool,
+    /// D: ∇ʲyₙ for j = 0 … k + 2, at the spacing `spacing`.
+    differences: [M::State; MAX_ORDER + 3],
+    /// The step D is sampled at.
+    spacing: f64,
+    /// The order of the next step.
+    order: usize,
+    /// The order of the last accepted step (its dense output's degree).
+    last_order: usize,
+    /// Steps accepted since h or the order last changed.
+    equal_steps: usize,
+    /// The highest order allowed (`None`: 5 adaptive, 2 at a fixed step).
+    max_order: Option<usize>,
+    /// Whether the last attempt had tolerances (an adaptive run).
+    adaptive: bool,
+    newton: NewtonOptions,
+    /// The step the method proposes next.
+    next: Option<f64>,
+    /// Whether the last attempt was rejected by its error estimate: its LU is then kept for
+    /// the retry at the proposed step (SciPy's rule).
+    rejected: bool,
+    /// For an accepted adaptive attempt: the order chosen for what follows (with the step in
+    /// `next`), when the step was the (k + 1)-th at this h.
+    change: Option<usize>,
+    /// The predictor yₙ₊₁⁽⁰⁾.
+    predict: M::State,
+    /// ψ.
+    psi: M::State,
+    /// The correction d of the last attempt.
+    correction: M::State,
+    /// f at the iterate, then the Newton update.
+    update: M::State,
+    /// Weights of the norms.
+    scale: M::State,
+}
+
+impl<M: Jacobian> Integrator<M> for Bdf<M> {
+    const METHOD: Method = Method::Bdf;
+    const DENSE_DEGREE: usize = MAX_ORDER;
+    const START_ORDER: u32 = 1;
+
+    /// Evaluates f(t₀, y₀) for D and J at (t₀, y₀), as SciPy does on creation.
+    fn prepare(
+        model: &M,
+        t0: f64,
+        y0: &M::State,
+        newton: &NewtonOptions,
+        stats: &mut Stats,
+    ) -> Result<Self> {
+        let mut jacobian = model.jacobian_matrix(y0);
+        jacobian.configure(newton);
+        model.jacobian(t0, y0, &mut jacobian);
+        stats.jacobian_evaluations += 1;
+        let mut bdf = Bdf {
+            factors: jacobian.factors(),
+            jacobian,
+            factored: false,
+            fresh: false,
+            differences: copies(y0)?,
+            spacing: 1.0,
+            order: 1,
+            last_order: 1,
+            equal_steps: 0,
+            max_order: None,
+            adaptive: false,
+            newton: *newton,
+            next: None,
+            rejected: false,
+            change: None,
+            predict: y0.try_clone()?,
+            psi: y0.try_clone()?,
+            correction: y0.try_clone()?,
+            update: y0.try_clone()?,
+            scale: y0.try_clone()?,
+        };
+        bdf.start_history(model, t0, y0, stats);
+        Ok(bdf)
+    }
+
+    fn attempt(&mut self, model: &M, s: Step<'_, M::State>, y_new: &mut M::State) -> Result<f64> {
+        let (t, h) = (s.t, s.h);
+        let t_new = t + h;
+        let k = self.order;
+        let keep_lu = self.rejected && self.next == Some(h);
+        self.rejected = false;
+        self.change = None;
+        self.adaptive = s.tolerances.is_some();
+        // Proposed should this attempt fail: SciPy halves a step whose Newton iteration fails.
+        self.next = Some(0.5 * h);
+        // A fixed-step run's steps t₀ + (n + 1)·dt − (t₀ + n·dt) differ from dt by the rounding
+        // of t: within it, h is the spacing D has (re-sampling would refactorize every step and
+        // never let the order rise).
+        if (h - self.spacing).abs() > 4.0 * f64::EPSILON * (t.abs() + h.abs()) {
+            change_d(&mut self.differences, k, h / self.spacing);
+            self.spacing = h;
+            self.equal_steps = 0;
+            self.factored &= keep_lu;
+        }
+        // Predictor Σⱼ₌₀ᵏ ∇ʲyₙ and ψ = Σⱼ₌₁ᵏ γⱼ∇ʲyₙ/αₖ.
+        let (predict, psi) = (self.predict.as_mut_slice(), self.psi.as_mut_slice());
+        predict.copy_from_slice(self.differences[0].as_slice());
+        psi.fill(0.0);
+        for (j, dj) in self.differences.iter().enumerate().take(k + 1).skip(1) {
+            for ((p, q), x) in predict.iter_mut().zip(psi.iter_mut()).zip(dj.as_slice()) {
+                *p += x;
+                *q += GAMMA[j] * x;
+            }
+        }
+        for q in psi.iter_mut() {
+            *q /= ALPHA[k];
+        }
+        let (max_iters, tol) = match s.tolerances {
+            Some(tolerances) => {
+                for (i, (w, p)) in self
+                    .scale
+                    .as_mut_slice()
+                    .iter_mut()
+                    .zip(&*predict)
+                    .enumerate()
+                {
+                    *w = tolerances.atol(i) + tolerances.rtol * p.abs();
+                }
+                let rtol = tolerances.rtol.max(100.0 * f64::EPSILON);
+                (
+                    NEWTON_MAXITER,
+                    (10.0 * f64::EPSILON / rtol).max(0.03f64.min(rtol.sqrt())),
+                )
+            }
+            None => {
+                for (w, p) in self.scale.as_mut_slice().iter_mut().zip(&*predict) {
+                    *w = 1.0 + p.abs();
+                }
+                (self.newton.max_iters as usize, self.newton.tol)
+            }
+        };
+        let c = h / ALPHA[k];
+        let iters = loop {
+            if !self.factored {
+                s.stats.factorizations += 1;
+                if !self.jacobian.factorize(c, &mut self.factors) {
+                    return Err(Error::SingularMatrix { t, dt: h });
+                }
+                self.factored = true;
+            }
+            match self.solve(model, (t_new, h, c), (max_iters, tol), y_new, s.stats) {
+                Ok(iters) => break iters,
+                Err(failure) if self.fresh => return Err(failure),
+                Err(_) => {
+                    // An old J: evaluate it at the predictor and try again.
+                    model.jacobian(t_new, &self.predict, &mut self.jacobian);
+                    s.stats.jacobian_evaluations += 1;
+                    self.fresh = true;
+                    self.factored = false;
+                }
+            }
+        };
+        let Some(tolerances) = s.tolerances else {
+            self.next = Some(h);
+            return Ok(0.0);
+        };
+        let safety = 0.9 * (2 * NEWTON_MAXITER + 1) as f64 / (2 * NEWTON_MAXITER + iters) as f64;
+        let y = y_new.as_slice();
+        let d = self.correction.as_slice();
+        let norm = |e: &dyn Fn(usize) -> f64| tolerances.norm_of(e, y, y);
+        let error = norm(&|i| ERROR_CONST[k] * d[i]);
+        if error > 1.0 {
+            let factor = MIN_FACTOR.max(safety * error.powf(-1.0 / (k + 1) as f64));
+            self.next = Some(h * factor);
+            self.rejected = true;
+            return Ok(error);
+        }
+        self.next = Some(h);
+        // This step, if accepted, is the (k + 1)-th at this h and order.
+        if self.equal_steps >= k {
+            // The estimates of orders k − 1 and k + 1 from the differences the update will
+            // make: ∇ᵏyₙ₊₁ = ∇ᵏyₙ + d and ∇ᵏ⁺²yₙ₊₁ = d − ∇ᵏ⁺¹yₙ.
+            let max_order = self.max_order.unwrap_or(MAX_ORDER);
+            let lower = if k > 1 {
+                let dk = self.differences[k].as_slice();
+                norm(&|i| ERROR_CONST[k - 1] * (dk[i] + d[i]))
+            } else {
+                f64::INFINITY
+            };
+            let higher = if k < max_order {
+                let dk1 = self.differences[k + 1].as_slice();
+                norm(&|i| ERROR_CONST[k + 1] * (d[i] - dk1[i]))
+            } else {
+                f64::INFINITY
+            };
+            let factors = [
+                lower.powf(-1.0 / k as f64),
+                error.powf(-1.0 / (k + 1) as f64),
+                higher.powf(-1.0 / (k + 2) as f64),
+            ];
+            // The first largest, as NumPy's argmax.
+            let mut best = 0;
+            for (q, f) in factors.iter().enumerate() {
+                if *f > factors[best] {
+                    best = q;
+                }
+            }
+            let order = (k + best).saturating_sub(1).clamp(1, max_order);
+            let factor = MAX_FACTOR.min(safety * factors[best]);
+            self.change = Some(order);
+            self.next = Some(h * factor);
+        }
+        Ok(error)
+    }
+
+    fn accept(&mut self) {
+        let k = self.order;
+        self.equal_steps += 1;
+        // With d = ∇ᵏ⁺¹yₙ₊₁: ∇ᵏ⁺²yₙ₊₁ = d − ∇ᵏ⁺¹yₙ, then ∇ʲyₙ₊₁ = ∇ʲyₙ + ∇ʲ⁺¹yₙ₊₁ from the top
+        // down.
+        let (low, high) = self.differences.split_at_mut(k + 2);
+        for ((a, b), d) in high[0]
+            .as_mut_slice()
+            .iter_mut()
+            .zip(low[k + 1].as_mut_slice())
+            .zip(self.correction.as_slice())
+        {
+            *a = d - *b;
+            *b = *d;
+        }
+        for i in (0..=k).rev() {
+            let (low, high) = self.differences.split_at_mut(i + 1);
+            for (x, a) in low[i].as_mut_slice().iter_mut().zip(high[0].as_slice()) {
+                *x += a;
+            }
+        }
+        self.last_order = k;
+        self.fresh = false;
+        self.rejected = false;
+        match self.change.take() {
+            Some(order) => {
+                // A new h (`next`) and order: re-sampled at the next attempt, refactorized.
+                self.order = order;
+                self.equal_steps = 0;
+                self.factored = false;
+            }
+            None => {
+                // A fixed-step run raises the order as the history allows.
+                let cap = self.max_order.unwrap_or(FIXED_STEP_ORDER);
+                if !self.adaptive && self.equal_steps > k && k < cap {
+                    self.order = k + 1;
+                    self.equal_steps = 0;
+                    self.factored = false;
+                }
+            }
+        }
+    }
+
+    /// Starts at order 1 from the new state, as at t₀; J is kept (a Newton failure renews it).
+    fn restart(&mut self, model: &M, t: f64, y: &M::State, stats: &mut Stats) {
+        self.start_history(model, t, y, stats);
+    }
+
+    /// Σⱼ₌₀ᵏ ∇ʲyₙ₊₁·pⱼ(θ) in powers of θ.
+    fn dense(
+        &mut self,
+        _: &M,
+        s: Step<'_, M::State>,
+        _: &M::State,
+        dense: &mut DenseStep<M::State>,
+    ) -> bool {
+        let k = self.last_order;
+        let coefficients = dense.fill(s.t, s.h, k);
+        for (i, c) in coefficients.iter_mut().enumerate() {
+            let out = c.as_mut_slice();
+            out.fill(0.0);
+            for (basis, dj) in BASIS.iter().zip(&self.differences).take(k + 1) {
+                if basis[i] != 0.0 {
+                    for (o, x) in out.iter_mut().zip(dj.as_slice()) {
+                        *o += basis[i] * x;
+                    }
+                }
+            }
+        }
+        true
+    }
+
+    fn next_step(&self) -> Option<f64> {
+        self.next
+    }
+}
+
+impl<M: Jacobian> Bdf<M> {
+    /// Caps the order at `order` (1 … 5). At a fixed step the order then rises to it (and stays):
+    /// with [`Bdf::set_history`], a fixed-order method.
+    ///
+    /// Errors: [`Error::InvalidInput`] for an order outside 1 … 5.
+    pub fn set_max_order(&mut self, order: usize) -> Result<()> {
+        if !(1..=MAX_ORDER).contains(&order) {
+            return Err(Error::invalid(
+                "max_order",
+                format!("must be from 1 to {MAX_ORDER}, got {order}"),
+            ));
+        }
+        self.max_order = Some(order);
+        if self.order > order {
+            self.order = order;
+            self.equal_steps = 0;
+            self.factored = false;
+        }
+        Ok(())
+    }
+
+    /// Starts from past values at a constant step `h` instead of from order 1: `past[j]` is
+    /// y(t − j·h), `past[0]` the state the next step starts from, and the order becomes
+    /// `past.len() − 1` (1 … 5). A multistep method's start from exact values, for measuring its
+    /// order at a fixed step.
+    ///
+    /// Errors: [`Error::InvalidInput`] for fewer than 2 or more than 6 values, values of another
+    /// size, or an order above [`Bdf::set_max_order`]'s.
+    pub fn set_history(&mut self, h: f64, past: &[&M::State]) -> Result<()> {
+        let k = past.len().wrapping_sub(1);
+        if !(1..=self.max_order.unwrap_or(MAX_ORDER)).contains(&k) {
+            return Err(Error::invalid(
+                "past",
+                format!(
+                    "needs 2 to {} values (orders 1 to {}), got {}",
+                    self.max_order.unwrap_or(MAX_ORDER) + 1,
+                    self.max_order.unwrap_or(MAX_ORDER),
+                    past.len()
+                ),
+            ));
+        }
+        let n = self.predict.as_slice().len();
+        if past.iter().any(|y| y.as_slice().len() != n) {
+            return Err(Error::invalid(
+                "past",
+                format!("values must have {n} components"),
+            ));
+        }
+        // ∇ʲy at t by repeated differences: after pass j, D[i] (i ≥ j) is ∇ʲy(t − (i − j)h).
+        for (dj, y) in self.differences.iter_mut().zip(past) {
+            dj.as_mut_slice().copy_from_slice(y.as_slice());
+        }
+        for j in 1..=k {
+            for i in (j..=k).rev() {
+                let (low, high) = self.differences.split_at_mut(i);
+                for (x, y) in high[0].as_mut_slice().iter_mut().zip(low[i - 1].as_slice()) {
+                    *x = *y - *x;
+                }
+            }
+        }
+        for dj in self.differences.iter_mut().skip(k + 1) {
+            dj.as_mut_slice().fill(0.0);
+        }
+        self.spacing = h;
+        self.order = k;
+        self.last_order = k;
+        self.equal_steps = 0;
+        self.factored = false;
+        self.rejected = false;
+        self.change = None;
+        self.next = Some(h);
+        Ok(())
+    }
+
+    /// The order the next step will take.
+    pub fn order(&self) -> usize {
+        self.order
+    }
+
+    /// D = (y, f(t, y)) at spacing 1 — scaled to the first step's h when it is attempted —
+    /// order 1, no factorization.
+    fn start_history(&mut self, model: &M, t: f64, y: &M::State, stats: &mut Stats) {
+        let [d0, d1, rest @ ..] = &mut self.differences;
+        d0.clone_from(y);
+        model.derivative(t, y, d1);
+        stats.evaluations += 1;
+        for dj in rest {
+            dj.as_mut_slice().fill(0.0);
+        }
+        self.spacing = 1.0;
+        self.order = 1;
+        self.last_order = 1;
+        self.equal_steps = 0;
+        self.factored = false;
+        self.rejected = false;
+        self.change = None;
+    }
+
+    /// The simplified Newton iteration for d = c·f(tₙ₊₁, y⁽⁰⁾ + d) − ψ from d = 0 (SciPy's
+    /// `solve_bdf_system`), leaving yₙ₊₁ in `y` and d in `self.correction`; returns the
+    /// iterations made.
+    ///
+    /// Errors: [`Error::NewtonDidNotConverge`] with the cause.
+    fn solve(
+        &mut self,
+        model: &M,
+        (t_new, h, c): (f64, f64, f64),
+        (max_iters, tol): (usize, f64),
+        y: &mut M::State,
+        stats: &mut Stats,
+    ) -> Result<usize> {
+        y.clone_from(&self.predict);
+        self.correction.as_mut_slice().fill(0.0);
+        let mut previous: Option<f64> = None;
+        let mut residual = f64::NAN;
+        let fail = |iters: usize, residual, cause| Error::NewtonDidNotConverge {
+            t: t_new,
+            dt: h,
+            iters: iters as u32,
+            residual,
+            cause,
+            halvings: 0,
+        };
+        for iter in 0..max_iters {
+            model.derivative(t_new, y, &mut self.update);
+            stats.evaluations += 1;
+            // The residual c·f − ψ − d, solved in place into the update Δ.
+            residual = 0.0;
+            let update = self.update.as_mut_slice();
+            for ((u, q), d) in update
+                .iter_mut()
+                .zip(self.psi.as_slice())
+                .zip(self.correction.as_slice())
+            {
+                *u = c * *u - q - d;
+                residual = if u.abs() > residual || u.is_nan() {
+                    u.abs()
+                } else {
+                    residual
+                };
+            }
+            if !residual.is_finite() {
+                return Err(fail(iter + 1, residual, NewtonFailure::NotFinite));
+            }
+            stats.linear_solves += 1;
+            if !self.jacobian.solve(&mut self.factors, update) {
+                return Err(fail(iter + 1, residual, NewtonFailure::NotFinite));
+            }
+            let mut sum = 0.0;
+            for (u, w) in update.iter().zip(self.scale.as_slice()) {
+                let r = u / w;
+                sum += r * r;
+            }
+            let norm = (sum / update.len().max(1) as f64).sqrt();
+            let rate = previous.map(|p| norm / p);
+            if let Some(rate) = rate
+                && (rate >= 1.0 || rate.powi((max_iters - iter) as i32) / (1.0 - rate) * norm > tol)
+            {
+                let cause = if rate >= 1.0 {
+                    NewtonFailure::Diverging
+                } else {
+                    NewtonFailure::Iterations
+                };
+                return Err(fail(iter + 1, residual, cause));
+            }
+            for ((yi, d), u) in y
+                .as_mut_slice()
+                .iter_mut()
+                .zip(self.correction.as_mut_slice())
+                .zip(update.iter())
+            {
+                *yi += u;
+                *d += u;
+            }
+            if norm == 0.0 || rate.is_some_and(|rate| rate / (1.0 - rate) * norm < tol) {
+                return Ok(iter + 1);
+            }
+            previous = Some(norm);
+        }
+        Err(fail(max_iters, residual, NewtonFailure::Iterations))
+    }
+}
+
+/// Re-samples the differences D[0..=k] of the interpolating polynomial at a step `factor` times
+/// the current one: D ← (R·U)ᵀ·D, with Rᵢⱼ = Πₘ₌₁ⁱ (m − 1 − factor·j)/m and U = R at factor 1
+/// (Shampine & Reichelt 1997, §2.2; SciPy's `change_D`).
+fn change_d<S: State>(differences: &mut [S], k: usize, factor: f64) {
+    let ru = resampling(k, factor);
+    let n = differences[0].as_slice().len();
+    let mut column = [0.0; MAX_ORDER + 1];
+    for c in 0..n {
+        for (x, dj) in column.iter_mut().zip(differences.iter()).take(k + 1) {
+            *x = dj.as_slice()[c];
+        }
+        for (j, dj) in differences.iter_mut().enumerate().take(k + 1) {
+            dj.as_mut_slice()[c] = (0..=k).map(|i| ru[i][j] * column[i]).sum();
+        }
+    }
+}
+
+/// R·U of [`change_d`].
+fn resampling(k: usize, factor: f64) -> [[f64; MAX_ORDER + 1]; MAX_ORDER + 1] {
+    let r = resample(k, factor);
+    let u = resample(k, 1.0);
+    let mut ru = [[0.0; MAX_ORDER + 1]; MAX_ORDER + 1];
+    for i in 0..=k {
+        for j in 0..=k {
+            ru[i][j] = (0..=k).map(|m| r[i][m] * u[m][j]).sum();
+        }
+    }
+    ru
+}
+
+/// SciPy's `compute_R(k, factor)`.
+fn resample(k: usize, factor: f64) -> [[f64; MAX_ORDER + 1]; MAX_ORDER + 1] {
+    let mut r = [[0.0; MAX_ORDER + 1]; MAX_ORDER + 1];
+    r[0][..=k].fill(1.0);
+    for i in 1..=k {
+        let (above, row) = r.split_at_mut(i);
+        let cells = row[0].iter_mut().zip(&above[i - 1]).enumerate();
+        for (j, (x, a)) in cells.take(k + 1).skip(1) {
+            *x = a * (i as f64 - 1.0 - factor * j as f64) / i as f64;
+        }
+    }
+    r
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{ALPHA, BASIS, ERROR_CONST, GAMMA, resampling};
+
+    #[test]
+    fn constants_are_scipys() {
+        // scipy/integrate/_ivp/bdf.py: gamma = [0, 1, 3/2, 11/6, 25/12, 137/60].
+        assert_eq!(GAMMA[2], 1.5);
+        assert!((GAMMA[5] - 137.0 / 60.0).abs() < 1e-15);
+        assert!((ALPHA[1] - 1.185).abs() < 1e-15);
+        assert!((ERROR_CONST[1] - (-0.185 + 0.5)).abs() < 1e-15);
+        assert!((ERROR_CONST[6] - 1.0 / 7.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn the_basis_interpolates_the_backward_values() {
+        // pⱼ(1) = 0 for j ≥ 1 (the newest point), pⱼ(0) = (−1)ʲ·… gives ∇ʲ's weight at yₙ.
+        for (j, b) in BASIS.iter().enumerate() {
+            let at_one: f64 = b.iter().sum();
+            assert!((at_one - f64::from(j == 0)).abs() < 1e-14, "{j}: {at_one}");
+        }
+        // p₁(θ) = θ − 1, p₂(θ) = (θ − 1)θ/2.
+        assert_eq!(BASIS[1][..2], [-1.0, 1.0]);
+        assert_eq!(BASIS[2][..3], [0.0, -0.5, 0.5]);
+    }
+
+    #[test]
+    fn resampling_keeps_the_polynomial() {
+        // y = t³ − t sampled at t = 0, −h, −2h, −3h: its backward differences at spacing 1,
+        // re-sampled at factor 0.5, are those at spacing 0.5.
+        let diffs = |h: f64| {
+            let y = |t: f64| t * t * t - t;
+            let v = [y(0.0), y(-h), y(-2.0 * h), y(-3.0 * h)];
+            [
+                v[0],
+                v[0] - v[1],
+                v[0] - 2.0 * v[1] + v[2],
+                v[0] - 3.0 * v[1] + 3.0 * v[2] - v[3],
+            ]
+        };
+        let ru = resampling(3, 0.5);
+        let d = diffs(1.0);
+        for (j, expected) in diffs(0.5).iter().enumerate() {
+            let got: f64 = (0..4).map(|i| ru[i][j] * d[i]).sum();
+            assert!((got - expected).abs() < 1e-14, "{j}: {got} vs {expected}");
+        }
+        // Factor 1 changes nothing: U is its own inverse.
+        let identity = resampling(5, 1.0);
+        for (i, row) in identity.iter().enumerate() {
+            for (j, x) in row.iter().enumerate() {
+                assert!((x - f64::from(i == j)).abs() < 1e-12, "({i}, {j}): {x}");
+            }
+        }
+    }
+}
