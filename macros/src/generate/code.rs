@@ -207,18 +207,33 @@ fn binding(
     Some(quote!(let #name: f64 = #value;))
 }
 
-/// The prologue as statements: the user's state-independent code, the opaque values, and the
-/// branches on parameters, each setting its selector to the arm it took. Opaque values and selectors set inside a branch are declared before it (NaN and
+/// The opaque values that the nodes `roots` need read: the prologue computes only these (a
+/// state-free local the graph never reads, such as `let n = self.count;` of a `usize`, is not an
+/// `f64` to compute).
+pub(crate) fn opaques_read(graph: &crate::ir::Graph, roots: &[ExprId]) -> HashSet<usize> {
+    graph
+        .reachable(roots.iter().copied())
+        .into_iter()
+        .filter_map(|id| match graph.node(id) {
+            Node::Opaque(i) => Some(i),
+            _ => None,
+        })
+        .collect()
+}
+
+/// The prologue as statements: the user's state-independent code, the opaque values of `read`
+/// ([`opaques_read`]), and the branches on parameters, each setting its selector to the arm it
+/// took. Opaque values and selectors set inside a branch are declared before it (NaN and
 /// `usize::MAX` until an arm sets them), since the straight-line code that follows reads every
 /// arm's values. Past [`RUN`] declarations, or [`RUN`] opaque values at the top, they are bound
 /// [`RUN`] to a `let` (see the module docs).
-pub(crate) fn prologue_tokens(prologue: &[Prologue]) -> Vec<TokenStream> {
+pub(crate) fn prologue_tokens(prologue: &[Prologue], read: &HashSet<usize>) -> Vec<TokenStream> {
     let mut selectors = Vec::new();
     let mut values = Vec::new();
     let mut statements = Vec::new();
     for item in prologue {
         if let Prologue::Branch(branch) = item {
-            declare(branch, &mut selectors, &mut values, &mut statements);
+            declare(branch, read, &mut selectors, &mut values, &mut statements);
         }
     }
     if selectors.len() + values.len() > RUN {
@@ -227,15 +242,16 @@ pub(crate) fn prologue_tokens(prologue: &[Prologue]) -> Vec<TokenStream> {
     }
     let opaques = prologue
         .iter()
-        .filter(|p| matches!(p, Prologue::Opaque(..)))
+        .filter(|p| matches!(p, Prologue::Opaque(i, _) if read.contains(i)))
         .count();
     let mut run: Vec<(syn::Ident, &TokenStream)> = Vec::new();
     for item in prologue {
         match item {
+            Prologue::Opaque(i, _) if !read.contains(i) => {}
             Prologue::Opaque(i, tokens) if opaques > RUN => run.push((opaque_ident(*i), tokens)),
             _ => {
                 statements.extend(opaque_run(&std::mem::take(&mut run)));
-                statements.push(prologue_item(item, true));
+                statements.push(prologue_item(item, read, true));
             }
         }
     }
@@ -243,10 +259,11 @@ pub(crate) fn prologue_tokens(prologue: &[Prologue]) -> Vec<TokenStream> {
     statements
 }
 
-/// Collects the selectors and the opaque values set inside `branch`, and their declarations one
-/// `let` each.
+/// Collects the selectors and the opaque values (of those `read`) set inside `branch`, and their
+/// declarations one `let` each.
 fn declare(
     branch: &Branch,
+    read: &HashSet<usize>,
     selectors: &mut Vec<syn::Ident>,
     values: &mut Vec<syn::Ident>,
     out: &mut Vec<TokenStream>,
@@ -256,12 +273,13 @@ fn declare(
     selectors.push(selector);
     for item in branch.arms.iter().flatten() {
         match item {
-            Prologue::Opaque(i, _) => {
+            Prologue::Opaque(i, _) if read.contains(i) => {
                 let name = opaque_ident(*i);
                 out.push(quote!(let mut #name: f64 = f64::NAN;));
                 values.push(name);
             }
-            Prologue::Branch(inner) => declare(inner, selectors, values, out),
+            Prologue::Opaque(..) => {}
+            Prologue::Branch(inner) => declare(inner, read, selectors, values, out),
             Prologue::Stmt(_) => {}
         }
     }
@@ -291,9 +309,10 @@ fn opaque_run(run: &[(syn::Ident, &TokenStream)]) -> Vec<TokenStream> {
         .collect()
 }
 
-fn prologue_item(item: &Prologue, top: bool) -> TokenStream {
+fn prologue_item(item: &Prologue, read: &HashSet<usize>, top: bool) -> TokenStream {
     match item {
         Prologue::Stmt(stmt) => stmt.to_token_stream(),
+        Prologue::Opaque(i, _) if !read.contains(i) => TokenStream::new(),
         Prologue::Opaque(i, tokens) => {
             let name = opaque_ident(*i);
             if top {
@@ -309,7 +328,7 @@ fn prologue_item(item: &Prologue, top: bool) -> TokenStream {
                 .iter()
                 .enumerate()
                 .map(|(k, arm)| {
-                    let items = arm.iter().map(|p| prologue_item(p, false));
+                    let items = arm.iter().map(|p| prologue_item(p, read, false));
                     quote!({ #(#items)* #selector = #k; })
                 })
                 .collect();
@@ -367,7 +386,7 @@ mod tests {
     use quote::quote;
     use syn::visit::{self, Visit};
 
-    use super::{RUN, prologue_tokens, straight_line};
+    use super::{RUN, opaques_read, prologue_tokens, straight_line};
     use crate::ir::{ExprId, Graph};
     use crate::lower::Prologue;
 
@@ -485,6 +504,25 @@ mod tests {
         assert!(scopes.unbound.is_empty(), "{:?}", scopes.unbound);
     }
 
+    /// The prologue computes only the opaque values the generated code reads: a state-free local
+    /// of another type (`let n = self.count;`, a `usize`) is not an `f64` to compute.
+    #[test]
+    fn the_prologue_computes_what_is_read() {
+        let mut graph = Graph::default();
+        graph.opaque(0);
+        let (k, x) = (graph.opaque(1), graph.var(0));
+        let root = graph.mul(k, x);
+        let read = opaques_read(&graph, &[root]);
+        assert_eq!(read, [1].into());
+        let prologue = [
+            Prologue::Opaque(0, quote!(self.count)),
+            Prologue::Opaque(1, quote!(self.k)),
+        ];
+        let statements = prologue_tokens(&prologue, &read);
+        assert_eq!(statements.len(), 1);
+        assert!(statements[0].to_string().contains("self . k"));
+    }
+
     /// Opaque values set in the arms of a branch are declared before it, `RUN` to a `let` when
     /// there are more than `RUN`.
     #[test]
@@ -497,7 +535,8 @@ mod tests {
             kind: crate::lower::BranchKind::If(vec![syn::parse_quote!(self.flag)]),
             arms: vec![arm, Vec::new()],
         };
-        let statements = prologue_tokens(&[Prologue::Branch(Box::new(branch))]);
+        let all = (0..2 * RUN).collect();
+        let statements = prologue_tokens(&[Prologue::Branch(Box::new(branch))], &all);
         // The selector, two lets of values, the branch.
         assert_eq!(statements.len(), 4);
         let scopes = Scopes::of(&statements);
@@ -510,11 +549,12 @@ mod tests {
         let few: Vec<Prologue> = (0..RUN)
             .map(|i| Prologue::Opaque(i, quote!(self.k)))
             .collect();
-        assert_eq!(prologue_tokens(&few).len(), RUN);
+        let all = (0..4 * RUN).collect();
+        assert_eq!(prologue_tokens(&few, &all).len(), RUN);
         let many: Vec<Prologue> = (0..3 * RUN + 1)
             .map(|i| Prologue::Opaque(i, quote!(self.k)))
             .collect();
-        let statements = prologue_tokens(&many);
+        let statements = prologue_tokens(&many, &all);
         assert_eq!(statements.len(), 4);
         let scopes = Scopes::of(&statements);
         assert_eq!(scopes.deepest, 4);

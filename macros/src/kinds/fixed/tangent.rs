@@ -105,5 +105,6 @@ pub(crate) fn jacobian(
     JacobianBody {
         statements,
         nonzeros,
+        reads: tangents,
     }
 }
