@@ -161,6 +161,52 @@ fn big_models_have_an_exact_time_derivative() {
     );
 }
 
+/// Parameters read whole: `self.rates` and `self.w` put 300 and 3000 values in the Jacobian's
+/// prologue, and its straight line has 300 products. One `let` each, nested 3600 deep, overflowed
+/// rustc's stack in the dev profile (LLVM walks nested scopes' debuginfo recursively); they are
+/// now bound at most 256 to a `let` and 256 `let`s to a block (`macros/src/generate/code.rs`).
+#[system(integrator = ImplicitEuler)]
+pub struct Weighted {
+    #[state]
+    pub z: SVector<f64, 300>,
+    pub rates: SVector<f64, 300>,
+    pub w: [f64; 3000],
+}
+
+#[system]
+impl Weighted {
+    fn derivative(&self) -> WeightedState {
+        let w = self.w;
+        WeightedState {
+            z: -self.rates.component_mul(&self.z) * w[2999],
+        }
+    }
+}
+
+#[test]
+fn many_parameters_and_values_compile_and_differentiate() {
+    let mut w = [0.0; 3000];
+    w[2999] = 1.5;
+    let model = Weighted {
+        z: SVector::from_fn(|i, _| (i as f64 * 0.1).sin()),
+        rates: SVector::from_fn(|i, _| 1.0 + i as f64 * 0.01),
+        w,
+    };
+    let y = model.state();
+    let mut jacobian = model.jacobian_matrix(&y);
+    model.jacobian(0.0, &y, &mut jacobian);
+    assert_eq!(Weighted::NONZEROS.len(), 300);
+    for &(i, j) in Weighted::NONZEROS {
+        assert_eq!(i, j);
+        let expected = -model.rates[i] * 1.5;
+        let entry = odyn::DenseMatrix::entry(&jacobian, i, i);
+        assert!(
+            (entry - expected).abs() <= 1e-15 * expected.abs(),
+            "{i}: {entry} vs {expected}"
+        );
+    }
+}
+
 /// The implicit methods run on forward-mode Jacobians and agree with an explicit reference:
 /// Rodas5P and Rosenbrock23 at rtol 1e-8 against DOP853 at rtol 1e-12. A global error of
 /// ~100× the local tolerance is normal for an order-2 method over many steps (Rosenbrock23

@@ -309,3 +309,48 @@ fn the_time_derivative_is_exact_where_it_can_be() {
 
     const { assert!(!<common::Lorenz as odyn::Jacobian>::TIME_DEPENDENT) };
 }
+
+const LEN: usize = 2;
+
+/// An array filled component by component, and state-free locals odyn reads by name: a `usize`,
+/// and an array of a computed length changed in place. Each once failed to compile: `o[0] = …`
+/// into `[0.0; 2]` was refused (odyn read the array as one number), and the Jacobian's code
+/// computed `self.n` and `[0.0; LEN]` as `f64`s it never read.
+#[system]
+#[derive(Clone, Copy, Debug)]
+struct Filled {
+    #[state]
+    x: [f64; 2],
+    k: f64,
+    n: usize,
+}
+
+#[system]
+impl Filled {
+    fn derivative(&self) -> FilledState {
+        let n = self.n;
+        let mut gains = [0.0; LEN];
+        gains[1] = self.k;
+        let mut rates = [0.0; 2];
+        rates[0] = -self.k * self.x[0] * n as f64;
+        rates[1] = gains[1] * self.x[0];
+        rates[1] -= self.x[1].powi(2);
+        FilledState { x: rates }
+    }
+}
+
+#[test]
+fn arrays_filled_in_place_are_differentiated() {
+    let model = Filled {
+        x: [0.5, -0.25],
+        k: 3.0,
+        n: 2,
+    };
+    check(&model, 0.0, 20, |r| FilledState {
+        x: [r.uniform(-2.0, 2.0), r.uniform(-2.0, 2.0)],
+    });
+    let mut jacobian = model.jacobian_matrix(&model.state());
+    model.jacobian(0.0, &model.state(), &mut jacobian);
+    // [[−k·n, 0], [k, −2·x₁]]
+    assert_eq!(jacobian, odyn::nalgebra::Matrix2::new(-6.0, 0.0, 3.0, 0.5));
+}

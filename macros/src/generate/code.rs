@@ -1,12 +1,26 @@
 //! The expression graph as straight-line Rust: one `let` per operation node, operands by name,
 //! and the prologue (the user's state-free statements, opaque values and branches on
 //! parameters) that runs before it.
+//!
+//! Every `let` opens a lexical scope nested in the previous one's, and with debuginfo LLVM walks
+//! that tree of scopes recursively: about 2500 `let`s in a row in one function overflowed
+//! rustc's stack in a dev build (rustc 1.95, measured; a 3000-term force or a 32 × 32 stencil
+//! has more). So no run is longer than [`RUN`]: a longer straight line goes in blocks of at most
+//! [`RUN`] `let`s, each handing on, by an array pattern, the values read after it, and a long
+//! run of opaque values is bound [`RUN`] at a time. The values and the order of the operations
+//! do not change, only the scopes; code of at most [`RUN`] values reads as before.
+
+use std::collections::HashSet;
 
 use proc_macro2::{Span, TokenStream};
 use quote::{ToTokens, format_ident, quote};
 
 use crate::ir::{ExprId, Node};
 use crate::lower::{Branch, BranchKind, Prologue};
+
+/// Most `let`s generated in a row in one block (see the module docs). Blocks nest at most two
+/// deep below 256² values, so a function's scopes stay within a few hundred levels.
+pub(crate) const RUN: usize = 256;
 
 /// How a graph node is read in generated code: a literal, a state component, an opaque value or
 /// the `let` of an earlier node.
@@ -29,115 +43,276 @@ pub(crate) fn straight_line(
     roots: &[ExprId],
     components: &[TokenStream],
 ) -> Vec<TokenStream> {
-    lets(graph, &graph.reachable(roots.iter().copied()), components)
+    lets(
+        graph,
+        &graph.reachable(roots.iter().copied()),
+        components,
+        roots,
+    )
 }
 
-/// One `let` per operation node of `ids` (in arena order, so dependencies come first).
+/// One `let` per operation node of `ids` (in arena order, so dependencies come first), in blocks
+/// of at most [`RUN`]; `read_after` are the nodes the code after these statements reads, which
+/// must stay in scope.
 pub(crate) fn lets(
     graph: &crate::ir::Graph,
     ids: &[ExprId],
     components: &[TokenStream],
+    read_after: &[ExprId],
 ) -> Vec<TokenStream> {
+    lets_in_runs(graph, ids, components, read_after, RUN)
+}
+
+/// [`lets`], in runs of at most `run`.
+fn lets_in_runs(
+    graph: &crate::ir::Graph,
+    ids: &[ExprId],
+    components: &[TokenStream],
+    read_after: &[ExprId],
+    run: usize,
+) -> Vec<TokenStream> {
+    let operations: Vec<ExprId> = ids
+        .iter()
+        .copied()
+        .filter(|&id| {
+            !matches!(
+                graph.node(id),
+                Node::Const(_) | Node::Var(_) | Node::Opaque(_)
+            )
+        })
+        .collect();
+    let live = read_after.iter().copied().collect();
+    blocks(graph, &operations, components, &live, run)
+}
+
+/// The `let`s of `operations`: a run of at most `run` of them, or at most `run` blocks (each
+/// again split if longer than `run`), so `let`s nest at most `run` deep per level of blocks;
+/// `live` are the nodes read after them.
+fn blocks(
+    graph: &crate::ir::Graph,
+    operations: &[ExprId],
+    components: &[TokenStream],
+    live: &HashSet<ExprId>,
+    run: usize,
+) -> Vec<TokenStream> {
+    if operations.len() <= run {
+        return operations
+            .iter()
+            .filter_map(|&id| binding(graph, id, components))
+            .collect();
+    }
+    let size = run.max(operations.len().div_ceil(run));
+    let mut live = live.clone();
+    let mut statements = Vec::new();
+    // Backwards, so `live` holds what the blocks after this one read.
+    for block in operations.chunks(size).rev() {
+        let handed_on: Vec<ExprId> = block
+            .iter()
+            .copied()
+            .filter(|id| live.contains(id))
+            .collect();
+        for &id in block {
+            live.extend(graph.node(id).children());
+        }
+        if handed_on.is_empty() {
+            continue;
+        }
+        let inner = blocks(
+            graph,
+            block,
+            components,
+            &handed_on.iter().copied().collect(),
+            run,
+        );
+        let names: Vec<syn::Ident> = handed_on.iter().map(|&id| node_ident(id)).collect();
+        statements.push(match names.as_slice() {
+            [name] => quote!(let #name: f64 = { #(#inner)* #name };),
+            names => {
+                let count = names.len();
+                quote!(let [#(#names),*]: [f64; #count] = { #(#inner)* [#(#names),*] };)
+            }
+        });
+    }
+    statements.reverse();
+    statements
+}
+
+/// `let __odyn_e<id>: f64 = <the operation of node id>;`, or nothing for a leaf (a constant, a
+/// variable, an opaque value), which is read in place.
+fn binding(
+    graph: &crate::ir::Graph,
+    id: ExprId,
+    components: &[TokenStream],
+) -> Option<TokenStream> {
     let operand = |id| operand(graph, id, components);
-    ids.iter()
-        .filter_map(|&id| {
-            let value = match graph.node(id) {
-                Node::Const(_) | Node::Var(_) | Node::Opaque(_) => return None,
-                Node::Add(a, b) => {
-                    let (a, b) = (operand(a), operand(b));
-                    quote!(#a + #b)
-                }
-                Node::Mul(a, b) => {
-                    let (a, b) = (operand(a), operand(b));
-                    quote!(#a * #b)
-                }
-                Node::Div(a, b) => {
-                    let (a, b) = (operand(a), operand(b));
-                    quote!(#a / #b)
-                }
-                Node::Neg(a) => {
-                    let a = operand(a);
-                    quote!(-#a)
-                }
-                Node::Powi(a, k) => {
-                    let a = operand(a);
-                    quote!(#a.powi(#k))
-                }
-                Node::Powf(a, b) => {
-                    let (a, b) = (operand(a), operand(b));
-                    quote!(#a.powf(#b))
-                }
-                Node::Call(f, a) => {
-                    let a = operand(a);
-                    let method = format_ident!("{}", f.method());
-                    quote!(#a.#method())
-                }
-                Node::Call2(f, a, b) => {
-                    let (a, b) = (operand(a), operand(b));
-                    let method = format_ident!("{}", f.method());
-                    quote!(#a.#method(#b))
-                }
-                Node::Select {
-                    selector,
-                    arm,
-                    then,
-                    otherwise,
-                } => {
-                    let (then, otherwise) = (operand(then), operand(otherwise));
-                    let selector = selector_ident(selector);
-                    let arm = arm as usize;
-                    quote!(if #selector == #arm { #then } else { #otherwise })
-                }
-                Node::Pick {
-                    a,
-                    b,
-                    then,
-                    otherwise,
-                } => {
-                    let (a, b) = (operand(a), operand(b));
-                    let (then, otherwise) = (operand(then), operand(otherwise));
-                    quote!(if #a <= #b { #then } else { #otherwise })
-                }
-            };
-            let name = node_ident(id);
-            Some(quote!(let #name: f64 = #value;))
+    let value = match graph.node(id) {
+        Node::Const(_) | Node::Var(_) | Node::Opaque(_) => return None,
+        Node::Add(a, b) => {
+            let (a, b) = (operand(a), operand(b));
+            quote!(#a + #b)
+        }
+        Node::Mul(a, b) => {
+            let (a, b) = (operand(a), operand(b));
+            quote!(#a * #b)
+        }
+        Node::Div(a, b) => {
+            let (a, b) = (operand(a), operand(b));
+            quote!(#a / #b)
+        }
+        Node::Neg(a) => {
+            let a = operand(a);
+            quote!(-#a)
+        }
+        Node::Powi(a, k) => {
+            let a = operand(a);
+            quote!(#a.powi(#k))
+        }
+        Node::Powf(a, b) => {
+            let (a, b) = (operand(a), operand(b));
+            quote!(#a.powf(#b))
+        }
+        Node::Call(f, a) => {
+            let a = operand(a);
+            let method = format_ident!("{}", f.method());
+            quote!(#a.#method())
+        }
+        Node::Call2(f, a, b) => {
+            let (a, b) = (operand(a), operand(b));
+            let method = format_ident!("{}", f.method());
+            quote!(#a.#method(#b))
+        }
+        Node::Select {
+            selector,
+            arm,
+            then,
+            otherwise,
+        } => {
+            let (then, otherwise) = (operand(then), operand(otherwise));
+            let selector = selector_ident(selector);
+            let arm = arm as usize;
+            quote!(if #selector == #arm { #then } else { #otherwise })
+        }
+        Node::Pick {
+            a,
+            b,
+            then,
+            otherwise,
+        } => {
+            let (a, b) = (operand(a), operand(b));
+            let (then, otherwise) = (operand(then), operand(otherwise));
+            quote!(if #a <= #b { #then } else { #otherwise })
+        }
+    };
+    let name = node_ident(id);
+    Some(quote!(let #name: f64 = #value;))
+}
+
+/// The opaque values that the nodes `roots` need read: the prologue computes only these (a
+/// state-free local the graph never reads, such as `let n = self.count;` of a `usize`, is not an
+/// `f64` to compute).
+pub(crate) fn opaques_read(graph: &crate::ir::Graph, roots: &[ExprId]) -> HashSet<usize> {
+    graph
+        .reachable(roots.iter().copied())
+        .into_iter()
+        .filter_map(|id| match graph.node(id) {
+            Node::Opaque(i) => Some(i),
+            _ => None,
         })
         .collect()
 }
 
-/// The prologue as statements: the user's state-independent code, the opaque values, and the
-/// branches on parameters, each setting its selector to the arm it took. Opaque values and
-/// selectors set inside a branch are declared before it (NaN and `usize::MAX` until an arm sets
-/// them), since the straight-line code that follows reads every arm's values.
-pub(crate) fn prologue_tokens(prologue: &[Prologue]) -> Vec<TokenStream> {
-    let mut declared = Vec::new();
+/// The prologue as statements: the user's state-independent code, the opaque values of `read`
+/// ([`opaques_read`]), and the branches on parameters, each setting its selector to the arm it
+/// took. Opaque values and selectors set inside a branch are declared before it (NaN and
+/// `usize::MAX` until an arm sets them), since the straight-line code that follows reads every
+/// arm's values. Past [`RUN`] declarations, or [`RUN`] opaque values at the top, they are bound
+/// [`RUN`] to a `let` (see the module docs).
+pub(crate) fn prologue_tokens(prologue: &[Prologue], read: &HashSet<usize>) -> Vec<TokenStream> {
+    let mut selectors = Vec::new();
+    let mut values = Vec::new();
+    let mut statements = Vec::new();
     for item in prologue {
         if let Prologue::Branch(branch) = item {
-            declare(branch, &mut declared);
+            declare(branch, read, &mut selectors, &mut values, &mut statements);
         }
     }
-    declared.extend(prologue.iter().map(|p| prologue_item(p, true)));
-    declared
+    if selectors.len() + values.len() > RUN {
+        statements = declared(&selectors, quote!(usize), quote!(usize::MAX));
+        statements.extend(declared(&values, quote!(f64), quote!(f64::NAN)));
+    }
+    let opaques = prologue
+        .iter()
+        .filter(|p| matches!(p, Prologue::Opaque(i, _) if read.contains(i)))
+        .count();
+    let mut run: Vec<(syn::Ident, &TokenStream)> = Vec::new();
+    for item in prologue {
+        match item {
+            Prologue::Opaque(i, _) if !read.contains(i) => {}
+            Prologue::Opaque(i, tokens) if opaques > RUN => run.push((opaque_ident(*i), tokens)),
+            _ => {
+                statements.extend(opaque_run(&std::mem::take(&mut run)));
+                statements.push(prologue_item(item, read, true));
+            }
+        }
+    }
+    statements.extend(opaque_run(&run));
+    statements
 }
 
-fn declare(branch: &Branch, out: &mut Vec<TokenStream>) {
+/// Collects the selectors and the opaque values (of those `read`) set inside `branch`, and their
+/// declarations one `let` each.
+fn declare(
+    branch: &Branch,
+    read: &HashSet<usize>,
+    selectors: &mut Vec<syn::Ident>,
+    values: &mut Vec<syn::Ident>,
+    out: &mut Vec<TokenStream>,
+) {
     let selector = selector_ident(branch.selector);
     out.push(quote!(let mut #selector: usize = usize::MAX;));
+    selectors.push(selector);
     for item in branch.arms.iter().flatten() {
         match item {
-            Prologue::Opaque(i, _) => {
+            Prologue::Opaque(i, _) if read.contains(i) => {
                 let name = opaque_ident(*i);
                 out.push(quote!(let mut #name: f64 = f64::NAN;));
+                values.push(name);
             }
-            Prologue::Branch(inner) => declare(inner, out),
+            Prologue::Opaque(..) => {}
+            Prologue::Branch(inner) => declare(inner, read, selectors, values, out),
             Prologue::Stmt(_) => {}
         }
     }
 }
 
-fn prologue_item(item: &Prologue, top: bool) -> TokenStream {
+/// `names` declared [`RUN`] to a `let`: `let [mut a, mut b, …]: [ty; n] = [initial; n];`.
+fn declared(names: &[syn::Ident], ty: TokenStream, initial: TokenStream) -> Vec<TokenStream> {
+    names
+        .chunks(RUN)
+        .map(|chunk| {
+            let count = chunk.len();
+            quote!(let [#(mut #chunk),*]: [#ty; #count] = [#initial; #count];)
+        })
+        .collect()
+}
+
+/// A run of opaque values at the top of the prologue, [`RUN`] to a `let`:
+/// `let [p0, p1, …]: [f64; n] = [<value 0>, <value 1>, …];`.
+fn opaque_run(run: &[(syn::Ident, &TokenStream)]) -> Vec<TokenStream> {
+    run.chunks(RUN)
+        .map(|chunk| {
+            let names = chunk.iter().map(|(name, _)| name);
+            let values = chunk.iter().map(|(_, value)| value);
+            let count = chunk.len();
+            quote!(let [#(#names),*]: [f64; #count] = [#(#values),*];)
+        })
+        .collect()
+}
+
+fn prologue_item(item: &Prologue, read: &HashSet<usize>, top: bool) -> TokenStream {
     match item {
         Prologue::Stmt(stmt) => stmt.to_token_stream(),
+        Prologue::Opaque(i, _) if !read.contains(i) => TokenStream::new(),
         Prologue::Opaque(i, tokens) => {
             let name = opaque_ident(*i);
             if top {
@@ -153,7 +328,7 @@ fn prologue_item(item: &Prologue, top: bool) -> TokenStream {
                 .iter()
                 .enumerate()
                 .map(|(k, arm)| {
-                    let items = arm.iter().map(|p| prologue_item(p, false));
+                    let items = arm.iter().map(|p| prologue_item(p, read, false));
                     quote!({ #(#items)* #selector = #k; })
                 })
                 .collect();
@@ -202,5 +377,186 @@ fn float_literal(value: f64) -> TokenStream {
         quote!(f64::INFINITY)
     } else {
         quote!(f64::NEG_INFINITY)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use proc_macro2::TokenStream;
+    use quote::quote;
+    use syn::visit::{self, Visit};
+
+    use super::{RUN, opaques_read, prologue_tokens, straight_line};
+    use crate::ir::{ExprId, Graph};
+    use crate::lower::Prologue;
+
+    /// Walks generated statements: how deep `let` scopes nest, and reads of `__odyn_*` names
+    /// with no binding in scope.
+    #[derive(Default)]
+    struct Scopes {
+        /// Names in scope, innermost last, and how many times each is bound.
+        bound: Vec<String>,
+        count: std::collections::HashMap<String, usize>,
+        depth: usize,
+        deepest: usize,
+        unbound: Vec<String>,
+    }
+
+    impl Scopes {
+        fn of(statements: &[TokenStream]) -> Scopes {
+            let block: syn::Block = syn::parse2(quote!({ #(#statements)* })).unwrap();
+            let mut scopes = Scopes::default();
+            scopes.visit_block(&block);
+            scopes
+        }
+    }
+
+    impl<'ast> Visit<'ast> for Scopes {
+        fn visit_block(&mut self, block: &'ast syn::Block) {
+            let (bound, depth) = (self.bound.len(), self.depth);
+            for stmt in &block.stmts {
+                match stmt {
+                    syn::Stmt::Local(local) => {
+                        if let Some(init) = &local.init {
+                            self.visit_expr(&init.expr);
+                        }
+                        for name in names(&local.pat) {
+                            *self.count.entry(name.clone()).or_default() += 1;
+                            self.bound.push(name);
+                        }
+                        self.depth += 1;
+                        self.deepest = self.deepest.max(self.depth);
+                    }
+                    other => self.visit_stmt(other),
+                }
+            }
+            for name in self.bound.drain(bound..) {
+                *self.count.get_mut(&name).expect("counted when bound") -= 1;
+            }
+            self.depth = depth;
+        }
+
+        fn visit_ident(&mut self, ident: &'ast proc_macro2::Ident) {
+            let name = ident.to_string();
+            if name.starts_with("__odyn_") && self.count.get(&name).is_none_or(|&n| n == 0) {
+                self.unbound.push(name);
+            }
+            visit::visit_ident(self, ident);
+        }
+    }
+
+    /// The names a `let` pattern binds.
+    fn names(pat: &syn::Pat) -> Vec<String> {
+        struct Names(Vec<String>);
+        impl<'ast> Visit<'ast> for Names {
+            fn visit_pat_ident(&mut self, p: &'ast syn::PatIdent) {
+                self.0.push(p.ident.to_string());
+            }
+        }
+        let mut names = Names(Vec::new());
+        names.visit_pat(pat);
+        names.0
+    }
+
+    /// xᵢ = xᵢ₋₁·v + i from x₀ = u: a chain of `2·steps` operations, every one read by the next.
+    fn chain(graph: &mut Graph, steps: usize) -> Vec<ExprId> {
+        let (u, v) = (graph.var(0), graph.var(1));
+        let mut xs = vec![u];
+        for i in 1..=steps {
+            let scaled = graph.mul(xs[i - 1], v);
+            let step = graph.num(i as f64);
+            xs.push(graph.add(scaled, step));
+        }
+        xs
+    }
+
+    #[test]
+    fn short_straight_line_is_one_let_per_value() {
+        let mut graph = Graph::default();
+        let xs = chain(&mut graph, RUN / 2);
+        let components = [quote!(u), quote!(v)];
+        let lets = straight_line(&graph, &[xs[RUN / 2]], &components);
+        assert_eq!(lets.len(), RUN);
+        let scopes = Scopes::of(&lets);
+        assert_eq!(scopes.deepest, RUN);
+        assert!(scopes.unbound.is_empty(), "{:?}", scopes.unbound);
+    }
+
+    /// Past a run's length the `let`s go in blocks, and blocks of blocks past its square (here
+    /// runs of 4 in place of 256, so three levels of blocks cost little): scopes nest a few runs
+    /// deep, and every value read after its block is handed on.
+    #[test]
+    fn long_straight_line_nests_in_blocks() {
+        let mut graph = Graph::default();
+        let steps = 150;
+        let xs = chain(&mut graph, steps);
+        let components = [quote!(u), quote!(v)];
+        // Early and middle values read after the straight line, as a Jacobian's entries are.
+        let roots = [xs[steps], xs[1], xs[steps / 2], xs[17]];
+        let ids = graph.reachable(roots);
+        let lets = super::lets_in_runs(&graph, &ids, &components, &roots, 4);
+        let scopes = Scopes::of(&lets);
+        // 300 values: blocks of 75, 19, 5 and 4 values, up to 4 `let`s deep at each level.
+        assert!(scopes.deepest <= 4 * 5, "{}", scopes.deepest);
+        let roots = roots.map(|id| super::operand(&graph, id, &components));
+        let read = quote!({ #(#lets)* [#(#roots),*] });
+        let scopes = Scopes::of(&[read]);
+        assert!(scopes.unbound.is_empty(), "{:?}", scopes.unbound);
+    }
+
+    /// The prologue computes only the opaque values the generated code reads: a state-free local
+    /// of another type (`let n = self.count;`, a `usize`) is not an `f64` to compute.
+    #[test]
+    fn the_prologue_computes_what_is_read() {
+        let mut graph = Graph::default();
+        graph.opaque(0);
+        let (k, x) = (graph.opaque(1), graph.var(0));
+        let root = graph.mul(k, x);
+        let read = opaques_read(&graph, &[root]);
+        assert_eq!(read, [1].into());
+        let prologue = [
+            Prologue::Opaque(0, quote!(self.count)),
+            Prologue::Opaque(1, quote!(self.k)),
+        ];
+        let statements = prologue_tokens(&prologue, &read);
+        assert_eq!(statements.len(), 1);
+        assert!(statements[0].to_string().contains("self . k"));
+    }
+
+    /// Opaque values set in the arms of a branch are declared before it, `RUN` to a `let` when
+    /// there are more than `RUN`.
+    #[test]
+    fn many_values_set_in_branches_share_declarations() {
+        let arm: Vec<Prologue> = (0..2 * RUN)
+            .map(|i| Prologue::Opaque(i, quote!(self.k)))
+            .collect();
+        let branch = crate::lower::Branch {
+            selector: 0,
+            kind: crate::lower::BranchKind::If(vec![syn::parse_quote!(self.flag)]),
+            arms: vec![arm, Vec::new()],
+        };
+        let all = (0..2 * RUN).collect();
+        let statements = prologue_tokens(&[Prologue::Branch(Box::new(branch))], &all);
+        // The selector, two lets of values, the branch.
+        assert_eq!(statements.len(), 4);
+        let scopes = Scopes::of(&statements);
+        assert!(scopes.unbound.is_empty(), "{:?}", scopes.unbound);
+    }
+
+    /// Many opaque values at the top of the prologue are bound `RUN` to a `let`.
+    #[test]
+    fn many_opaque_values_share_lets() {
+        let few: Vec<Prologue> = (0..RUN)
+            .map(|i| Prologue::Opaque(i, quote!(self.k)))
+            .collect();
+        let all = (0..4 * RUN).collect();
+        assert_eq!(prologue_tokens(&few, &all).len(), RUN);
+        let many: Vec<Prologue> = (0..3 * RUN + 1)
+            .map(|i| Prologue::Opaque(i, quote!(self.k)))
+            .collect();
+        let statements = prologue_tokens(&many, &all);
+        assert_eq!(statements.len(), 4);
+        let scopes = Scopes::of(&statements);
+        assert_eq!(scopes.deepest, 4);
     }
 }

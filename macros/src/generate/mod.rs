@@ -14,7 +14,7 @@ use syn::spanned::Spanned;
 
 use crate::args::Args;
 
-pub(crate) use code::{lets, operand, prologue_tokens, straight_line};
+pub(crate) use code::{lets, opaques_read, operand, prologue_tokens, straight_line};
 
 /// The name of the `macro_rules!` through which a struct's expansion reaches its impl block's.
 ///

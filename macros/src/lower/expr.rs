@@ -147,6 +147,13 @@ impl Lowering<'_> {
                     .map(|e| self.scalar(e))
                     .collect::<syn::Result<_>>()?,
             )),
+            Expr::Repeat(r) => {
+                let n = int_literal(&r.len).ok_or_else(|| {
+                    self.error(&r.len, "an array length that is not an integer literal")
+                })?;
+                let x = self.scalar(&r.expr)?;
+                Ok(Value::Vector(vec![x; n]))
+            }
             Expr::Block(b) if b.label.is_none() => self.block_value(&b.block),
             Expr::If(_) | Expr::Match(_) => self.branch_value(e),
             Expr::ForLoop(l) if self.depends(&l.expr) => {
@@ -203,7 +210,18 @@ impl Lowering<'_> {
         match base {
             Value::Vector(v) if i < v.len() => Ok(Value::Scalar(v[i])),
             Value::Tuple(t) if i < t.len() => Ok(t[i].clone()),
-            _ => Err(self.error(at, "a component that is out of range or of a number")),
+            Value::Vector(v) => Err(self.refuse(
+                at,
+                format_args!(
+                    "index {i} is past the end of a vector of {} components",
+                    v.len()
+                ),
+            )),
+            Value::Tuple(t) => Err(self.refuse(
+                at,
+                format_args!("`.{i}` is past the end of a tuple of {} values", t.len()),
+            )),
+            Value::Scalar(_) => Err(self.error(at, "a component of a number")),
         }
     }
 

@@ -195,13 +195,13 @@ impl Lowering<'_> {
                 &*index.expr,
                 Some(crate::model::int_literal(&index.index).ok_or_else(|| {
                     self.error(&index.index, "an index that is not an integer literal")
-                })?),
+                })),
             ),
             Expr::Field(field) => (
                 &*field.base,
                 Some(super::expr::component_index(field).ok_or_else(|| {
                     self.error(&field.member, "a field other than `x`, `y`, `z`, `w`")
-                })?),
+                })),
             ),
             other => (other, None),
         };
@@ -215,22 +215,41 @@ impl Lowering<'_> {
             ));
         };
         let dependent = old.dependent || rhs_dependent;
-        let Some(old_value) = old.value else {
-            if dependent {
-                return Err(self.error(
-                    target,
-                    format_args!(
-                        "assigning a state-dependent value to `{name}`, a local bound by a \
-                         pattern odyn does not follow"
-                    ),
-                ));
-            }
+        // Whether odyn follows the target: a local it has a value for, and the component of a
+        // vector or tuple named by a literal.
+        let followed = !matches!(
+            (&old.value, &component),
+            (None, _) | (_, Some(Err(_))) | (Some(Value::Scalar(_)), Some(Ok(_)))
+        );
+        if !dependent && !followed {
+            // State-free code odyn does not follow: it runs in the prologue, and the local is the
+            // user's from then on, read by name.
             self.prologue.push(Prologue::Stmt(Box::new(stmt.clone())));
+            self.rebind(
+                &name,
+                Binding {
+                    value: None,
+                    dependent: false,
+                },
+            );
             return Ok(());
+        }
+        let Some(old_value) = old.value else {
+            return Err(self.error(
+                target,
+                format_args!(
+                    "assigning a state-dependent value to `{name}`, a local bound by a pattern \
+                     odyn does not follow"
+                ),
+            ));
         };
         let value = match component {
             None => update(self, old_value)?,
             Some(i) => {
+                let i = i?;
+                if let Value::Scalar(_) = old_value {
+                    return Err(self.component_of_a_number(target, &name, i));
+                }
                 let part = self.component(&old_value, i, target)?;
                 let new = update(self, part)?;
                 match (old_value, new) {
@@ -257,6 +276,26 @@ impl Lowering<'_> {
             },
         );
         Ok(())
+    }
+
+    /// The error for `name[i] = …` (or `name.x = …`) of a state-dependent value when odyn reads
+    /// `name` as one number: its `let` gave a value odyn did not see into.
+    fn component_of_a_number(&self, target: &Expr, name: &str, i: usize) -> syn::Error {
+        let part = match target {
+            Expr::Field(field) => format!("{name}.{}", field.member.to_token_stream()),
+            _ => format!("{name}[{i}]"),
+        };
+        syn::Error::new_spanned(
+            target,
+            format!(
+                "`{part} = …` in `{}` sets one component of `{name}`, but odyn reads `{name}` as \
+                 one number: its value came from code odyn does not look into (a call, or an \
+                 array whose length is not an integer literal); start `{name}` from components \
+                 odyn can see, such as `[0.0; 3]`, `[0.0, 0.0, 0.0]` or `Vector3::zeros()`, or \
+                 build it whole from its components: `let {name} = [a, b, c];`",
+                self.function
+            ),
+        )
     }
 
     /// A statement that does not read the state (a loop over parameters, a call): it runs in the

@@ -8,7 +8,7 @@ use syn::ItemImpl;
 
 use super::functions::Function;
 use super::generate::{component_tokens, inline_hint, state_params, time_param};
-use crate::generate::{operand, prologue_tokens, straight_line};
+use crate::generate::{opaques_read, operand, prologue_tokens, straight_line};
 use crate::ir::ExprId;
 use crate::lower::{Lowered, Prologue};
 use crate::model::Model;
@@ -79,6 +79,7 @@ pub(crate) fn jacobian(
     let JacobianBody {
         statements: body,
         nonzeros,
+        reads,
     } = body;
     // ∂f/∂t: the time is one more variable of the graph.
     let mut time_entries: Vec<(usize, ExprId)> = Vec::new();
@@ -101,7 +102,7 @@ pub(crate) fn jacobian(
         &prologue,
         force,
     );
-    let prologue = prologue_tokens(&prologue);
+    let prologue = prologue_tokens(&prologue, &opaques_read(&graph, &reads));
     let receiver = &force.receiver;
     let time = time_param(force);
     let params = state_params(model);
@@ -165,11 +166,12 @@ fn symbolic_entries<C: IntoIterator<Item = usize>>(
     entries
 }
 
-/// A Jacobian's generated body: its statements (writing the matrix) and its structural
-/// non-zeros, in the order the statements rely on.
+/// A Jacobian's generated body: its statements (writing the matrix), its structural non-zeros,
+/// in the order the statements rely on, and the graph nodes whose values it writes.
 pub(super) struct JacobianBody {
     pub(crate) statements: TokenStream,
     pub(crate) nonzeros: Vec<(usize, usize)>,
+    pub(crate) reads: Vec<ExprId>,
 }
 
 /// The Jacobian body of a model small enough for a stack matrix: one expression per structural
@@ -199,6 +201,7 @@ fn small_store(
             );
         },
         nonzeros: entries.iter().map(|&(r, c, _)| (r, c)).collect(),
+        reads: roots,
     }
 }
 
@@ -227,6 +230,7 @@ fn listed_store(
             }
         },
         nonzeros: entries.iter().map(|&(r, c, _)| (r, c)).collect(),
+        reads: roots,
     }
 }
 
@@ -271,7 +275,7 @@ fn time_derivative(
         let value = operand(graph, d, components);
         quote!(out[#row] = #value;)
     });
-    let prologue = prologue_tokens(prologue);
+    let prologue = prologue_tokens(prologue, &opaques_read(graph, &roots));
     let receiver = &force.receiver;
     let time = time_param(force);
     let params = state_params(model);

@@ -67,8 +67,15 @@ pub(crate) fn jacobian(
     }
     let (inside, outside): (Vec<ExprId>, Vec<ExprId>) =
         order.into_iter().partition(|id| seeded[id.index()]);
-    let before = lets(graph, &outside, components);
-    let each = lets(graph, &inside, components);
+    // What the loop reads of the values before it: its own operands, and tangents that do not
+    // depend on the seed.
+    let read_in_loop: Vec<ExprId> = inside
+        .iter()
+        .flat_map(|&id| graph.node(id).children())
+        .chain(tangents.iter().copied())
+        .collect();
+    let before = lets(graph, &outside, components, &read_in_loop);
+    let each = lets(graph, &inside, components, &tangents);
     let values = tangents.iter().map(|&d| operand(graph, d, components));
 
     let count = groups.len();
@@ -98,5 +105,6 @@ pub(crate) fn jacobian(
     JacobianBody {
         statements,
         nonzeros,
+        reads: tangents,
     }
 }

@@ -8,7 +8,7 @@ use syn::{ImplItem, ItemImpl};
 use super::{Cell, Fields, NEIGHBOURS};
 use crate::args::Args;
 use crate::derivative::Differentiator;
-use crate::generate::{attribute_defaults, operand, prologue_tokens, straight_line};
+use crate::generate::{attribute_defaults, opaques_read, operand, prologue_tokens, straight_line};
 use crate::lower::Lowered;
 
 /// The impl block with `#[cell]` removed (it is odyn's), and the body of method `silenced`, if
@@ -213,7 +213,7 @@ fn blocks(cell: &Cell, lowered: Lowered) -> (Vec<TokenStream>, TokenStream) {
         .collect();
     let lets = straight_line(&graph, &roots, &components);
     let values = roots.iter().map(|&id| operand(&graph, id, &components));
-    let prologue = prologue_tokens(&prologue);
+    let prologue = prologue_tokens(&prologue, &opaques_read(&graph, &roots));
     let count = Literal::usize_unsuffixed(roots.len());
     let hidden = hidden_name(cell);
     let inputs = &cell.f.sig.inputs;

@@ -9,7 +9,7 @@ use syn::{FnArg, ImplItem, ItemImpl};
 use super::Particles;
 use super::kernels::{Functions, Kernel, Over};
 use crate::args::Args;
-use crate::generate::{operand, prologue_tokens, straight_line};
+use crate::generate::{opaques_read, operand, prologue_tokens, straight_line};
 use crate::ir::ExprId;
 use crate::lower::Lowered;
 
@@ -269,7 +269,7 @@ fn kernel_jacobian(
         .collect();
     let roots: Vec<ExprId> = blocks.iter().flatten().copied().collect();
     let lets = straight_line(&graph, &roots, &components);
-    let prologue = prologue_tokens(&prologue);
+    let prologue = prologue_tokens(&prologue, &opaques_read(&graph, &roots));
     let matrices = blocks.iter().map(|entries| {
         let columns = entries.chunks(dim).map(|column| {
             let rows = column.iter().map(|&id| operand(&graph, id, &components));
