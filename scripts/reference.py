@@ -3,7 +3,7 @@
 Integrates van der Pol (mu = 1000, from (2, 0)) and Robertson kinetics (from (1, 0, 0)) with
 SciPy's Radau (order 5, implicit) and BDF at tight tolerances and prints both, so the agreement
 between two unrelated methods bounds the reference's own error. The values printed here are the
-ones the tests in tests/implicit.rs cite.
+ones the tests in tests/integration/implicit.rs cite.
 
     pip install numpy scipy && python3 scripts/reference.py
 """

@@ -6,7 +6,7 @@ ODEs II, §IV.2). On an undamped oscillator (eigenvalues ±iω) a fixed step h i
 |R(iωh)| <= 1; this script finds, in 40-digit arithmetic, the first y > 0 with |R(iy)| = 1 for
 Tsit5 and DOP853, reading the coefficients from runtime/src/integrators/tableaux/*.rs. It also
 finds the oscillator limits of the leapfrog compositions (Yoshida4, Yoshida6, KahanLi6) from their
-composed one-step matrices. The values printed are the ones tests/stability.rs cites.
+composed one-step matrices. The values printed are the ones tests/integration/stability.rs cites.
 
     pip install mpmath numpy && python3 scripts/stability_boundaries.py
 """

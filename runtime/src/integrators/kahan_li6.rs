@@ -21,7 +21,7 @@ use crate::Method;
 /// - **Order** 6; 9 force evaluations a step.
 /// - **Energy**: symplectic, bounded.
 /// - **Stability** on ẍ = −ω²x: ωh < 2.5326 (from the composed one-step matrix; measured in
-///   `tests/compositions.rs`).
+///   `tests/integration/compositions.rs`).
 ///
 /// Reference: W. Kahan and R.-C. Li, "Composition constants for raising the orders of
 /// unconventional schemes for ordinary differential equations", Math. Comp. 66 (1997)

@@ -12,7 +12,7 @@ use crate::Method;
 /// - **Order** 4; 3 force evaluations a step.
 /// - **Energy**: symplectic, bounded.
 /// - **Stability** on ẍ = −ω²x: ωh < 1.5734 (from the composed one-step matrix; measured in
-///   `tests/compositions.rs`).
+///   `tests/integration/compositions.rs`).
 ///
 /// Reference: H. Yoshida, "Construction of higher order symplectic integrators", Phys. Lett. A
 /// 150 (1990) 262–268, eq. (4.4); also M. Suzuki, Phys. Lett. A 146 (1990) 319, and Hairer,

@@ -17,7 +17,7 @@ use crate::Method;
 /// - **Order** 6; 7 force evaluations a step.
 /// - **Energy**: symplectic, bounded.
 /// - **Stability** on ẍ = −ω²x: ωh < 2.2691 (from the composed one-step matrix; measured in
-///   `tests/compositions.rs`).
+///   `tests/integration/compositions.rs`).
 ///
 /// Reference: H. Yoshida, "Construction of higher order symplectic integrators", Phys. Lett. A
 /// 150 (1990) 262–268, Table 1, solution A (there to 15 digits); the 20-digit values as printed in

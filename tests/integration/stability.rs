@@ -6,7 +6,7 @@
 //! has |R(iy)| ≤ 1 iff y ≤ 2√2 ≈ 2.828 (Hairer & Wanner, *Solving ODEs II*, §IV.2). Explicit
 //! Euler has |1 + iωh| > 1 for every h.
 
-mod common;
+use crate::common;
 
 use common::Oscillator;
 use odyn::Error;

@@ -1,6 +1,6 @@
 //! CSV and plot files: columns, atomic writes, typed errors for bad paths.
 
-mod common;
+use crate::common;
 
 use common::{Lorenz, Spring};
 use odyn::prelude::*;

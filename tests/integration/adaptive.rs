@@ -2,7 +2,7 @@
 //! step, their interpolants theirs, the controller meets the tolerance, events land on the closed
 //! form, and every way an adaptive run can fail is a typed error.
 
-mod common;
+use crate::common;
 
 use common::{Kepler, KeplerState, Robertson, Spring, SpringState, slope};
 use odyn::prelude::*;

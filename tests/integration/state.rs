@@ -1,6 +1,6 @@
 //! The generated state types: layout, zero-copy views, arithmetic, names.
 
-mod common;
+use crate::common;
 
 use common::{KeplerState, LorenzState, PairState, SpringState};
 use odyn::prelude::*;

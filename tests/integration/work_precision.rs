@@ -1,7 +1,7 @@
 //! The work-precision API: it reproduces the theoretical orders, tells bounded from drifting
 //! energy errors, and rejects malformed studies with typed errors.
 
-mod common;
+use crate::common;
 
 use common::{Kepler, KeplerState, Spring, SpringState};
 use odyn::Error;

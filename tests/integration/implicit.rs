@@ -1,7 +1,7 @@
 //! Implicit Euler: exact energy factors, stiff decay, first-order convergence on stiff problems
 //! against independent references, and typed Newton failures.
 
-mod common;
+use crate::common;
 
 use common::{Lorenz, Oscillator, Robertson, Spring, VanDerPol, slope};
 use odyn::prelude::*;

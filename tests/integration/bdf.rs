@@ -2,9 +2,9 @@
 //! against SciPy's `BDF` (the algorithm it implements), Jacobian and factorization reuse,
 //! stability at a large fixed step, events and save times, and a field model's sparse Jacobian.
 
-mod common;
+use crate::common;
 
-#[path = "../examples/common/stiff_models.rs"]
+#[path = "../../examples/common/stiff_models.rs"]
 mod stiff_models;
 
 use common::{Ball, BallState, Oscillator, OscillatorState, Robertson, Spring, SpringState, slope};

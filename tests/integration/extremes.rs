@@ -3,7 +3,7 @@
 //! panics; implicit Euler and the Rosenbrock methods finish every cell; and each outcome is the
 //! one theory predicts.
 
-mod common;
+use crate::common;
 
 use common::Oscillator;
 use odyn::Error;
@@ -132,7 +132,7 @@ fn every_cell_is_finite_or_a_typed_divergence_as_theory_predicts() {
 }
 
 /// The ω·h limit of a composition method, as the stability explorer predicts it for ẍ = −x
-/// (measured against runs in `tests/compositions.rs`).
+/// (measured against runs in `tests/integration/compositions.rs`).
 fn composition_limit(method: Method) -> f64 {
     let unit = Oscillator {
         x: 1.0,

@@ -1,6 +1,6 @@
 //! The runner and the real-time loop: validation, divergence, reproducibility, capabilities.
 
-mod common;
+use crate::common;
 
 use common::{Lorenz, Oscillator, OscillatorState, Pair, Spring};
 use odyn::prelude::*;

@@ -1,6 +1,6 @@
 //! Observed order of convergence of every integrator against exact solutions.
 
-mod common;
+use crate::common;
 
 use common::{Oscillator, Spring, slope};
 use odyn::prelude::*;

@@ -1,7 +1,7 @@
 //! Inputs that once crashed, hung, or returned a wrong number without an error: each is now a
 //! typed error or a correct result. One test per failure mode found by bad-input probing.
 
-mod common;
+use crate::common;
 
 use std::path::PathBuf;
 

@@ -1,7 +1,7 @@
 //! The composition methods (Yoshida4, Yoshida6, Kahan–Li 6): measured orders, bounded energy over
 //! a million steps, angular momentum to round-off, and the stability limits the explorer predicts.
 
-mod common;
+use crate::common;
 
 use std::f64::consts::TAU;
 

@@ -4,7 +4,7 @@
 //! structural non-zeros the colouring relies on, and end to end through the implicit methods.
 #![allow(missing_docs)]
 
-mod common;
+use crate::common;
 
 use common::*;
 use odyn::nalgebra::SVector;

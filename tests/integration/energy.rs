@@ -1,6 +1,6 @@
 //! Energy behaviour of each integrator against its closed form.
 
-mod common;
+use crate::common;
 
 use common::{Oscillator, Spring};
 use odyn::prelude::*;

@@ -1,7 +1,7 @@
 //! Every generated Jacobian against central finite differences of the model's own derivative,
 //! and against hand-derived Jacobians where they are short enough to write down.
 
-mod common;
+use crate::common;
 
 use common::*;
 use odyn::prelude::*;

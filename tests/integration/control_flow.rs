@@ -4,7 +4,7 @@
 //! Jacobian: an early `return` on a parameter was ignored, and a loop over parameters was
 //! dropped from the Jacobian's code.
 
-mod common;
+use crate::common;
 
 use common::{Rng, check};
 use odyn::prelude::*;

@@ -278,7 +278,10 @@ fn members_edited_into_an_inconsistent_state_are_a_typed_error() {
     let twice = edited(&|m| m.rows[1].0 = 0);
     let beyond = edited(&|m| m.rows[3].0 = 9);
     for (members, expected) in [
-        (&ragged, "member 2 has 1 observation, member 0 has 2 observations"),
+        (
+            &ragged,
+            "member 2 has 1 observation, member 0 has 2 observations",
+        ),
         (&twice, "member 0 comes after member 0"),
         (&beyond, "member 9 is past the last of 4 members"),
     ] {

@@ -2,7 +2,7 @@
 //! generates), their accuracy against tolerance on Robertson's kinetics, conservation, L-stable
 //! damping, and typed errors for a singular W.
 
-mod common;
+use crate::common;
 
 use common::{Kepler, KeplerState, Oscillator, Robertson, slope};
 use odyn::prelude::*;

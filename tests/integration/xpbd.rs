@@ -398,7 +398,10 @@ fn a_rigid_pendulum_keeps_more_of_its_swing_with_more_substeps() {
                 top = top.max(pendulum.x[1].y);
             }
         }
-        eprintln!("{substeps} substeps: keeps {:.1} % of its swing", 100.0 * (top + 1.0));
+        eprintln!(
+            "{substeps} substeps: keeps {:.1} % of its swing",
+            100.0 * (top + 1.0)
+        );
         kept.push(top + 1.0);
     }
     assert!(kept.windows(2).all(|w| w[1] > w[0]), "{kept:?}");

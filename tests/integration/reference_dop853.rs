@@ -5,7 +5,7 @@
 //! `scripts/scipy_dop853_steps.py` (accepted and rejected attempts counted by instrumenting the
 //! solver); the final errors against the references of `scripts/reference_adaptive.py`.
 
-mod common;
+use crate::common;
 
 use common::{Arenstorf, Lorenz};
 use odyn::prelude::*;
