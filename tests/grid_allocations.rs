@@ -2,7 +2,9 @@
 //! implicit Euler with its sparse Newton solve by Cholesky (heat), counted by a global
 //! allocator; by LU (Gray–Scott, whose Newton matrix is unsymmetric) only faer's numeric
 //! factorization allocates, the same number of times every call (as in `tests/allocations.rs`
-//! for particles). One test in its own binary, so no other test's allocations are counted.
+//! for particles). With Krylov solves (`LinearSolver::Krylov`, CG on heat, BiCGSTAB on
+//! Gray–Scott) nothing allocates at all. One test in its own binary, so no other test's
+//! allocations are counted.
 
 mod common;
 
@@ -12,7 +14,7 @@ use common::ALLOCATIONS;
 
 use odyn::grid::{Boundary, Grid, Stencil};
 use odyn::integrators::{ExplicitEuler, ImplicitEuler, Rk4};
-use odyn::{Integrator, Model, NewtonOptions, Stepper, system};
+use odyn::{Integrator, Krylov, LinearSolver, Model, NewtonOptions, Stepper, system};
 
 #[global_allocator]
 static GLOBAL: common::Counting = common::Counting;
@@ -59,8 +61,12 @@ impl GrayScott {
 
 /// Allocations made by steps 2..=21 of integrator `I` on `model` at `dt`.
 fn allocations<M: Model, I: Integrator<M>>(model: &M, dt: f64) -> u64 {
-    let newton = NewtonOptions::default();
-    let mut stepper = Stepper::<M, I>::with_newton(model, model.state(), 0.0, dt, &newton).unwrap();
+    allocations_with::<M, I>(model, dt, &NewtonOptions::default())
+}
+
+/// Allocations made by steps 2..=21 of integrator `I` on `model` at `dt` with `newton`.
+fn allocations_with<M: Model, I: Integrator<M>>(model: &M, dt: f64, newton: &NewtonOptions) -> u64 {
+    let mut stepper = Stepper::<M, I>::with_newton(model, model.state(), 0.0, dt, newton).unwrap();
     stepper.step().unwrap();
     let before = ALLOCATIONS.load(Ordering::Relaxed);
     for _ in 0..20 {
@@ -99,6 +105,23 @@ fn stepping_a_field_model_allocates_nothing() {
         kill: 0.06,
         dx: 2.5 / 256.0,
     };
+    let krylov = NewtonOptions {
+        linear: LinearSolver::Krylov(Krylov::default()),
+        ..NewtonOptions::default()
+    };
+    let counts = [
+        (
+            "implicit Euler, heat, CG",
+            allocations_with::<Heat, ImplicitEuler<_>>(&heat, 1e-2, &krylov),
+        ),
+        (
+            "implicit Euler, Gray–Scott, BiCGSTAB",
+            allocations_with::<GrayScott, ImplicitEuler<_>>(&gray_scott, 5.0, &krylov),
+        ),
+    ];
+    for (method, count) in counts {
+        assert_eq!(count, 0, "{method} allocated {count} times in 20 steps");
+    }
     // faer 0.24's supernodal numeric LU allocates its per-supernode buffers on every call:
     // exactly 67 times a factorization on this 12² grid (measured: 4556 more allocations for 68
     // more factorizations, and 5494 for 82, between runs of 20, 40 and 80 steps). Everything

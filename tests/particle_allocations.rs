@@ -14,7 +14,7 @@ use odyn::integrators::{
 use odyn::nalgebra::Vector2;
 use odyn::particles::Spring;
 use odyn::prelude::*;
-use odyn::{Integrator, NewtonOptions, Stepper};
+use odyn::{Integrator, Krylov, LinearSolver, NewtonOptions, Stepper};
 
 #[global_allocator]
 static GLOBAL: common::Counting = common::Counting;
@@ -99,6 +99,16 @@ fn stepping_a_particle_model_allocates_nothing() {
         (
             "implicit Euler, one step",
             allocations::<ImplicitEuler<_>>(&model, &NewtonOptions::linearized()),
+        ),
+        (
+            "implicit Euler, Krylov solves",
+            allocations::<ImplicitEuler<_>>(
+                &model,
+                &NewtonOptions {
+                    linear: LinearSolver::Krylov(Krylov::default()),
+                    ..NewtonOptions::default()
+                },
+            ),
         ),
     ];
     for (method, count) in counts {

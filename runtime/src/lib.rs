@@ -18,6 +18,7 @@ mod error;
 pub mod fluids;
 pub mod grid;
 pub mod integrators;
+mod linalg;
 mod method;
 mod model;
 mod newton;
@@ -27,7 +28,7 @@ pub mod particles;
 pub mod plot;
 pub mod reference;
 mod simulation;
-mod sparse;
+
 pub mod sph;
 pub mod stability;
 mod stack;
@@ -44,6 +45,7 @@ pub use drive::{
 };
 pub use error::{Error, NewtonFailure, Result};
 pub use integrators::Integrator;
+pub use linalg::{Krylov, KrylovCounts, LinearSolver, Preconditioner};
 pub use method::{Method, MethodInfo};
 pub use model::{Jacobian, Model, SecondOrder, State, Unavailable};
 pub use nalgebra;

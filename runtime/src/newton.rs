@@ -33,6 +33,10 @@ pub struct NewtonOptions {
     /// residual is still the exact one, so full Newton converges to the same implicit Euler
     /// step (as a quasi-Newton method); the matrix is then always factorized by Cholesky.
     pub definite: bool,
+    /// Particle and field models only: how the sparse linear systems are solved (default
+    /// [`crate::LinearSolver::Auto`]: preconditioned Krylov iterations for field models from
+    /// 1 024 unknowns, sparse direct otherwise).
+    pub linear: crate::LinearSolver,
 }
 
 impl NewtonOptions {
@@ -63,7 +67,7 @@ impl NewtonOptions {
                 ),
             ));
         }
-        Ok(())
+        self.linear.check()
     }
 
     /// The one-iteration (Baraff–Witkin) form, other options at their defaults.
@@ -83,6 +87,7 @@ impl Default for NewtonOptions {
             max_halvings: 20,
             linearized: false,
             definite: false,
+            linear: crate::LinearSolver::default(),
         }
     }
 }

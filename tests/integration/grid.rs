@@ -327,7 +327,7 @@ impl GrayScott {
 }
 
 /// A small Gray–Scott grid, `boundary` on both fields, with smooth non-uniform fields.
-fn gray_scott(n: usize, boundary: Boundary) -> GrayScott {
+pub(crate) fn gray_scott(n: usize, boundary: Boundary) -> GrayScott {
     let field = |a: f64, b: f64| {
         Grid::from_fn(n, n, boundary, |i, j| {
             a + b * ((i as f64 * 0.7).sin() + (j as f64 * 1.3).cos())

@@ -26,6 +26,7 @@ mod grid;
 mod hardening;
 mod implicit;
 mod jacobian;
+mod krylov;
 mod output;
 mod particles;
 mod reference_dop853;

@@ -10,7 +10,7 @@ use odyn::{Error, Jacobian, NewtonOptions, Stepper};
 
 /// A cloth: damped springs between particles, gravity and air drag on each.
 #[system(integrator = ImplicitEuler, dt = 1.0 / 60.0)]
-struct Cloth {
+pub(crate) struct Cloth {
     #[position]
     x: Vec<Vector3<f64>>,
     #[velocity]
@@ -67,7 +67,7 @@ impl Cloth {
 
 /// An n×n cloth of side 1 m in the x–y plane, top row at y = 0, structural, shear and bend
 /// springs of stiffness `k`, the two top corners pinned.
-fn cloth(n: usize, k: f64, damping: f64, drag: f64) -> Cloth {
+pub(crate) fn cloth(n: usize, k: f64, damping: f64, drag: f64) -> Cloth {
     let spacing = 1.0 / (n - 1) as f64;
     let id = |i: usize, j: usize| i * n + j;
     let x: Vec<_> = (0..n * n)
@@ -117,7 +117,7 @@ fn noise(seed: &mut u64) -> f64 {
 }
 
 /// The cloth's state, every component shaken by up to `amount`.
-fn shaken(model: &Cloth, amount: f64, seed: u64) -> ParticleState<3> {
+pub(crate) fn shaken(model: &Cloth, amount: f64, seed: u64) -> ParticleState<3> {
     let mut state = model.state();
     let mut seed = seed;
     for c in state.as_mut_slice() {

@@ -6,7 +6,7 @@ use faer::sparse::SparseColMatRef;
 
 use super::{Block, Boundary, NEIGHBOURS, neighbour};
 use crate::NewtonMatrix;
-use crate::sparse::{Factorizations, SparseSolver};
+use crate::linalg::sparse::{Factorizations, SparseSolver};
 
 /// The Jacobian ∂f/∂y of a field model, assembled from its cells' blocks, and the sparse
 /// matrix I − c·J the implicit methods solve with.
@@ -50,7 +50,15 @@ impl GridJacobian {
         for k in 0..cells {
             entries.extend(blocks.iter().filter_map(|b| column(k, b)));
         }
-        let solver = SparseSolver::new(n, &entries);
+        let mut solver = SparseSolver::new(n, &entries);
+        // Block Jacobi inverts each cell's fields × fields block.
+        let fields = boundaries.len();
+        solver.set_blocks(
+            fields,
+            (0..cells)
+                .flat_map(|k| (0..fields).map(move |f| f * cells + k))
+                .collect(),
+        );
         let mut slots = Vec::with_capacity(cells * blocks.len());
         for k in 0..cells {
             slots.extend(
@@ -163,6 +171,11 @@ impl GridJacobian {
 }
 
 impl NewtonMatrix for GridJacobian {
+    fn configure(&mut self, newton: &crate::NewtonOptions) {
+        self.solver
+            .configure(&newton.linear, crate::linalg::krylov::Structure::Field);
+    }
+
     /// The factorization lives in the sparse solver inside the matrix.
     type Factors = ();
 

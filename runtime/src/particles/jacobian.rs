@@ -7,7 +7,7 @@ use nalgebra::{SMatrix, SVector};
 
 use super::ParticleSystem;
 use crate::NewtonMatrix;
-use crate::sparse::{Factorizations, SparseSolver};
+use crate::linalg::sparse::{Factorizations, SparseSolver};
 
 /// The Jacobian of a particle model's forces, in D×D blocks, and the sparse Newton matrix of
 /// implicit Euler built from it.
@@ -325,6 +325,8 @@ impl<const D: usize> ParticleJacobian<D> {
 impl<const D: usize> NewtonMatrix for ParticleJacobian<D> {
     fn configure(&mut self, newton: &crate::NewtonOptions) {
         self.definite = newton.definite;
+        self.solver
+            .configure(&newton.linear, crate::linalg::krylov::Structure::Particles);
     }
 
     /// The factorization lives in the sparse solver inside the matrix.
@@ -391,7 +393,9 @@ fn pattern<const D: usize>(
             block(b, a);
         }
     }
-    let solver = SparseSolver::new(D * particles, &entries);
+    let mut solver = SparseSolver::new(D * particles, &entries);
+    // Block Jacobi inverts each particle's D×D block.
+    solver.set_blocks(D, (0..D * particles).collect());
     let mut diagonal = Vec::with_capacity(particles * D * D);
     for i in 0..particles {
         for r in 0..D {

@@ -25,7 +25,7 @@ use nalgebra::SVector;
 
 use crate::{Error, Model, Result, State};
 
-pub use crate::sparse::Factorizations;
+pub use crate::linalg::sparse::Factorizations;
 pub use jacobian::ParticleJacobian;
 
 /// The state of a particle model: every position, then every velocity, as one `Vec<f64>`.

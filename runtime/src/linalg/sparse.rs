@@ -23,6 +23,9 @@ use faer::sparse::linalg::lu::{
 use faer::sparse::{Pair, SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, MatMut, Par, Side};
 
+use super::krylov::{KrylovCounts, KrylovSolver, LinearSolver, Outcome, Preconditioner, Structure};
+use super::precond::{BlockJacobi, Factors};
+
 /// How often a sparse Newton matrix has factorized: the symbolic analyses happen once per run,
 /// the numeric factorizations once per Newton iteration (or Rosenbrock step).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -38,6 +41,8 @@ pub struct Factorizations {
     pub cholesky_failed: u64,
     /// Numeric LU factorizations.
     pub lu: u64,
+    /// The Krylov solves, when [`crate::LinearSolver`] chose them.
+    pub krylov: KrylovCounts,
 }
 
 /// A sparse LU: the symbolic analysis (shared by clones) and the numeric factors.
@@ -66,6 +71,15 @@ pub(crate) struct SparseSolver {
     factored: Option<Factored>,
     /// Factorizations left to go straight to LU after a Cholesky failed.
     skip_cholesky: u32,
+    /// The Krylov solver, when the run chose one ([`SparseSolver::configure`]).
+    krylov: Option<KrylovSolver>,
+    /// The diagonal blocks block Jacobi inverts (points until [`SparseSolver::set_blocks`]).
+    jacobi: BlockJacobi,
+    /// The values were symmetric at the last factorization.
+    symmetric: bool,
+    /// The last factorization prepared a Krylov solve (else [`SparseSolver::substitute`]
+    /// substitutes in the direct factors).
+    iterative: bool,
 }
 
 /// Which factorization [`SparseSolver::factorize`] made last.
@@ -103,6 +117,7 @@ impl SparseSolver {
         )
         .expect("a symmetric pattern of checked size always has a symbolic Cholesky factor");
         let scratch = MemBuffer::new(Self::cholesky_scratch(&cholesky));
+        let jacobi = BlockJacobi::new(1, (0..n).collect(), &pattern);
         SparseSolver {
             values: vec![0.0; pattern.compute_nnz()],
             cholesky_values: vec![0.0; cholesky.len_val()],
@@ -118,7 +133,26 @@ impl SparseSolver {
             },
             factored: None,
             skip_cholesky: 0,
+            krylov: None,
+            jacobi,
+            symmetric: false,
+            iterative: false,
         }
+    }
+
+    /// Groups the unknowns into blocks of `size` for block Jacobi: group k is
+    /// `index[k·size..(k+1)·size]` (every unknown once).
+    pub(crate) fn set_blocks(&mut self, size: usize, index: Vec<usize>) {
+        self.jacobi = BlockJacobi::new(size, index, &self.pattern);
+    }
+
+    /// Chooses how the systems of this run are solved: direct, or the Krylov method `linear`
+    /// gives for this size (its buffers allocated here).
+    pub(crate) fn configure(&mut self, linear: &LinearSolver, structure: Structure) {
+        let n = self.rhs.len();
+        self.krylov = linear
+            .krylov_for(n, structure)
+            .map(|options| KrylovSolver::new(options, n));
     }
 
     /// The index in [`SparseSolver::values`] of entry (row, column), which must be structural.
@@ -150,10 +184,39 @@ impl SparseSolver {
             .all(|(&a, &t)| (a - self.values[t]).abs() <= tolerance)
     }
 
+    /// Prepares to solve with the values: for a Krylov run, builds the block Jacobi
+    /// preconditioner (or keeps an earlier factorization as the preconditioner until a solve
+    /// asks for a fresh one); otherwise, or when a block is singular, factorizes directly.
+    /// False when the matrix is singular.
+    pub(crate) fn factorize(&mut self) -> bool {
+        self.iterative = false;
+        let Some(krylov) = &mut self.krylov else {
+            return self.factorize_direct();
+        };
+        let refresh = std::mem::take(&mut krylov.refresh);
+        let preconditioner = krylov.options.preconditioner;
+        self.symmetric = self.is_symmetric();
+        match preconditioner {
+            Preconditioner::BlockJacobi => {
+                if !self.jacobi.update(&self.values) {
+                    return self.factorize_direct();
+                }
+                self.counts.krylov.preconditioners += 1;
+            }
+            Preconditioner::Factorization { .. } => {
+                if (self.factored.is_none() || refresh) && !self.factorize_direct() {
+                    return false;
+                }
+            }
+        }
+        self.iterative = true;
+        true
+    }
+
     /// Factorizes the values: Cholesky when symmetric and positive definite, else LU (its
     /// symbolic analysis made the first time; see [`SKIP_CHOLESKY_AFTER_FAILURE`]). False when
     /// the matrix is singular.
-    pub(crate) fn factorize(&mut self) -> bool {
+    fn factorize_direct(&mut self) -> bool {
         self.factored = None;
         if self.skip_cholesky > 0 {
             self.skip_cholesky -= 1;
@@ -217,8 +280,63 @@ impl SparseSolver {
         true
     }
 
-    /// Solves the last factorization against [`SparseSolver::rhs`], in place.
+    /// Solves the matrix against [`SparseSolver::rhs`], in place: by the Krylov method when
+    /// the last factorization prepared one (redone directly if it fails; NaN if the matrix
+    /// then turns out singular), else by substitution in the direct factors.
     pub(crate) fn substitute(&mut self) {
+        if self.iterative && self.solve_iteratively() {
+            return;
+        }
+        if self.iterative {
+            // The Krylov solve failed: the direct solve of the same matrix decides.
+            self.iterative = false;
+            if !self.factorize_direct() {
+                self.rhs.fill(f64::NAN);
+                return;
+            }
+        }
+        self.substitute_direct();
+    }
+
+    /// The Krylov solve; false when it did not converge (rhs unchanged then).
+    fn solve_iteratively(&mut self) -> bool {
+        let Some(krylov) = &mut self.krylov else {
+            return false;
+        };
+        if !self.rhs.iter().all(|b| b.is_finite()) {
+            return true; // a non-finite right-hand side stays non-finite: the caller reports it
+        }
+        let matrix = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
+        let n = self.rhs.len();
+        let outcome = match (krylov.options.preconditioner, self.factored, &self.lu) {
+            (Preconditioner::BlockJacobi, ..) => krylov.solve(
+                matrix,
+                self.symmetric,
+                self.jacobi.as_precond(n),
+                &mut self.rhs,
+                &mut self.counts.krylov,
+            ),
+            (_, Some(Factored::Cholesky), _) => krylov.solve(
+                matrix,
+                self.symmetric,
+                Factors::Cholesky(LltRef::new(&self.cholesky, &self.cholesky_values)),
+                &mut self.rhs,
+                &mut self.counts.krylov,
+            ),
+            (_, Some(Factored::Lu), Some((symbolic, numeric))) => krylov.solve(
+                matrix,
+                self.symmetric,
+                Factors::Lu(LuRef::new_unchecked(symbolic, numeric)),
+                &mut self.rhs,
+                &mut self.counts.krylov,
+            ),
+            _ => Outcome::Failed,
+        };
+        matches!(outcome, Outcome::Converged)
+    }
+
+    /// Solves the last direct factorization against [`SparseSolver::rhs`], in place.
+    fn substitute_direct(&mut self) {
         let n = self.rhs.len();
         let rhs = MatMut::from_column_major_slice_mut(&mut self.rhs, n, 1);
         let stack = MemStack::new(&mut self.scratch);
@@ -267,6 +385,83 @@ impl Clone for SparseSolver {
             counts: self.counts,
             factored: self.factored,
             skip_cholesky: self.skip_cholesky,
+            krylov: self.krylov.clone(),
+            jacobi: self.jacobi.clone(),
+            symmetric: self.symmetric,
+            iterative: self.iterative,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{Krylov, LinearSolver, Preconditioner};
+
+    /// A 2-D Laplacian-like SPD matrix, and an unsymmetric one, solved directly and by each
+    /// Krylov configuration: same answer to the Krylov tolerance.
+    #[test]
+    fn krylov_solves_agree_with_the_direct_solve() {
+        let m = 12;
+        let n = m * m;
+        let mut entries = Vec::new();
+        for i in 0..m {
+            for j in 0..m {
+                let k = i * m + j;
+                if j + 1 < m {
+                    entries.push((k, k + 1));
+                }
+                if i + 1 < m {
+                    entries.push((k, k + m));
+                }
+            }
+        }
+        for skew in [0.0, 0.3] {
+            let fill = |s: &mut SparseSolver| {
+                for &(r, c) in &entries {
+                    let (a, b) = (s.slot(r, c), s.slot(c, r));
+                    s.values[a] = -1.0 + skew;
+                    s.values[b] = -1.0 - skew;
+                }
+                for i in 0..n {
+                    let d = s.slot(i, i);
+                    s.values[d] = 4.5 + (i % 7) as f64 * 0.1;
+                }
+            };
+            let b: Vec<f64> = (0..n).map(|i| ((i * 37) % 11) as f64 - 5.0).collect();
+            let mut direct = SparseSolver::new(n, &entries);
+            fill(&mut direct);
+            assert!(direct.factorize());
+            direct.rhs.copy_from_slice(&b);
+            direct.substitute();
+            for preconditioner in [
+                Preconditioner::BlockJacobi,
+                Preconditioner::Factorization { refresh_above: 5 },
+            ] {
+                let mut krylov = SparseSolver::new(n, &entries);
+                krylov.set_blocks(2, (0..n).collect());
+                let linear = LinearSolver::Krylov(Krylov {
+                    preconditioner,
+                    rtol: 1e-12,
+                    ..Krylov::default()
+                });
+                krylov.configure(&linear, Structure::Field);
+                fill(&mut krylov);
+                for _ in 0..2 {
+                    assert!(krylov.factorize());
+                    krylov.rhs.copy_from_slice(&b);
+                    krylov.substitute();
+                    let error = krylov
+                        .rhs
+                        .iter()
+                        .zip(&direct.rhs)
+                        .map(|(x, y)| (x - y).abs())
+                        .fold(0.0, f64::max);
+                    assert!(error < 1e-10, "{skew} {preconditioner:?}: {error:e}");
+                }
+                assert_eq!(krylov.counts.krylov.fallbacks, 0, "{:?}", krylov.counts);
+                assert_eq!(krylov.counts.krylov.solves, 2);
+            }
         }
     }
 }

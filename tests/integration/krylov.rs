@@ -1,0 +1,391 @@
+//! Krylov solves of the sparse Newton matrices (`odyn::LinearSolver`): each against the direct
+//! solve on cloth and Gray–Scott matrices (relative residual and solution difference), whole
+//! runs of every implicit method against the direct runs, the automatic choice, fallbacks and
+//! option errors.
+
+use odyn::grid::Boundary;
+use odyn::integrators::{ImplicitEuler, Rodas5P, Rosenbrock23};
+use odyn::particles::ParticleState;
+use odyn::prelude::*;
+use odyn::{
+    Error, Integrator, Jacobian, Krylov, LinearSolver, NewtonMatrix, NewtonOptions, Preconditioner,
+    Stepper,
+};
+
+use crate::grid::{GrayScott, gray_scott};
+use crate::particles::{Cloth, cloth, shaken};
+
+/// The Krylov configurations under test, solving to a relative residual of 1e-12.
+fn krylovs() -> [LinearSolver; 2] {
+    [
+        Preconditioner::BlockJacobi,
+        Preconditioner::Factorization { refresh_above: 5 },
+    ]
+    .map(|preconditioner| {
+        LinearSolver::Krylov(Krylov {
+            preconditioner,
+            rtol: 1e-12,
+            ..Krylov::default()
+        })
+    })
+}
+
+fn with(linear: LinearSolver) -> NewtonOptions {
+    NewtonOptions {
+        linear,
+        ..NewtonOptions::default()
+    }
+}
+
+/// Solves (I − c·J)·x = b with the Jacobian of `model` at `state`, configured by `newton`.
+fn solve<M: Jacobian>(
+    model: &M,
+    state: &M::State,
+    c: f64,
+    newton: &NewtonOptions,
+    b: &[f64],
+) -> Vec<f64> {
+    let mut matrix = model.jacobian_matrix(state);
+    matrix.configure(newton);
+    model.jacobian(0.0, state, &mut matrix);
+    let mut factors = matrix.factors();
+    assert!(matrix.factorize(c, &mut factors));
+    let mut x = b.to_vec();
+    assert!(matrix.solve(&mut factors, &mut x));
+    x
+}
+
+/// max |x − y| / max |y|.
+fn difference(x: &[f64], y: &[f64]) -> f64 {
+    let scale = y.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    x.iter()
+        .zip(y)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max)
+        / scale
+}
+
+/// ‖b − A·x‖₂ / ‖b‖₂ for a dense A.
+fn relative_residual(a: &odyn::nalgebra::DMatrix<f64>, x: &[f64], b: &[f64]) -> f64 {
+    let x = odyn::nalgebra::DVector::from_column_slice(x);
+    let b = odyn::nalgebra::DVector::from_column_slice(b);
+    (&b - a * x).norm() / b.norm()
+}
+
+#[test]
+fn krylov_solves_of_gray_scott_matrices_match_the_direct_solve() {
+    // A 24² grid (1 152 unknowns), h = 10 at dx = 2.5/256 (h·D_u/dx² ≈ 2.1, Pearson's setup):
+    // I − h·J is unsymmetric (the reaction couples u and v), so BiCGSTAB.
+    let mut model = gray_scott(24, Boundary::Periodic);
+    model.dx = 2.5 / 256.0;
+    let state = model.state();
+    let n = state.as_slice().len();
+    let b: Vec<f64> = (0..n).map(|i| ((i * 37) % 11) as f64 - 5.0).collect();
+    let h = 10.0;
+    let direct = solve(&model, &state, h, &with(LinearSolver::Direct), &b);
+    // The dense I − h·J for the residual.
+    let mut jacobian = model.jacobian_matrix(&state);
+    model.jacobian(0.0, &state, &mut jacobian);
+    let dense = jacobian.to_dense();
+    let w = odyn::nalgebra::DMatrix::from_fn(n, n, |r, c| {
+        f64::from(u8::from(r == c)) - h * dense[(r, c)]
+    });
+    for linear in krylovs() {
+        let x = solve(&model, &state, h, &with(linear), &b);
+        let residual = relative_residual(&w, &x, &b);
+        // The solver's own test is on this residual, to 1e-12 (rounding in the dense product
+        // adds about n·ε·‖W‖·‖x‖/‖b‖ ≈ 1e-13).
+        assert!(residual < 2e-12, "{linear:?}: residual {residual:e}");
+        let d = difference(&x, &direct);
+        // The direct solve's own error is about κ·ε; κ(I − h·J) ≈ 20 here.
+        assert!(
+            d < 1e-10,
+            "{linear:?}: differs from the direct solve by {d:e}"
+        );
+    }
+}
+
+#[test]
+fn krylov_solves_of_cloth_matrices_match_the_direct_solve() {
+    // A shaken 8×8 undamped cloth (k = 1e3): M − h·∂f/∂v − h²·∂f/∂x is symmetric, definite
+    // after projection, so CG; the first-order system (I − h·J)·(Δx, Δv) = b is solved through
+    // it, so the residual is measured on that system with J from the dense force Jacobians.
+    let model = cloth(8, 1e3, 0.0, 0.1);
+    let state: ParticleState<3> = shaken(&model, 0.01, 7);
+    let n = state.as_slice().len();
+    // Zero on the pinned particles (the velocity form holds their Δv at zero).
+    let pins = model.pinned().to_vec();
+    let b: Vec<f64> = (0..n)
+        .map(|i| {
+            let held = pins.contains(&((i % (n / 2)) / 3));
+            if held {
+                0.0
+            } else {
+                ((i * 29) % 13) as f64 * 0.1 - 0.6
+            }
+        })
+        .collect();
+    let h = 1.0 / 60.0;
+    let definite = |linear| NewtonOptions {
+        definite: true,
+        linear,
+        ..NewtonOptions::default()
+    };
+    let direct = solve(&model, &state, h, &definite(LinearSolver::Direct), &b);
+    for linear in krylovs() {
+        let x = solve(&model, &state, h, &definite(linear), &b);
+        let d = difference(&x, &direct);
+        assert!(
+            d < 1e-9,
+            "{linear:?}: differs from the direct solve by {d:e}"
+        );
+    }
+    // Unprojected, with damping: unsymmetric, so BiCGSTAB, against the direct LU, and the
+    // residual of the first-order system.
+    let damped = cloth(8, 1e3, 2.0, 0.1);
+    let state = shaken(&damped, 0.01, 9);
+    let direct = solve(&damped, &state, h, &with(LinearSolver::Direct), &b);
+    let mut jacobian = damped.jacobian_matrix(&state);
+    damped.jacobian(0.0, &state, &mut jacobian);
+    let (dx, dv) = jacobian.force_jacobians();
+    let half = n / 2;
+    let mass = damped.masses();
+    let pinned = |row: usize| damped.pinned().contains(&(row / 3));
+    let w = odyn::nalgebra::DMatrix::from_fn(n, n, |r, c| {
+        let identity = f64::from(u8::from(r == c));
+        match (r < half, c < half) {
+            (true, true) => identity,
+            (true, false) => -h * f64::from(u8::from(r + half == c)),
+            // Pinned particles feel no force: their acceleration rows are zero.
+            (false, _) if pinned(r - half) => identity,
+            (false, true) => identity - h * dx[(r - half, c)] / mass[(r - half) / 3],
+            (false, false) => identity - h * dv[(r - half, c - half)] / mass[(r - half) / 3],
+        }
+    });
+    for linear in krylovs() {
+        let x = solve(&damped, &state, h, &with(linear), &b);
+        let d = difference(&x, &direct);
+        assert!(
+            d < 1e-9,
+            "{linear:?}: differs from the direct solve by {d:e}"
+        );
+        let residual = relative_residual(&w, &x, &b);
+        // The solve's test is on the velocity form's residual (1e-12); the first-order
+        // system's rows are that residual scaled by M⁻¹ and mixed with h·Δv, about 1e3 larger.
+        assert!(residual < 1e-8, "{linear:?}: residual {residual:e}");
+    }
+}
+
+/// The final state of `steps` steps of `I` on `model` from its state at `dt`.
+fn stepped<M: Jacobian, I: Integrator<M>>(
+    model: &M,
+    dt: f64,
+    steps: usize,
+    newton: &NewtonOptions,
+) -> (Vec<f64>, odyn::Stats) {
+    let mut stepper = Stepper::<M, I>::with_newton(model, model.state(), 0.0, dt, newton).unwrap();
+    for _ in 0..steps {
+        stepper.step().unwrap();
+    }
+    (stepper.state().as_slice().to_vec(), stepper.stats())
+}
+
+#[test]
+fn every_implicit_method_steps_a_field_model_the_same_with_krylov_solves() {
+    let mut model: GrayScott = gray_scott(24, Boundary::Periodic);
+    model.dx = 2.5 / 256.0;
+    for linear in krylovs() {
+        let krylov = with(linear);
+        let direct = with(LinearSolver::Direct);
+        let pairs = [
+            (
+                "implicit Euler",
+                stepped::<GrayScott, ImplicitEuler<_>>(&model, 2.0, 10, &krylov).0,
+                stepped::<GrayScott, ImplicitEuler<_>>(&model, 2.0, 10, &direct).0,
+            ),
+            (
+                "Rosenbrock23",
+                stepped::<GrayScott, Rosenbrock23<_>>(&model, 2.0, 10, &krylov).0,
+                stepped::<GrayScott, Rosenbrock23<_>>(&model, 2.0, 10, &direct).0,
+            ),
+            (
+                "Rodas5P",
+                stepped::<GrayScott, Rodas5P<_>>(&model, 2.0, 10, &direct).0,
+                stepped::<GrayScott, Rodas5P<_>>(&model, 2.0, 10, &krylov).0,
+            ),
+        ];
+        for (method, x, y) in pairs {
+            let d = difference(&x, &y);
+            // Ten steps of 2 (Rodas5P diverges at 10 with either solver), each solve to a
+            // residual of 1e-12 with κ ≈ 5.
+            assert!(d < 1e-9, "{method}, {linear:?}: {d:e}");
+        }
+        // BDF adaptive: the same steps (the error estimates differ by rounding only), the
+        // same answer to well inside the tolerance.
+        let run = |newton: NewtonOptions| {
+            model
+                .simulate()
+                .integrator(Method::Bdf)
+                .tolerances(1e-6, 1e-6)
+                .newton(newton)
+                .duration(200.0)
+                .run()
+                .unwrap()
+        };
+        let (a, b) = (run(krylov), run(with(LinearSolver::Direct)));
+        assert_eq!(a.stats.steps, b.stats.steps, "{linear:?}");
+        let d = difference(a.last().state.as_slice(), b.last().state.as_slice());
+        assert!(d < 1e-9, "BDF, {linear:?}: {d:e}");
+    }
+}
+
+#[test]
+fn a_cloth_run_with_krylov_solves_follows_the_direct_run() {
+    // One-step (Baraff–Witkin) implicit Euler on a definite 10×10 cloth for 1 s: CG with the
+    // warm start against Cholesky, to 1e-9 of the cloth's size.
+    let model: Cloth = cloth(10, 1e4, 0.0, 0.02);
+    let options = |linear| NewtonOptions {
+        linearized: true,
+        definite: true,
+        linear,
+        ..NewtonOptions::default()
+    };
+    let (direct, _) =
+        stepped::<Cloth, ImplicitEuler<_>>(&model, 1.0 / 60.0, 60, &options(LinearSolver::Direct));
+    for linear in krylovs() {
+        let (x, _) = stepped::<Cloth, ImplicitEuler<_>>(&model, 1.0 / 60.0, 60, &options(linear));
+        let worst = x
+            .iter()
+            .zip(&direct)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        assert!(worst < 1e-9, "{linear:?}: {worst:e}");
+    }
+}
+
+/// The factorization and Krylov counts of 10 implicit Euler steps of `model`.
+fn counts_of<M>(model: &M, dt: f64, newton: &NewtonOptions) -> odyn::particles::Factorizations
+where
+    M: Jacobian,
+    M::Matrix: Counted,
+{
+    let mut stepper =
+        Stepper::<M, ImplicitEuler<M>>::with_newton(model, model.state(), 0.0, dt, newton).unwrap();
+    for _ in 0..10 {
+        stepper.step().unwrap();
+    }
+    stepper.integrator().matrix().counts()
+}
+
+/// The Jacobians that count their factorizations.
+trait Counted {
+    fn counts(&self) -> odyn::particles::Factorizations;
+}
+impl Counted for odyn::grid::GridJacobian {
+    fn counts(&self) -> odyn::particles::Factorizations {
+        self.factorizations()
+    }
+}
+impl Counted for odyn::particles::ParticleJacobian<3> {
+    fn counts(&self) -> odyn::particles::Factorizations {
+        self.factorizations()
+    }
+}
+
+#[test]
+fn auto_chooses_krylov_for_big_grids_only() {
+    let auto = NewtonOptions::default();
+    assert_eq!(auto.linear, LinearSolver::Auto);
+    // 22² cells × 2 fields = 968 unknowns: below the threshold, direct.
+    let small: GrayScott = gray_scott(22, Boundary::Periodic);
+    let counts = counts_of(&small, 1.0, &auto);
+    assert_eq!(counts.krylov.solves, 0, "{counts:?}");
+    assert!(counts.lu + counts.cholesky > 0);
+    // 23² × 2 = 1 058: Krylov, block Jacobi, no factorization at all.
+    let big: GrayScott = gray_scott(23, Boundary::Periodic);
+    let counts = counts_of(&big, 1.0, &auto);
+    assert!(counts.krylov.solves >= 10, "{counts:?}");
+    assert_eq!(counts.krylov.preconditioners, counts.krylov.solves);
+    assert_eq!(
+        (counts.lu, counts.cholesky, counts.krylov.fallbacks),
+        (0, 0, 0)
+    );
+    // A cloth of 20² particles (1 200 unknowns in the velocity form) stays direct.
+    let cloth = cloth(20, 1e3, 0.0, 0.1);
+    let counts = counts_of(&cloth, 1.0 / 60.0, &auto);
+    assert_eq!(counts.krylov.solves, 0, "{counts:?}");
+}
+
+#[test]
+fn a_krylov_solve_that_cannot_converge_falls_back_to_the_direct_solve() {
+    // One iteration to a residual of 1e-14: never enough, so every solve is redone directly,
+    // counted, and the run equals the direct run.
+    let mut model: GrayScott = gray_scott(24, Boundary::Periodic);
+    model.dx = 2.5 / 256.0;
+    let starved = with(LinearSolver::Krylov(Krylov {
+        rtol: 1e-14,
+        max_iters: 1,
+        ..Krylov::default()
+    }));
+    let counts = counts_of(&model, 10.0, &starved);
+    assert!(counts.krylov.fallbacks >= 10, "{counts:?}");
+    assert_eq!(counts.krylov.solves, 0, "{counts:?}");
+    assert_eq!(counts.lu + counts.cholesky, counts.krylov.fallbacks);
+    let (x, _) = stepped::<GrayScott, ImplicitEuler<_>>(&model, 10.0, 10, &starved);
+    let (y, _) =
+        stepped::<GrayScott, ImplicitEuler<_>>(&model, 10.0, 10, &with(LinearSolver::Direct));
+    assert_eq!(x, y);
+}
+
+#[test]
+fn bad_krylov_options_are_typed_errors() {
+    let model: GrayScott = gray_scott(8, Boundary::Periodic);
+    for (krylov, field) in [
+        (
+            Krylov {
+                rtol: 0.0,
+                ..Krylov::default()
+            },
+            "Krylov::rtol",
+        ),
+        (
+            Krylov {
+                rtol: 1.5,
+                ..Krylov::default()
+            },
+            "Krylov::rtol",
+        ),
+        (
+            Krylov {
+                rtol: f64::NAN,
+                ..Krylov::default()
+            },
+            "Krylov::rtol",
+        ),
+        (
+            Krylov {
+                max_iters: 0,
+                ..Krylov::default()
+            },
+            "Krylov::max_iters",
+        ),
+        (
+            Krylov {
+                preconditioner: Preconditioner::Factorization { refresh_above: 0 },
+                ..Krylov::default()
+            },
+            "Preconditioner::Factorization::refresh_above",
+        ),
+    ] {
+        let result = model
+            .simulate()
+            .integrator(Method::ImplicitEuler)
+            .newton(with(LinearSolver::Krylov(krylov)))
+            .steps(1)
+            .run();
+        match result {
+            Err(Error::InvalidInput { field: got, .. }) => assert_eq!(got, field),
+            other => panic!("{krylov:?}: expected InvalidInput, got {other:?}"),
+        }
+    }
+}
