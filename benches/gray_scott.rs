@@ -8,6 +8,11 @@
 //! evaluation, one Jacobian, one assembly, one factorization and one solve, as in the cloth
 //! bench. `cargo bench --bench gray_scott`.
 //!
+//! `step_krylov`: the same step with the linear system solved by block-Jacobi BiCGSTAB
+//! (`LinearSolver::Krylov`, relative residual 1e-8, no warm start: every sample solves the same
+//! system), and `run_direct` / `run_krylov`: ten full-Newton implicit Euler steps of h = 10 from
+//! the same state (Newton tolerance 1e-8), sparse LU against Krylov with the warm start.
+//!
 //! `explicit_bare` and `explicit_runner`: 1000 explicit Euler steps of dt = 1 through the
 //! `Integrator` trait and through `Simulation::run`, for the runner's overhead on a field model.
 //!
@@ -22,7 +27,10 @@ use odyn::grid::{Boundary, Grid, GridJacobian, GridState, Stencil};
 use odyn::integrators::ImplicitEuler;
 use std::sync::OnceLock;
 
-use odyn::{Integrator, Jacobian, Method, Model, NewtonOptions, State, Stats, system};
+use odyn::{
+    Integrator, Jacobian, Krylov, LinearSolver, Method, Model, NewtonOptions, State, Stats,
+    Stepper, system,
+};
 
 fn main() {
     divan::main();
@@ -100,7 +108,11 @@ fn step(bencher: divan::Bencher, n: usize) {
     let model = model(n);
     let state = model.state();
     let mut stats = Stats::default();
-    let options = NewtonOptions::linearized();
+    // Direct: the Krylov default for grids would reuse its warm start across samples.
+    let options = NewtonOptions {
+        linear: LinearSolver::Direct,
+        ..NewtonOptions::linearized()
+    };
     let mut integrator = ImplicitEuler::start(&model, 0.0, &state, &options, &mut stats).unwrap();
     let (mut y, mut scratch) = (state.clone(), state.clone());
     bencher.bench_local(|| {
@@ -109,6 +121,64 @@ fn step(bencher: divan::Bencher, n: usize) {
             .step(&model, 0.0, H, &mut y, &mut scratch, &mut stats)
             .unwrap();
     });
+}
+
+/// The whole step with a Krylov solve in place of the sparse LU.
+#[divan::bench(args = SIZES, sample_count = 10)]
+fn step_krylov(bencher: divan::Bencher, n: usize) {
+    let model = model(n);
+    let state = model.state();
+    let mut stats = Stats::default();
+    let options = NewtonOptions {
+        linear: LinearSolver::Krylov(Krylov {
+            warm_start: false,
+            ..Krylov::default()
+        }),
+        ..NewtonOptions::linearized()
+    };
+    let mut integrator = ImplicitEuler::start(&model, 0.0, &state, &options, &mut stats).unwrap();
+    let (mut y, mut scratch) = (state.clone(), state.clone());
+    bencher.bench_local(|| {
+        y.clone_from(&state);
+        integrator
+            .step(&model, 0.0, H, &mut y, &mut scratch, &mut stats)
+            .unwrap();
+    });
+}
+
+/// Ten full-Newton implicit Euler steps with `linear`.
+fn ten_steps(bencher: divan::Bencher, n: usize, linear: LinearSolver) {
+    let model = model(n);
+    let newton = NewtonOptions {
+        tol: 1e-8,
+        linear,
+        ..NewtonOptions::default()
+    };
+    bencher.bench_local(|| {
+        let mut stepper = Stepper::<GrayScott, ImplicitEuler<GrayScott>>::with_newton(
+            &model,
+            model.state(),
+            0.0,
+            H,
+            &newton,
+        )
+        .unwrap();
+        for _ in 0..10 {
+            stepper.step().unwrap();
+        }
+    });
+}
+
+/// Ten full-Newton steps, sparse LU.
+#[divan::bench(args = SIZES, sample_count = 3)]
+fn run_direct(bencher: divan::Bencher, n: usize) {
+    ten_steps(bencher, n, LinearSolver::Direct);
+}
+
+/// Ten full-Newton steps, block-Jacobi BiCGSTAB with the warm start.
+#[divan::bench(args = SIZES, sample_count = 3)]
+fn run_krylov(bencher: divan::Bencher, n: usize) {
+    ten_steps(bencher, n, LinearSolver::Krylov(Krylov::default()));
 }
 
 /// The cell kernel's derivative blocks, placed into J.
