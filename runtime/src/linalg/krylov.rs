@@ -26,7 +26,11 @@ use faer::{MatMut, MatRef, Par};
 pub enum LinearSolver {
     /// [`Krylov::default()`] for field models of at least
     /// [`LinearSolver::FIELD_KRYLOV_FROM`] unknowns, [`LinearSolver::Direct`] otherwise —
-    /// particle models included, for the reason above. The default.
+    /// particle models included, for the reason above. A field model whose Krylov solve needs
+    /// more than [`LinearSolver::AUTO_DIRECT_ABOVE`] iterations switches to the direct solver
+    /// for the rest of the run (counted in [`KrylovCounts::switched_to_direct`]): a
+    /// Brusselator at α/Δx² ≈ 10⁴ under BDF, which reuses each factorization for about 15
+    /// solves, ran 4× slower with block-Jacobi BiCGSTAB than with its sparse LU. The default.
     #[default]
     Auto,
     /// Sparse Cholesky when the matrix is symmetric positive definite, else LU (faer).
@@ -49,16 +53,23 @@ impl LinearSolver {
     /// unknowns): 0.57 ms a step with block-Jacobi BiCGSTAB against 11.4 ms with sparse LU.
     pub const FIELD_KRYLOV_FROM: usize = 1024;
 
+    /// Iterations of one solve above which [`LinearSolver::Auto`] gives up Krylov for the run:
+    /// 50. Gray–Scott at h = 10 needs 6–12 per full-Newton solve from 64² to 128² (and wins
+    /// 24×), 29 for a linearized step at 256² to 1e-8 (and wins 19×).
+    pub const AUTO_DIRECT_ABOVE: usize = 50;
+
     /// The Krylov options for a system of `n` unknowns of a model of kind `structure`, None
     /// for a direct solve.
-    pub(crate) fn krylov_for(&self, n: usize, structure: Structure) -> Option<Krylov> {
+    pub(crate) fn krylov_for(&self, n: usize, structure: Structure) -> Option<KrylovSolver> {
         match *self {
             LinearSolver::Auto
                 if structure == Structure::Field && n >= LinearSolver::FIELD_KRYLOV_FROM =>
             {
-                Some(Krylov::default())
+                let mut solver = KrylovSolver::new(Krylov::default(), n);
+                solver.direct_above = Some(LinearSolver::AUTO_DIRECT_ABOVE);
+                Some(solver)
             }
-            LinearSolver::Krylov(krylov) => Some(krylov),
+            LinearSolver::Krylov(krylov) => Some(KrylovSolver::new(krylov, n)),
             _ => None,
         }
     }
@@ -163,6 +174,8 @@ pub struct KrylovCounts {
     /// Solves redone by the direct solver (no convergence within `max_iters`, or a
     /// breakdown).
     pub fallbacks: u64,
+    /// 1 when [`LinearSolver::Auto`] gave up Krylov solves for this run.
+    pub switched_to_direct: u64,
 }
 
 /// What a Krylov solve keeps between calls: the options, the previous solution for the warm
@@ -179,6 +192,10 @@ pub(crate) struct KrylovSolver {
     stack: MemBuffer,
     /// The last solve took more than `refresh_above` iterations.
     pub(crate) refresh: bool,
+    /// Give up Krylov for the run after a solve of more iterations (set by `Auto`).
+    pub(crate) direct_above: Option<usize>,
+    /// Iterations of the last solve.
+    pub(crate) last_iterations: usize,
 }
 
 /// How a Krylov solve ended.
@@ -198,6 +215,8 @@ impl KrylovSolver {
             scratch: StackReq::EMPTY,
             stack: MemBuffer::new(StackReq::EMPTY),
             refresh: false,
+            direct_above: None,
+            last_iterations: 0,
         }
     }
 
@@ -270,6 +289,7 @@ impl KrylovSolver {
             Some(iters) if x.iter().all(|v| v.is_finite()) => {
                 counts.solves += 1;
                 counts.iterations += iters as u64;
+                self.last_iterations = iters;
                 if let Preconditioner::Factorization { refresh_above } = self.options.preconditioner
                 {
                     self.refresh = iters > refresh_above;
@@ -354,6 +374,8 @@ impl Clone for KrylovSolver {
             scratch: self.scratch,
             stack: MemBuffer::new(self.scratch),
             refresh: self.refresh,
+            direct_above: self.direct_above,
+            last_iterations: self.last_iterations,
         }
     }
 }

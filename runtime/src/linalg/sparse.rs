@@ -150,9 +150,7 @@ impl SparseSolver {
     /// gives for this size (its buffers allocated here).
     pub(crate) fn configure(&mut self, linear: &LinearSolver, structure: Structure) {
         let n = self.rhs.len();
-        self.krylov = linear
-            .krylov_for(n, structure)
-            .map(|options| KrylovSolver::new(options, n));
+        self.krylov = linear.krylov_for(n, structure);
     }
 
     /// The index in [`SparseSolver::values`] of entry (row, column), which must be structural.
@@ -332,6 +330,14 @@ impl SparseSolver {
             ),
             _ => Outcome::Failed,
         };
+        if let Some(limit) = krylov.direct_above
+            && matches!(outcome, Outcome::Converged)
+            && krylov.last_iterations > limit
+        {
+            // `Auto`: this matrix is too ill-conditioned for block Jacobi to pay.
+            self.krylov = None;
+            self.counts.krylov.switched_to_direct = 1;
+        }
         matches!(outcome, Outcome::Converged)
     }
 
