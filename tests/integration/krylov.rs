@@ -310,6 +310,13 @@ fn auto_chooses_krylov_for_big_grids_only() {
         (counts.lu, counts.cholesky, counts.krylov.fallbacks),
         (0, 0, 0)
     );
+    // The same grid with cells 50× finer (h·D_u/Δx² = 20 at h = 1): block Jacobi needs more
+    // than 50 iterations, so Auto gives Krylov up for the run and factorizes from then on.
+    let mut fine: GrayScott = gray_scott(23, Boundary::Periodic);
+    fine.dx = 1e-3;
+    let counts = counts_of(&fine, 1.0, &auto);
+    assert_eq!(counts.krylov.switched_to_direct, 1, "{counts:?}");
+    assert!(counts.lu + counts.cholesky > 0, "{counts:?}");
     // A cloth of 20² particles (1 200 unknowns in the velocity form) stays direct.
     let cloth = cloth(20, 1e3, 0.0, 0.1);
     let counts = counts_of(&cloth, 1.0 / 60.0, &auto);
