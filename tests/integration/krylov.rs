@@ -16,9 +16,10 @@ use crate::grid::{GrayScott, gray_scott};
 use crate::particles::{Cloth, cloth, shaken};
 
 /// The Krylov configurations under test, solving to a relative residual of 1e-12.
-fn krylovs() -> [LinearSolver; 2] {
+fn krylovs() -> [LinearSolver; 3] {
     [
         Preconditioner::BlockJacobi,
+        Preconditioner::Ilu0,
         Preconditioner::Factorization { refresh_above: 5 },
     ]
     .map(|preconditioner| {

@@ -152,6 +152,10 @@ pub enum Preconditioner {
     /// cell's fields × fields block of I − h·J (Jacobi for a one-field model), rebuilt at every
     /// factorization: a few flops per unknown.
     BlockJacobi,
+    /// The incomplete LU factorization ILU(0) on the matrix's own pattern (Saad 2003,
+    /// Algorithm 10.4; IC(0) for a symmetric matrix), rebuilt at every factorization: each
+    /// application costs about one sparse product.
+    Ilu0,
     /// The sparse Cholesky or LU factors of an earlier matrix, applied by substitution, and
     /// refactorized when a solve needs more than `refresh_above` iterations: a factorization
     /// reused over many steps while the matrix changes slowly (the reuse of CVODE's and

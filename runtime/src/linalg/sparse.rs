@@ -24,7 +24,7 @@ use faer::sparse::{Pair, SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, MatMut, Par, Side};
 
 use super::krylov::{KrylovCounts, KrylovSolver, LinearSolver, Outcome, Preconditioner, Structure};
-use super::precond::{BlockJacobi, Factors};
+use super::precond::{BlockJacobi, Factors, Ilu0, Ilu0Ref};
 
 /// How often a sparse Newton matrix has factorized: the symbolic analyses happen once per run,
 /// the numeric factorizations once per Newton iteration (or Rosenbrock step).
@@ -75,6 +75,8 @@ pub(crate) struct SparseSolver {
     krylov: Option<KrylovSolver>,
     /// The diagonal blocks block Jacobi inverts (points until [`SparseSolver::set_blocks`]).
     jacobi: BlockJacobi,
+    /// ILU(0)'s structure and factors, made when a run first asks for them.
+    ilu: Option<Ilu0>,
     /// The values were symmetric at the last factorization.
     symmetric: bool,
     /// The last factorization prepared a Krylov solve (else [`SparseSolver::substitute`]
@@ -134,6 +136,7 @@ impl SparseSolver {
             factored: None,
             skip_cholesky: 0,
             krylov: None,
+            ilu: None,
             jacobi,
             symmetric: false,
             iterative: false,
@@ -151,6 +154,12 @@ impl SparseSolver {
     pub(crate) fn configure(&mut self, linear: &LinearSolver, structure: Structure) {
         let n = self.rhs.len();
         self.krylov = linear.krylov_for(n, structure);
+        if let Some(krylov) = &self.krylov
+            && krylov.options.preconditioner == Preconditioner::Ilu0
+            && self.ilu.is_none()
+        {
+            self.ilu = Some(Ilu0::new(&self.pattern));
+        }
     }
 
     /// The index in [`SparseSolver::values`] of entry (row, column), which must be structural.
@@ -197,6 +206,16 @@ impl SparseSolver {
         match preconditioner {
             Preconditioner::BlockJacobi => {
                 if !self.jacobi.update(&self.values) {
+                    return self.factorize_direct();
+                }
+                self.counts.krylov.preconditioners += 1;
+            }
+            Preconditioner::Ilu0 => {
+                let built = self
+                    .ilu
+                    .as_mut()
+                    .is_some_and(|ilu| ilu.update(&self.values));
+                if !built {
                     return self.factorize_direct();
                 }
                 self.counts.krylov.preconditioners += 1;
@@ -314,6 +333,16 @@ impl SparseSolver {
                 &mut self.rhs,
                 &mut self.counts.krylov,
             ),
+            (Preconditioner::Ilu0, ..) => match &self.ilu {
+                Some(ilu) => krylov.solve(
+                    matrix,
+                    self.symmetric,
+                    Ilu0Ref(ilu),
+                    &mut self.rhs,
+                    &mut self.counts.krylov,
+                ),
+                None => Outcome::Failed,
+            },
             (_, Some(Factored::Cholesky), _) => krylov.solve(
                 matrix,
                 self.symmetric,
@@ -392,6 +421,7 @@ impl Clone for SparseSolver {
             factored: self.factored,
             skip_cholesky: self.skip_cholesky,
             krylov: self.krylov.clone(),
+            ilu: self.ilu.clone(),
             jacobi: self.jacobi.clone(),
             symmetric: self.symmetric,
             iterative: self.iterative,
@@ -442,6 +472,7 @@ mod tests {
             direct.substitute();
             for preconditioner in [
                 Preconditioner::BlockJacobi,
+                Preconditioner::Ilu0,
                 Preconditioner::Factorization { refresh_above: 5 },
             ] {
                 let mut krylov = SparseSolver::new(n, &entries);
