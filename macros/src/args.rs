@@ -7,6 +7,7 @@ use syn::{Expr, Ident, Lit};
 use crate::errors::Errors;
 
 /// What the macro knows of a method: enough to reject a model it cannot integrate.
+#[derive(Clone, Copy)]
 pub(crate) struct MethodInfo {
     /// The `odyn::Method` variant.
     pub(crate) name: &'static str,
@@ -18,45 +19,29 @@ pub(crate) struct MethodInfo {
     pub(crate) needs_jacobian: bool,
 }
 
-/// What a method needs: nothing beyond f, a position/velocity split, forces free of velocities
-/// (and a split), or the Jacobian.
-#[derive(Clone, Copy)]
-enum Needs {
-    F,
-    Split,
-    VelocityFree,
-    Jacobian,
-}
-
-const fn method(name: &'static str, needs: Needs, adaptive: bool) -> MethodInfo {
+const fn method(row: odyn_methods::MethodRow) -> MethodInfo {
+    use odyn_methods::Needs;
     MethodInfo {
-        name,
-        needs_second_order: matches!(needs, Needs::Split | Needs::VelocityFree),
-        needs_velocity_free_forces: matches!(needs, Needs::VelocityFree),
-        adaptive,
-        needs_jacobian: matches!(needs, Needs::Jacobian),
+        name: row.variant,
+        needs_second_order: matches!(row.needs, Needs::Split | Needs::VelocityFree),
+        needs_velocity_free_forces: matches!(row.needs, Needs::VelocityFree),
+        adaptive: row.adaptive,
+        needs_jacobian: matches!(row.needs, Needs::Jacobian),
     }
 }
 
-/// The methods an attribute may name, mirroring `odyn::Method::info` (the integration test
-/// `tests/methods.rs` checks that the two tables agree).
-const METHODS: [MethodInfo; 15] = [
-    method("ExplicitEuler", Needs::F, false),
-    method("SymplecticEuler", Needs::Split, false),
-    method("PositionVerlet", Needs::VelocityFree, false),
-    method("VelocityVerlet", Needs::Split, false),
-    method("Leapfrog", Needs::Split, false),
-    method("Yoshida4", Needs::VelocityFree, false),
-    method("Yoshida6", Needs::VelocityFree, false),
-    method("KahanLi6", Needs::VelocityFree, false),
-    method("Rk4", Needs::F, false),
-    method("ImplicitEuler", Needs::Jacobian, false),
-    method("Tsit5", Needs::F, true),
-    method("Dop853", Needs::F, true),
-    method("Rosenbrock23", Needs::Jacobian, true),
-    method("Rodas5P", Needs::Jacobian, true),
-    method("Bdf", Needs::Jacobian, true),
-];
+/// The methods an attribute may name: the rows of the one table of methods (`odyn-methods`),
+/// which `odyn::Method` is generated from too.
+const METHODS: [MethodInfo; odyn_methods::METHODS.len()] = {
+    let rows = odyn_methods::METHODS;
+    let mut out = [method(rows[0]); odyn_methods::METHODS.len()];
+    let mut i = 1;
+    while i < rows.len() {
+        out[i] = method(rows[i]);
+        i += 1;
+    }
+    out
+};
 
 /// The parsed arguments.
 #[derive(Default)]

@@ -5,61 +5,70 @@ use std::str::FromStr;
 
 use crate::Error;
 
-/// An integration method, chosen at run time.
-///
-/// The core is statically dispatched (see [`crate::integrators`]); this enum is the edge where a
-/// user, a CLI flag or an attribute picks one. Each variant documents its order and source; what
-/// each needs and promises is one row of [`Method::info`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-#[non_exhaustive]
-pub enum Method {
-    /// Forward Euler, order 1; gains energy on oscillators (Hairer, Lubich & Wanner 2006, §I.1).
-    ExplicitEuler,
-    /// Semi-implicit (symplectic) Euler, velocity first, order 1; bounded energy (HLW 2006, §I.1.2).
-    SymplecticEuler,
-    /// Position (Störmer) Verlet, order 2; needs velocity-free forces (Verlet 1967).
-    PositionVerlet,
-    /// Velocity Verlet, order 2; bounded energy (Swope et al. 1982).
-    VelocityVerlet,
-    /// Leapfrog, kick-drift-kick, order 2; bounded energy (HLW 2006, §I.3.1).
-    Leapfrog,
-    /// Yoshida's composition of three leapfrog substeps, order 4; bounded energy (Yoshida 1990).
-    /// Needs velocity-free forces.
-    Yoshida4,
-    /// Yoshida's composition of seven leapfrog substeps (solution A), order 6; bounded energy
-    /// (Yoshida 1990). Needs velocity-free forces.
-    Yoshida6,
-    /// Kahan & Li's optimised composition of nine leapfrog substeps, order 6; bounded energy
-    /// (Kahan & Li 1997). Needs velocity-free forces.
-    KahanLi6,
-    /// Classical fourth-order Runge–Kutta, order 4; slow secular energy drift (Kutta 1901).
-    Rk4,
-    /// Implicit (backward) Euler with Newton's method, order 1; A-stable, loses energy
-    /// (Hairer & Wanner 1996, §IV.3). Needs the generated Jacobian.
-    ImplicitEuler,
-    /// Tsitouras' Runge–Kutta pair, order 5(4), adaptive, dense output of order 4
-    /// (Tsitouras 2011).
-    Tsit5,
-    /// Dormand & Prince's order-8 method with Hairer's 8(5,3) error estimate, adaptive, dense
-    /// output of order 7 (Hairer, Nørsett & Wanner 1993, §II.10).
-    Dop853,
-    /// The modified Rosenbrock method of MATLAB's `ode23s`, order 2(3), L-stable, adaptive, for
-    /// stiff problems at loose tolerances (Shampine & Reichelt 1997). Needs the generated
-    /// Jacobian.
-    Rosenbrock23,
-    /// Steinebach's Rosenbrock–Wanner method, order 5(4), stiffly accurate, L-stable, adaptive,
-    /// dense output of order 4 (Steinebach 2023). Needs the generated Jacobian.
-    Rodas5P,
-    /// The variable-order (1–5), variable-step numerical differentiation formulas of MATLAB's
-    /// `ode15s` as SciPy's `BDF` implements them, with the Jacobian and its factorization reused
-    /// across steps; dense output of the step's order (Shampine & Reichelt 1997). Order 2 at a
-    /// fixed step, where it stays at the A-stable orders. Needs the generated Jacobian.
-    Bdf,
+/// Makes [`Method`], [`Method::ALL`] and [`Method::info`] from the rows of
+/// `odyn_methods::for_each_method!`, the one table of methods.
+macro_rules! define_methods {
+    (
+        []
+        $(
+            $(#[$doc:meta])*
+            $variant:ident {
+                module: $module:ident, name: $name:literal, label: $label:literal,
+                order: $order:literal, adaptive: $adaptive:literal, needs: $needs:ident,
+                stability: $stability:ident,
+            }
+        )*
+    ) => {
+        /// An integration method, chosen at run time.
+        ///
+        /// The core is statically dispatched (see [`crate::integrators`]); this enum is the edge
+        /// where a user, a CLI flag or an attribute picks one. Each variant documents its order
+        /// and source; what each needs and promises is one row of [`Method::info`]. Variants,
+        /// their docs and their rows come from the one table of methods (the `odyn-methods`
+        /// crate).
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+        #[non_exhaustive]
+        pub enum Method {
+            $($(#[$doc])* $variant,)*
+        }
+
+        impl Method {
+            /// Every method, in the order of the comparison table.
+            pub const ALL: [Method; [$(stringify!($variant)),*].len()] = [$(Method::$variant,)*];
+
+            /// The method's row of the table.
+            pub const fn info(self) -> MethodInfo {
+                match self {
+                    $(Method::$variant => MethodInfo {
+                        name: $name,
+                        variant: stringify!($variant),
+                        label: $label,
+                        order: $order,
+                        adaptive: $adaptive,
+                        needs_second_order: matches!(
+                            odyn_methods::Needs::$needs,
+                            odyn_methods::Needs::Split | odyn_methods::Needs::VelocityFree
+                        ),
+                        needs_jacobian: matches!(
+                            odyn_methods::Needs::$needs,
+                            odyn_methods::Needs::Jacobian
+                        ),
+                        needs_velocity_free_forces: matches!(
+                            odyn_methods::Needs::$needs,
+                            odyn_methods::Needs::VelocityFree
+                        ),
+                    },)*
+                }
+            }
+        }
+    };
 }
 
+odyn_methods::for_each_method!(define_methods);
+
 /// What a [`Method`] is and needs: one row of the table every part of odyn reads (the runner,
-/// the stability explorer, work-precision studies, and the `#[system]` attribute's list, which a
-/// test keeps in step with this one).
+/// the stability explorer, work-precision studies; the `#[system]` attribute reads the same
+/// table).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct MethodInfo {
     /// The snake-case name used in CSV files and on the command line (`symplectic_euler`).
@@ -80,123 +89,7 @@ pub struct MethodInfo {
     pub needs_velocity_free_forces: bool,
 }
 
-const fn row(
-    name: &'static str,
-    variant: &'static str,
-    label: &'static str,
-    order: u32,
-    adaptive: bool,
-    needs: (bool, bool, bool),
-) -> MethodInfo {
-    MethodInfo {
-        name,
-        variant,
-        label,
-        order,
-        adaptive,
-        needs_second_order: needs.0,
-        needs_jacobian: needs.1,
-        needs_velocity_free_forces: needs.2,
-    }
-}
-
-/// Needs: (second order, Jacobian, velocity-free forces).
-const NOTHING: (bool, bool, bool) = (false, false, false);
-const SPLIT: (bool, bool, bool) = (true, false, false);
-const JACOBIAN: (bool, bool, bool) = (false, true, false);
-const VELOCITY_FREE: (bool, bool, bool) = (true, false, true);
-
 impl Method {
-    /// Every method, in the order of the comparison table.
-    pub const ALL: [Method; 15] = [
-        Method::ExplicitEuler,
-        Method::SymplecticEuler,
-        Method::PositionVerlet,
-        Method::VelocityVerlet,
-        Method::Leapfrog,
-        Method::Yoshida4,
-        Method::Yoshida6,
-        Method::KahanLi6,
-        Method::Rk4,
-        Method::ImplicitEuler,
-        Method::Tsit5,
-        Method::Dop853,
-        Method::Rosenbrock23,
-        Method::Rodas5P,
-        Method::Bdf,
-    ];
-
-    /// The method's row of the table.
-    pub const fn info(self) -> MethodInfo {
-        match self {
-            Method::ExplicitEuler => row(
-                "explicit_euler",
-                "ExplicitEuler",
-                "Explicit Euler",
-                1,
-                false,
-                NOTHING,
-            ),
-            Method::SymplecticEuler => row(
-                "symplectic_euler",
-                "SymplecticEuler",
-                "Symplectic Euler",
-                1,
-                false,
-                SPLIT,
-            ),
-            Method::PositionVerlet => row(
-                "position_verlet",
-                "PositionVerlet",
-                "Position Verlet",
-                2,
-                false,
-                (true, false, true),
-            ),
-            Method::VelocityVerlet => row(
-                "velocity_verlet",
-                "VelocityVerlet",
-                "Velocity Verlet",
-                2,
-                false,
-                SPLIT,
-            ),
-            Method::Leapfrog => row("leapfrog", "Leapfrog", "Leapfrog", 2, false, SPLIT),
-            Method::Yoshida4 => row("yoshida4", "Yoshida4", "Yoshida 4", 4, false, VELOCITY_FREE),
-            Method::Yoshida6 => row("yoshida6", "Yoshida6", "Yoshida 6", 6, false, VELOCITY_FREE),
-            Method::KahanLi6 => row(
-                "kahan_li6",
-                "KahanLi6",
-                "Kahan–Li 6",
-                6,
-                false,
-                VELOCITY_FREE,
-            ),
-            Method::Rk4 => row("rk4", "Rk4", "RK4", 4, false, NOTHING),
-            Method::ImplicitEuler => row(
-                "implicit_euler",
-                "ImplicitEuler",
-                "Implicit Euler",
-                1,
-                false,
-                JACOBIAN,
-            ),
-            Method::Tsit5 => row("tsit5", "Tsit5", "Tsit5", 5, true, NOTHING),
-            Method::Dop853 => row("dop853", "Dop853", "DOP853", 8, true, NOTHING),
-            Method::Rosenbrock23 => row(
-                "rosenbrock23",
-                "Rosenbrock23",
-                "Rosenbrock23",
-                2,
-                true,
-                JACOBIAN,
-            ),
-            Method::Rodas5P => row("rodas5p", "Rodas5P", "Rodas5P", 5, true, JACOBIAN),
-            // Variable order 1–5 when adaptive; a fixed step rises to order 2 only.
-            Method::Bdf => row("bdf", "Bdf", "BDF", 2, true, JACOBIAN),
-        }
-    }
-
     /// The snake-case name used in CSV files and on the command line (`symplectic_euler`).
     pub const fn name(self) -> &'static str {
         self.info().name
@@ -254,5 +147,28 @@ impl FromStr for Method {
                     format!("unknown method `{s}`; supported: {}", names.join(", ")),
                 )
             })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The enum, its rows and the macro's list come from one table: the same variants, in the
+    /// same order, with the same facts.
+    #[test]
+    fn the_enum_and_the_macro_read_the_same_table() {
+        assert_eq!(Method::ALL.len(), odyn_methods::METHODS.len());
+        for (method, row) in Method::ALL.iter().zip(odyn_methods::METHODS) {
+            let info = method.info();
+            assert_eq!(info.variant, row.variant);
+            assert_eq!(info.name, row.name);
+            assert_eq!(info.adaptive, row.adaptive);
+            assert_eq!(
+                info.needs_jacobian,
+                row.needs == odyn_methods::Needs::Jacobian
+            );
+            assert_eq!(info.name.parse::<Method>().ok(), Some(*method));
+        }
     }
 }

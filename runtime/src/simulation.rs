@@ -1,14 +1,44 @@
 //! [`Simulation`]: configure a run, pick the integrator at run time, record a [`Trajectory`].
 
 use crate::drive::{Driver, Progress, Recording, StepControl};
-use crate::integrators::{
-    Bdf, Dop853, ExplicitEuler, ImplicitEuler, Integrator, KahanLi6, Leapfrog, PositionVerlet, Rk4,
-    Rodas5P, Rosenbrock23, SymplecticEuler, Tsit5, VelocityVerlet, Yoshida4, Yoshida6,
-};
+use crate::integrators::Integrator;
 use crate::stepper::check_dt;
 use crate::{
     Error, Event, Method, Model, NewtonOptions, Result, SecondOrder, State, Tolerances, Trajectory,
 };
+
+/// The run's dispatch from the one table of methods: each [`Method`] drives its integrator
+/// type (same name, in [`crate::integrators`]) on the model, its second-order split or its
+/// Jacobian, as the row's `needs` says. Exhaustive by construction.
+macro_rules! dispatch {
+    (
+        [$run:ident $plan:ident $method:ident]
+        $(
+            $(#[$doc:meta])*
+            $variant:ident {
+                module: $module:ident, name: $name:literal, label: $label:literal,
+                order: $order:literal, adaptive: $adaptive:literal, needs: $needs:ident,
+                stability: $stability:ident,
+            }
+        )*
+    ) => {
+        match $method {
+            $(Method::$variant => dispatch!(@drive $needs $run $plan $variant),)*
+        }
+    };
+    (@drive Nothing $run:ident $plan:ident $variant:ident) => {
+        $plan.drive::<M, crate::integrators::$variant<_>>($run.model)
+    };
+    (@drive Split $run:ident $plan:ident $variant:ident) => {
+        $plan.drive::<_, crate::integrators::$variant<_>>($run.split()?)
+    };
+    (@drive VelocityFree $run:ident $plan:ident $variant:ident) => {
+        $plan.drive::<_, crate::integrators::$variant<_>>($run.split()?)
+    };
+    (@drive Jacobian $run:ident $plan:ident $variant:ident) => {
+        $plan.drive::<_, crate::integrators::$variant<_>>($run.jacobian()?)
+    };
+}
 
 /// How long a run lasts.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -295,24 +325,9 @@ impl<'m, M: Model> Simulation<'m, M> {
     /// [`Simulation::run_partial`] on the current stack.
     fn run_here(&self) -> Result<(Trajectory<M::State>, Option<Error>)> {
         let plan = self.plan()?;
-        // Exhaustive: a new method must be given its integrator here, never another's.
-        match self.options.method {
-            Method::ExplicitEuler => plan.drive::<M, ExplicitEuler<_>>(self.model),
-            Method::Rk4 => plan.drive::<M, Rk4<_>>(self.model),
-            Method::Tsit5 => plan.drive::<M, Tsit5<_>>(self.model),
-            Method::Dop853 => plan.drive::<M, Dop853<_>>(self.model),
-            Method::SymplecticEuler => plan.drive::<_, SymplecticEuler<_>>(self.split()?),
-            Method::PositionVerlet => plan.drive::<_, PositionVerlet<_>>(self.split()?),
-            Method::VelocityVerlet => plan.drive::<_, VelocityVerlet<_>>(self.split()?),
-            Method::Leapfrog => plan.drive::<_, Leapfrog<_>>(self.split()?),
-            Method::Yoshida4 => plan.drive::<_, Yoshida4<_>>(self.split()?),
-            Method::Yoshida6 => plan.drive::<_, Yoshida6<_>>(self.split()?),
-            Method::KahanLi6 => plan.drive::<_, KahanLi6<_>>(self.split()?),
-            Method::ImplicitEuler => plan.drive::<_, ImplicitEuler<_>>(self.jacobian()?),
-            Method::Rosenbrock23 => plan.drive::<_, Rosenbrock23<_>>(self.jacobian()?),
-            Method::Rodas5P => plan.drive::<_, Rodas5P<_>>(self.jacobian()?),
-            Method::Bdf => plan.drive::<_, Bdf<_>>(self.jacobian()?),
-        }
+        let method = self.options.method;
+        let run = self;
+        odyn_methods::for_each_method!(dispatch, run, plan, method)
     }
 
     /// The model as a second-order one, checked against what the method needs.

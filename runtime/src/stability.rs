@@ -274,19 +274,19 @@ where
 /// [`predicted_limit`] for each family's rule).
 fn limit_on(points: &[Complex<f64>], fastest: f64, method: Method) -> f64 {
     let left_half = points.iter().all(|l| l.re <= 1e-12 * fastest);
-    match method {
+    use crate::integrators::StabilityRule;
+    match crate::integrators::stability_rule(method) {
         // BDF at a fixed step stays at its A-stable orders 1 and 2.
-        Method::ImplicitEuler | Method::Rosenbrock23 | Method::Rodas5P | Method::Bdf => {
-            if left_half { f64::INFINITY } else { 0.0 }
+        StabilityRule::AStable => {
+            if left_half {
+                f64::INFINITY
+            } else {
+                0.0
+            }
         }
-        Method::SymplecticEuler
-        | Method::PositionVerlet
-        | Method::VelocityVerlet
-        | Method::Leapfrog => 2.0 / fastest,
-        Method::Yoshida4 | Method::Yoshida6 | Method::KahanLi6 => {
-            crate::integrators::composition_limit(method) / fastest
-        }
-        Method::ExplicitEuler | Method::Rk4 | Method::Tsit5 | Method::Dop853 => {
+        StabilityRule::Verlet => 2.0 / fastest,
+        StabilityRule::Composition => crate::integrators::composition_limit(method) / fastest,
+        StabilityRule::RungeKutta => {
             let polynomial = crate::integrators::stability_polynomial(method);
             points
                 .iter()

@@ -8,6 +8,11 @@ use crate::{Controller, Method, Model, NewtonOptions, Result, State, Stats};
 /// Stages kept: the 12 of the step, k₁₃ = f(tₙ₊₁, yₙ₊₁), and the 3 of the dense output.
 const KEPT: usize = 16;
 
+/// R(z) from the tableau: the stability polynomial the stability explorer reads.
+pub(crate) fn stability_polynomial() -> Vec<f64> {
+    super::polynomial_from_tableau(&A, &B)
+}
+
 /// DOP853, the explicit Runge–Kutta method of order 8 of Dormand & Prince (1980) with the error
 /// estimate and dense output of Hairer's code DOP853:
 ///

@@ -3,6 +3,11 @@
 use super::{Integrator, Step, set_axpy};
 use crate::{Method, Model, NewtonOptions, Result, State, Stats};
 
+/// R(z) = 1 + z: the stability polynomial the stability explorer reads.
+pub(crate) fn stability_polynomial() -> Vec<f64> {
+    vec![1.0, 1.0]
+}
+
 /// Explicit (forward) Euler: yₙ₊₁ = yₙ + h·f(tₙ, yₙ).
 ///
 /// For a second-order model the position moves with the *old* velocity: xₙ₊₁ = xₙ + h·vₙ,

@@ -29,6 +29,9 @@ use crate::Method;
 /// Integration*, 2nd ed., 2006, §V.3, eq. (3.12).
 pub type KahanLi6<S> = Composition<S, KahanLi6Weights>;
 
+/// The weights the stability explorer reads.
+pub(crate) type Substeps = KahanLi6Weights;
+
 /// The weights of [`KahanLi6`].
 #[derive(Clone, Copy, Debug)]
 pub struct KahanLi6Weights;

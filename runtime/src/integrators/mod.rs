@@ -36,41 +36,90 @@
 //! An integrator is created once per run by [`Integrator::start`], which allocates its scratch
 //! states; attempts then allocate nothing.
 
-mod bdf;
 mod composition;
-mod dop853;
-mod explicit_euler;
-mod implicit_euler;
-mod kahan_li6;
-mod leapfrog;
 mod linearization;
-mod position_verlet;
-mod rk4;
-mod rodas5p;
-mod rosenbrock23;
-mod symplectic_euler;
 mod tableaux;
-mod tsit5;
-mod velocity_verlet;
-mod yoshida4;
-mod yoshida6;
 
-pub use bdf::Bdf;
 pub use composition::{Composition, Weights};
-pub use dop853::Dop853;
-pub use explicit_euler::ExplicitEuler;
-pub use implicit_euler::ImplicitEuler;
-pub use kahan_li6::{KahanLi6, KahanLi6Weights};
-pub use leapfrog::Leapfrog;
-pub use position_verlet::PositionVerlet;
-pub use rk4::Rk4;
-pub use rodas5p::Rodas5P;
-pub use rosenbrock23::Rosenbrock23;
-pub use symplectic_euler::SymplecticEuler;
-pub use tsit5::Tsit5;
-pub use velocity_verlet::VelocityVerlet;
-pub use yoshida4::{Yoshida4, Yoshida4Weights};
-pub use yoshida6::{Yoshida6, Yoshida6Weights};
+pub use kahan_li6::KahanLi6Weights;
+pub use yoshida4::Yoshida4Weights;
+pub use yoshida6::Yoshida6Weights;
+
+/// How the stability explorer predicts a method's limit (the `stability` column of the table of
+/// methods): from the stability polynomial of an explicit Runge–Kutta method, ω·dt < 2 for the
+/// Verlet family, from a composition's weights, or any dt on a left-half-plane spectrum.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum StabilityRule {
+    RungeKutta,
+    Verlet,
+    Composition,
+    AStable,
+}
+
+/// Declares every integrator's module (`mod <module>; pub use <module>::<Variant>;`) and the
+/// per-method stability facts from the one table of methods (`odyn_methods::for_each_method!`).
+macro_rules! declare_integrators {
+    (
+        []
+        $(
+            $(#[$doc:meta])*
+            $variant:ident {
+                module: $module:ident, name: $name:literal, label: $label:literal,
+                order: $order:literal, adaptive: $adaptive:literal, needs: $needs:ident,
+                stability: $stability:ident,
+            }
+        )*
+    ) => {
+        $(
+            mod $module;
+            pub use $module::$variant;
+        )*
+
+        /// The rule the stability explorer predicts `method`'s limit by.
+        pub(crate) const fn stability_rule(method: Method) -> StabilityRule {
+            match method {
+                $(Method::$variant => StabilityRule::$stability,)*
+            }
+        }
+
+        /// The coefficients γⱼ of the stability polynomial R(z) = Σⱼ γⱼ zʲ of an explicit
+        /// Runge–Kutta method, from its module's `stability_polynomial()` (Hairer & Wanner,
+        /// *Solving ODEs II*, §IV.2, eq. (2.4)); empty for methods that are not explicit
+        /// Runge–Kutta methods.
+        pub(crate) fn stability_polynomial(method: Method) -> Vec<f64> {
+            match method {
+                $(Method::$variant => declare_integrators!(@polynomial $stability $module),)*
+            }
+        }
+
+        /// The largest ω·h for which a composition method is stable on ẍ = −ω²x, from its
+        /// module's `Substeps` weights (0 for other methods).
+        pub(crate) fn composition_limit(method: Method) -> f64 {
+            match method {
+                $(Method::$variant => declare_integrators!(@composition $stability $module),)*
+            }
+        }
+    };
+    (@polynomial RungeKutta $module:ident) => { $module::stability_polynomial() };
+    (@polynomial $other:ident $module:ident) => { Vec::new() };
+    (@composition Composition $module:ident) => {
+        composition::oscillator_limit(<$module::Substeps as Weights>::WEIGHTS)
+    };
+    (@composition $other:ident $module:ident) => { 0.0 };
+}
+
+odyn_methods::for_each_method!(declare_integrators);
+
+/// The coefficients of R(z) from an explicit tableau: γⱼ = bᵀAʲ⁻¹𝟙 (γ₀ = 1).
+pub(crate) fn polynomial_from_tableau<const S: usize>(a: &[[f64; S]; S], b: &[f64; S]) -> Vec<f64> {
+    let mut v = [1.0; S];
+    let mut gamma = vec![1.0];
+    for _ in 0..S {
+        gamma.push(b.iter().zip(&v).map(|(bi, vi)| bi * vi).sum());
+        v = std::array::from_fn(|i| a[i].iter().zip(&v).map(|(aij, vj)| aij * vj).sum());
+    }
+    gamma
+}
 
 use crate::drive::DenseStep;
 use crate::{Controller, Method, Model, NewtonOptions, Result, State, Stats, Tolerances};
@@ -255,39 +304,6 @@ impl<S> Step<'_, S> {
     }
 }
 
-/// Coefficients γ₀ … γ_s of the stability polynomial R(z) = Σₖ γₖzᵏ of an explicit Runge–Kutta
-/// method — the factor R(hλ) a step multiplies y by on y′ = λy — with γ₀ = 1 and γₖ = bᵀAᵏ⁻¹𝟙
-/// (Hairer & Wanner, *Solving ODEs II*, §IV.2, eq. (2.4)); empty for methods that are not
-/// explicit Runge–Kutta methods.
-pub(crate) fn stability_polynomial(method: Method) -> Vec<f64> {
-    fn from_tableau<const S: usize>(a: &[[f64; S]; S], b: &[f64; S]) -> Vec<f64> {
-        let mut v = [1.0; S];
-        let mut gamma = vec![1.0];
-        for _ in 0..S {
-            gamma.push(b.iter().zip(&v).map(|(bi, vi)| bi * vi).sum());
-            v = std::array::from_fn(|i| a[i].iter().zip(&v).map(|(aij, vj)| aij * vj).sum());
-        }
-        gamma
-    }
-    match method {
-        Method::ExplicitEuler => vec![1.0, 1.0],
-        Method::Rk4 => vec![1.0, 1.0, 0.5, 1.0 / 6.0, 1.0 / 24.0],
-        Method::Tsit5 => from_tableau(&tableaux::tsit5::A, &tableaux::tsit5::B),
-        Method::Dop853 => from_tableau(&tableaux::dop853::A, &tableaux::dop853::B),
-        Method::SymplecticEuler
-        | Method::PositionVerlet
-        | Method::VelocityVerlet
-        | Method::Leapfrog
-        | Method::Yoshida4
-        | Method::Yoshida6
-        | Method::KahanLi6
-        | Method::ImplicitEuler
-        | Method::Rosenbrock23
-        | Method::Rodas5P
-        | Method::Bdf => Vec::new(),
-    }
-}
-
 /// y ← y + a·x.
 #[inline(always)]
 fn axpy(y: &mut [f64], a: f64, x: &[f64]) {
@@ -326,15 +342,4 @@ fn stage<S: crate::State>(out: &mut S, y: &S, h: f64, a: &[f64], k: &[S]) {
 #[inline(always)]
 fn weighted<S: crate::State>(w: &[f64], k: &[S], i: usize) -> f64 {
     w.iter().zip(k).map(|(wj, kj)| wj * kj.as_slice()[i]).sum()
-}
-
-/// The largest ω·h for which a composition method is stable on ẍ = −ω²x (0 for other methods).
-pub(crate) fn composition_limit(method: Method) -> f64 {
-    let weights = match method {
-        Method::Yoshida4 => Yoshida4Weights::WEIGHTS,
-        Method::Yoshida6 => Yoshida6Weights::WEIGHTS,
-        Method::KahanLi6 => KahanLi6Weights::WEIGHTS,
-        _ => return 0.0,
-    };
-    composition::oscillator_limit(weights)
 }

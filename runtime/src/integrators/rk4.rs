@@ -3,6 +3,12 @@
 use super::{Integrator, Step, copies, set_axpy};
 use crate::{Method, Model, NewtonOptions, Result, State, Stats};
 
+/// R(z) = 1 + z + z²/2 + z³/6 + z⁴/24 (the Taylor polynomial of eᶻ): the stability
+/// polynomial the stability explorer reads.
+pub(crate) fn stability_polynomial() -> Vec<f64> {
+    vec![1.0, 1.0, 0.5, 1.0 / 6.0, 1.0 / 24.0]
+}
+
 /// Classical Runge–Kutta: k₁ = f(tₙ, yₙ), k₂ = f(tₙ + h/2, yₙ + h/2·k₁),
 /// k₃ = f(tₙ + h/2, yₙ + h/2·k₂), k₄ = f(tₙ + h, yₙ + h·k₃),
 /// yₙ₊₁ = yₙ + h/6·(k₁ + 2k₂ + 2k₃ + k₄).

@@ -5,6 +5,11 @@ use super::{Integrator, Step, axpy, copies, stage, weighted};
 use crate::drive::DenseStep;
 use crate::{Controller, Method, Model, NewtonOptions, Result, State, Stats};
 
+/// R(z) from the tableau: the stability polynomial the stability explorer reads.
+pub(crate) fn stability_polynomial() -> Vec<f64> {
+    super::polynomial_from_tableau(&A, &B)
+}
+
 /// Tsit5, the explicit Runge–Kutta pair of order 5(4) by Tsitouras (2011): seven stages,
 ///
 /// kᵢ = f(tₙ + cᵢh, yₙ + h·Σⱼ aᵢⱼkⱼ), yₙ₊₁ = yₙ + h·Σᵢ bᵢkᵢ,

@@ -19,6 +19,9 @@ use crate::Method;
 /// Lubich & Wanner, *Geometric Numerical Integration*, 2nd ed., 2006, §II.4, eq. (4.4).
 pub type Yoshida4<S> = Composition<S, Yoshida4Weights>;
 
+/// The weights the stability explorer reads.
+pub(crate) type Substeps = Yoshida4Weights;
+
 /// The weights of [`Yoshida4`].
 #[derive(Clone, Copy, Debug)]
 pub struct Yoshida4Weights;

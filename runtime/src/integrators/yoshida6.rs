@@ -24,6 +24,9 @@ use crate::Method;
 /// Hairer, Lubich & Wanner, *Geometric Numerical Integration*, 2nd ed., 2006, §V.3, eq. (3.11).
 pub type Yoshida6<S> = Composition<S, Yoshida6Weights>;
 
+/// The weights the stability explorer reads.
+pub(crate) type Substeps = Yoshida6Weights;
+
 /// The weights of [`Yoshida6`].
 #[derive(Clone, Copy, Debug)]
 pub struct Yoshida6Weights;
