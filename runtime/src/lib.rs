@@ -10,6 +10,7 @@
 //! liquid as particles with neighbours found every step, and [`fluids`] a grid fluid (Stable
 //! Fluids). Each module's docs say how it fits beside the `#[system]` models.
 
+mod checks;
 pub mod clock;
 mod dense;
 pub mod drive;

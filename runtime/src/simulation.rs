@@ -1,8 +1,8 @@
 //! [`Simulation`]: configure a run, pick the integrator at run time, record a [`Trajectory`].
 
+use crate::checks::{check_dt, divergence_limit};
 use crate::drive::{Driver, Progress, Recording, StepControl};
 use crate::integrators::Integrator;
-use crate::stepper::check_dt;
 use crate::{
     Error, Event, Method, Model, NewtonOptions, Result, SecondOrder, State, Tolerances, Trajectory,
 };
@@ -117,25 +117,6 @@ impl Default for RunOptions {
             event_tolerance: 1e-12,
             max_events: 100_000,
         }
-    }
-}
-
-/// The divergence limit of a run from `state`: the `option` given (see
-/// [`RunOptions::divergence_limit`]) or the default. An infinite limit still stops at a
-/// non-finite state: it is kept as the largest finite number.
-///
-/// Errors: [`Error::InvalidInput`] for a limit that is not positive (NaN included).
-pub(crate) fn divergence_limit<S: State>(option: Option<f64>, state: &S) -> Result<f64> {
-    match option {
-        None => {
-            let scale = state.as_slice().iter().fold(1.0f64, |m, x| m.max(x.abs()));
-            Ok((1e10 * scale).min(f64::MAX))
-        }
-        Some(limit) if limit > 0.0 => Ok(limit.min(f64::MAX)),
-        Some(limit) => Err(Error::invalid(
-            "divergence_limit",
-            format!("must be positive, got {limit:?}"),
-        )),
     }
 }
 

@@ -1,5 +1,6 @@
 //! [`Stepper`]: a model, an integrator and a state, advanced one checked step at a time.
 
+use crate::checks::check_dt;
 use crate::drive::{Driver, Recording};
 use crate::{Error, Integrator, Model, NewtonOptions, Result, State, Stats};
 
@@ -58,7 +59,7 @@ impl<'m, M: Model, I: Integrator<M>> Stepper<'m, M, I> {
         divergence_limit: Option<f64>,
     ) -> Result<Self> {
         check_dt(dt)?;
-        let limit = crate::simulation::divergence_limit(divergence_limit, &state)?;
+        let limit = crate::checks::divergence_limit(divergence_limit, &state)?;
         let quiet = Recording {
             every: 0,
             save_at: None,
@@ -193,16 +194,5 @@ impl<M: Model, I: Integrator<M>> std::fmt::Debug for Stepper<'_, M, I> {
             .field("dt", &self.dt)
             .field("steps", &self.steps)
             .finish_non_exhaustive()
-    }
-}
-
-pub(crate) fn check_dt(dt: f64) -> Result<()> {
-    if dt.is_finite() && dt > 0.0 {
-        Ok(())
-    } else {
-        Err(Error::invalid(
-            "dt",
-            format!("must be finite and positive, got {dt:?}"),
-        ))
     }
 }

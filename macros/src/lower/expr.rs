@@ -20,17 +20,6 @@ pub(super) enum Arith {
     Div,
 }
 
-/// The operator of `a op= b`.
-pub(super) fn compound(op: &BinOp) -> Option<Arith> {
-    match op {
-        BinOp::AddAssign(_) => Some(Arith::Add),
-        BinOp::SubAssign(_) => Some(Arith::Sub),
-        BinOp::MulAssign(_) => Some(Arith::Mul),
-        BinOp::DivAssign(_) => Some(Arith::Div),
-        _ => None,
-    }
-}
-
 /// The component a field access names: `.x` … `.w` of a vector, `.0` … of a tuple.
 pub(super) fn component_index(f: &ExprField) -> Option<usize> {
     match &f.member {

@@ -212,3 +212,16 @@ impl<'m> Lowering<'m> {
         syn::Error::new_spanned(tokens, format!("{message} in `{}`", self.function))
     }
 }
+
+/// The operator of `a op= b`.
+fn compound(op: &syn::BinOp) -> Option<expr::Arith> {
+    use expr::Arith;
+    use syn::BinOp;
+    match op {
+        BinOp::AddAssign(_) => Some(Arith::Add),
+        BinOp::SubAssign(_) => Some(Arith::Sub),
+        BinOp::MulAssign(_) => Some(Arith::Mul),
+        BinOp::DivAssign(_) => Some(Arith::Div),
+        _ => None,
+    }
+}

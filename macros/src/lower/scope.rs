@@ -225,7 +225,7 @@ pub(super) fn assigned(lowering: &Lowering<'_>, e: &Expr) -> Vec<Ident> {
         fn visit_expr(&mut self, e: &'ast Expr) {
             match e {
                 Expr::Assign(a) => self.target(&a.left),
-                Expr::Binary(b) if super::expr::compound(&b.op).is_some() => self.target(&b.left),
+                Expr::Binary(b) if super::compound(&b.op).is_some() => self.target(&b.left),
                 Expr::MethodCall(m) => self.target(&m.receiver),
                 Expr::Reference(r) if r.mutability.is_some() => self.target(&r.expr),
                 _ => {}

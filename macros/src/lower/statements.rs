@@ -105,8 +105,8 @@ impl Lowering<'_> {
                 let value = self.expr(&assign.right)?;
                 self.assign(stmt, &assign.left, |_, _| Ok(value), dependent)
             }
-            Stmt::Expr(Expr::Binary(b), _) if super::expr::compound(&b.op).is_some() => {
-                let op = super::expr::compound(&b.op).expect("checked by the guard");
+            Stmt::Expr(Expr::Binary(b), _) if super::compound(&b.op).is_some() => {
+                let op = super::compound(&b.op).expect("checked by the guard");
                 let dependent = self.depends(&b.right);
                 let rhs = self.expr(&b.right)?;
                 let at = b.op.to_token_stream();

@@ -20,8 +20,9 @@ mod events;
 mod stats;
 mod tolerances;
 
+pub use crate::integrators::DenseStep;
 pub use controller::{Controller, StepControl};
-pub use dense::{DenseOutput, DenseStep};
+pub use dense::DenseOutput;
 pub use events::{Action, Direction, Event, EventRecord, StateChange};
 pub use stats::Stats;
 pub use tolerances::{Atol, Tolerances};
@@ -29,6 +30,7 @@ pub use tolerances::{Atol, Tolerances};
 use controller::{Control, initial_step};
 use events::{Outcome, Watch};
 
+use crate::checks::first_outside;
 use crate::integrators::{Integrator, Step};
 use crate::{Error, Model, NewtonOptions, Result, Sample, State};
 
@@ -851,19 +853,4 @@ fn within<S: State>(state: &S, limit: f64) -> bool {
         .as_slice()
         .iter()
         .fold(true, |ok, x| ok & (x.abs() <= limit))
-}
-
-/// The first component that is NaN or whose magnitude exceeds `limit`.
-#[inline]
-pub(crate) fn first_outside<S: State>(state: &S, limit: f64) -> Option<(usize, f64)> {
-    let s = state.as_slice();
-    // One branch-free pass for the common case; locate the culprit only on failure.
-    let ok = s.iter().fold(true, |ok, x| ok & (x.abs() <= limit));
-    if ok {
-        None
-    } else {
-        s.iter()
-            .position(|x| x.is_nan() || x.abs() > limit)
-            .map(|i| (i, s[i]))
-    }
 }

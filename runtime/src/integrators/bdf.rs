@@ -2,7 +2,7 @@
 //! `BDF`, in the numerical differentiation (NDF) form of MATLAB's `ode15s`.
 
 use super::{Integrator, Step, copies};
-use crate::drive::DenseStep;
+use super::DenseStep;
 use crate::{
     Error, Jacobian, Method, NewtonFailure, NewtonMatrix, NewtonOptions, Result, State, Stats,
 };

@@ -2,7 +2,7 @@
 
 use super::tableaux::dop853::{A, A_EXTRA, B, C, C_EXTRA, D, E3, E5, STAGES};
 use super::{Integrator, Step, copies, stage, weighted};
-use crate::drive::DenseStep;
+use super::DenseStep;
 use crate::{Controller, Method, Model, NewtonOptions, Result, State, Stats};
 
 /// Stages kept: the 12 of the step, k₁₃ = f(tₙ₊₁, yₙ₊₁), and the 3 of the dense output.

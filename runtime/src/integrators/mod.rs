@@ -37,10 +37,12 @@
 //! states; attempts then allocate nothing.
 
 mod composition;
+mod dense_step;
 mod linearization;
 mod tableaux;
 
 pub use composition::{Composition, Weights};
+pub use dense_step::DenseStep;
 pub use kahan_li6::KahanLi6Weights;
 pub use yoshida4::Yoshida4Weights;
 pub use yoshida6::Yoshida6Weights;
@@ -121,7 +123,6 @@ pub(crate) fn polynomial_from_tableau<const S: usize>(a: &[[f64; S]; S], b: &[f6
     gamma
 }
 
-use crate::drive::DenseStep;
 use crate::{Controller, Method, Model, NewtonOptions, Result, State, Stats, Tolerances};
 
 /// One integration method, specialised to a model.
@@ -152,7 +153,7 @@ pub trait Integrator<M: Model>: Sized {
         newton: &NewtonOptions,
         stats: &mut Stats,
     ) -> Result<Self> {
-        if let Some((index, value)) = crate::drive::first_outside(y0, f64::MAX) {
+        if let Some((index, value)) = crate::checks::first_outside(y0, f64::MAX) {
             return Err(crate::Error::invalid(
                 format!("initial state `{}`", y0.component_name(index)),
                 format!("must be finite, got {value:?}"),

@@ -3,7 +3,7 @@
 use super::linearization::Linearization;
 use super::tableaux::rodas5p::{A, C, COUPLING, D, GAMMA, H, STAGES};
 use super::{Integrator, Step, axpy, copies};
-use crate::drive::DenseStep;
+use super::DenseStep;
 use crate::{Controller, Jacobian, Method, NewtonOptions, Result, State, Stats};
 
 /// Rodas5P, the Rosenbrock–Wanner method of order 5 of Steinebach (2023), in the W-transformed

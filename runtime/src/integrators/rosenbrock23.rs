@@ -2,7 +2,7 @@
 
 use super::linearization::Linearization;
 use super::{Integrator, Step, axpy, copies, set_axpy};
-use crate::drive::DenseStep;
+use super::DenseStep;
 use crate::{Controller, Jacobian, Method, NewtonOptions, Result, State, Stats};
 
 /// d = 1/(2 + √2), the method's one coefficient (correctly rounded; `1 − 1/√2` in `f64` is one

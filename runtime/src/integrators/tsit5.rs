@@ -2,7 +2,7 @@
 
 use super::tableaux::tsit5::{A, B, BTILDE, C, DENSE, STAGES};
 use super::{Integrator, Step, axpy, copies, stage, weighted};
-use crate::drive::DenseStep;
+use super::DenseStep;
 use crate::{Controller, Method, Model, NewtonOptions, Result, State, Stats};
 
 /// R(z) from the tableau: the stability polynomial the stability explorer reads.

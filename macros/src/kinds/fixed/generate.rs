@@ -6,11 +6,10 @@ use quote::{format_ident, quote, quote_spanned};
 use syn::ItemImpl;
 
 use super::functions::{Function, Functions};
-use super::jacobian::SMALL;
+use super::layout::{inline_hint, state_params, time_param};
 use crate::args::Args;
 use crate::generate::attribute_defaults;
 use crate::model::{Model, Order, Role, Shape};
-use crate::rewrite::state_local;
 
 /// The typed state struct `<Model>State` and its runtime impls.
 pub(crate) fn state(model: &Model<'_>) -> TokenStream {
@@ -204,16 +203,6 @@ pub(crate) fn model_impls(
     }
 }
 
-/// The inlining of a hidden function of `model`: a hint when small, never when big, so a big
-/// body is compiled once rather than into every stage of every integrator.
-pub(super) fn inline_hint(model: &Model<'_>, small: TokenStream) -> TokenStream {
-    if model.len() <= SMALL {
-        small
-    } else {
-        quote!(#[inline(never)])
-    }
-}
-
 /// A user function re-emitted as `fn __odyn_<name>(&self, t, <state fields>) -> Output`.
 fn hidden_fn(model: &Model<'_>, name: &syn::Ident, f: &Function, with_time: bool) -> TokenStream {
     let receiver = &f.receiver;
@@ -236,36 +225,4 @@ fn hidden_fn(model: &Model<'_>, name: &syn::Ident, f: &Function, with_time: bool
         #[allow(unused_variables, non_snake_case, clippy::too_many_arguments)]
         fn #name(#receiver, #time #(#params),*) -> #output #body
     }
-}
-
-/// The time parameter of a re-emitted function: the user's own (`t: f64`), or an unused one.
-pub(super) fn time_param(f: &Function) -> TokenStream {
-    match &f.time {
-        Some(t) => quote!(#t),
-        None => quote!(_: f64),
-    }
-}
-
-/// The state fields as parameters of a re-emitted function, bound to hygienic locals.
-pub(super) fn state_params<'a>(model: &'a Model<'_>) -> impl Iterator<Item = TokenStream> + 'a {
-    model.states.iter().map(|s| {
-        let local = state_local(s.ident);
-        let ty = s.shape.to_type();
-        quote!(#local: #ty)
-    })
-}
-
-/// How each state component is read inside the generated Jacobian function.
-pub(super) fn component_tokens(model: &Model<'_>) -> Vec<TokenStream> {
-    model
-        .states
-        .iter()
-        .flat_map(|f| {
-            let local = state_local(f.ident);
-            match f.shape {
-                Shape::Scalar => vec![quote!(#local)],
-                Shape::Array(n) | Shape::Vector(n) => (0..n).map(|i| quote!(#local[#i])).collect(),
-            }
-        })
-        .collect()
 }

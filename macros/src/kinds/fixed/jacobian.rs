@@ -7,15 +7,11 @@ use quote::{ToTokens, format_ident, quote};
 use syn::ItemImpl;
 
 use super::functions::Function;
-use super::generate::{component_tokens, inline_hint, state_params, time_param};
+use super::layout::{JacobianBody, SMALL, component_tokens, inline_hint, state_params, time_param};
 use crate::generate::{opaques_read, operand, prologue_tokens, straight_line};
 use crate::ir::ExprId;
 use crate::lower::{Lowered, Prologue};
 use crate::model::Model;
-
-/// Models with at most this many state components get a stack `SMatrix` Jacobian; larger ones a
-/// heap `FaerDense`, solved with faer.
-pub(super) const SMALL: usize = 32;
 
 /// Bigger models with at most this many structural non-zeros get one expression per entry; more
 /// than that, and the Jacobian comes from coloured forward mode (see [`crate::sparsity`]): a
@@ -164,14 +160,6 @@ fn symbolic_entries<C: IntoIterator<Item = usize>>(
         }
     }
     entries
-}
-
-/// A Jacobian's generated body: its statements (writing the matrix), its structural non-zeros,
-/// in the order the statements rely on, and the graph nodes whose values it writes.
-pub(super) struct JacobianBody {
-    pub(crate) statements: TokenStream,
-    pub(crate) nonzeros: Vec<(usize, usize)>,
-    pub(crate) reads: Vec<ExprId>,
 }
 
 /// The Jacobian body of a model small enough for a stack matrix: one expression per structural

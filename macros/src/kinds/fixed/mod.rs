@@ -12,6 +12,7 @@ mod fields;
 mod functions;
 mod generate;
 mod jacobian;
+mod layout;
 mod tangent;
 
 use proc_macro2::TokenStream;

@@ -10,7 +10,7 @@
 use proc_macro2::{Span, TokenStream};
 use quote::{format_ident, quote};
 
-use super::jacobian::JacobianBody;
+use super::layout::JacobianBody;
 use crate::derivative::Differentiator;
 use crate::generate::{lets, operand};
 use crate::ir::{ExprId, Graph, Node};
