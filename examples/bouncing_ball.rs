@@ -64,7 +64,16 @@ fn bounce() -> Event<'static, BallState> {
         .change(|_, s: &mut BallState| s.v *= -RESTITUTION)
 }
 
+/// A bouncing ball, the classic event: ÿ = −g from a height H, and at every impact the velocity
+/// reverses and loses a fraction (restitution e < 1).
+///
+/// Writes its CSV files and charts under `out/bouncing_ball/` (the example's source says what each
+/// holds); takes no options.
+#[derive(clap::Parser)]
+struct Cli {}
+
 fn main() -> odyn::Result<()> {
+    <Cli as clap::Parser>::parse();
     let dir = Path::new("out/bouncing_ball");
     let ball = Ball {
         y: HEIGHT,

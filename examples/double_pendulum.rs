@@ -98,7 +98,16 @@ fn distance(a: &DoublePendulumState, b: &DoublePendulumState) -> f64 {
         .sqrt()
 }
 
+/// The double pendulum: chaos, its Lyapunov exponent, and energy error per method.
+///
+/// Writes its CSV files and charts under `out/double_pendulum/` (the example's source says what
+/// each
+/// holds); takes no options.
+#[derive(clap::Parser)]
+struct Cli {}
+
 fn main() -> odyn::Result<()> {
+    <Cli as clap::Parser>::parse();
     let dir = Path::new("out/double_pendulum");
     let model = DoublePendulum {
         theta1: 2.0,

@@ -74,7 +74,15 @@ fn error(dx: f64, state: &GridState, t: f64) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// Heat flow on the unit square, u_t = D∇²u with u = 0 on the edges, as a field model.
+///
+/// Writes its CSV files and charts under `out/heat/` (the example's source says what each
+/// holds); takes no options.
+#[derive(clap::Parser)]
+struct Cli {}
+
 fn main() -> odyn::Result<()> {
+    <Cli as clap::Parser>::parse();
     let dir = Path::new("out/heat");
     let dx = 1.0 / (N as f64 + 1.0);
     let model = Heat {

@@ -55,7 +55,16 @@ impl Lorenz {
 const T_END: f64 = 40.0;
 const EVERY: f64 = 0.01;
 
+/// The Lorenz attractor (Lorenz 1963; σ = 10, ρ = 28, β = 8/3, from (1, 1, 1)) and how long each
+/// method's trajectory stays with the true one.
+///
+/// Writes its CSV files and charts under `out/lorenz/` (the example's source says what each
+/// holds); takes no options.
+#[derive(clap::Parser)]
+struct Cli {}
+
 fn main() -> odyn::Result<()> {
+    <Cli as clap::Parser>::parse();
     let dir = Path::new("out/lorenz");
     let model = Lorenz {
         x: 1.0,

@@ -230,7 +230,16 @@ const FIXED: [Method; 5] = [
     Method::Rk4,
 ];
 
+/// N-body orbits: the outer solar system and the Chenciner–Montgomery figure-eight, by leapfrog,
+/// its compositions and the adaptive methods, with energy and angular-momentum errors.
+///
+/// Writes its CSV files and charts under `out/nbody/` (the example's source says what each
+/// holds); takes no options.
+#[derive(clap::Parser)]
+struct Cli {}
+
 fn main() -> odyn::Result<()> {
+    <Cli as clap::Parser>::parse();
     let dir = Path::new("out/nbody");
     let model = solar_system();
     let (days, dt) = (2e5, 10.0);

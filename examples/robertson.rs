@@ -49,7 +49,16 @@ const REFERENCE_40: [f64; 3] = [
     2.841637457453337e-01,
 ];
 
+/// Robertson's chemical kinetics (Robertson 1966), the classic stiff problem: rate constants 0.04,
+/// 10⁴ and 3·10⁷ span nine decades.
+///
+/// Writes its CSV files and charts under `out/robertson/` (the example's source says what each
+/// holds); takes no options.
+#[derive(clap::Parser)]
+struct Cli {}
+
 fn main() -> ExitCode {
+    <Cli as clap::Parser>::parse();
     match run() {
         Ok(()) => ExitCode::SUCCESS,
         Err(error) => {

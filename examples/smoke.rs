@@ -17,7 +17,15 @@ use odyn::fluids::{FluidOptions, StableFluids};
 use odyn::output::{number, write_table};
 use odyn::plot::{Field, FieldStyle, field_animation, field_image};
 
+/// A smoke plume with Stam's Stable Fluids: buoyant smoke rising from a source in a closed box.
+///
+/// Writes its CSV files and charts under `out/smoke/` (the example's source says what each
+/// holds); takes no options.
+#[derive(clap::Parser)]
+struct Cli {}
+
 fn main() -> odyn::Result<()> {
+    <Cli as clap::Parser>::parse();
     let dir = Path::new("out/smoke");
     let (nx, ny) = (96, 128);
     let h = 1.0 / nx as f64;

@@ -88,7 +88,17 @@ fn study<M: Model>(
     Ok(set)
 }
 
+/// Four problems of the Bari stiff test set (Mazzia & Magherini 2008), each solved by the
+/// Rosenbrock methods over a sweep of tolerances and by implicit Euler over a sweep of steps,
+/// against a reference final state.
+///
+/// Writes its CSV files and charts under `out/stiff_suite/` (the example's source says what each
+/// holds); takes no options.
+#[derive(clap::Parser)]
+struct Cli {}
+
 fn main() -> odyn::Result<()> {
+    <Cli as clap::Parser>::parse();
     let dir = Path::new("out/stiff_suite");
     let robertson = Robertson {
         a: 1.0,
