@@ -54,14 +54,22 @@ pub struct MethodRow {
     pub needs: Needs,
 }
 
-/// Calls `$callback! { [$extra…] rows… }` with every method's row (see the crate docs), in
-/// the order of `Method::ALL`. `$callback` must be a `macro_rules!` macro in scope where this
-/// is invoked; `$extra` tokens are passed through first, in brackets.
+/// Calls `$callback! { [$extra…] rows… }` with every method's row, in the order of
+/// `Method::ALL`. `$callback` must be a `macro_rules!` macro in scope where this is invoked;
+/// `$extra` tokens are passed through first, in brackets. Each row reaches it as
+///
+/// ```text
+/// #[doc = …]… Variant module "name" "label" order adaptive Needs Stability;
+/// ```
+///
+/// so a callback matches them all with
+/// `$($(#[$doc:meta])* $variant:ident $module:ident $name:literal $label:literal $order:literal
+/// $adaptive:literal $needs:ident $stability:ident;)*`.
 #[macro_export]
 macro_rules! for_each_method {
     ($callback:ident $(, $extra:tt)*) => {
-        $callback! {
-            [$($extra)*]
+        $crate::__positional! {
+            $callback [$($extra)*]
             /// Forward Euler, order 1; gains energy on oscillators (Hairer, Lubich & Wanner
             /// 2006, §I.1).
             ExplicitEuler {
@@ -158,9 +166,12 @@ macro_rules! for_each_method {
     };
 }
 
-macro_rules! rows {
+/// Turns the named rows of [`for_each_method!`] into the positional form its callbacks match.
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __positional {
     (
-        [$($extra:tt)*]
+        $callback:ident $extra:tt
         $(
             $(#[$doc:meta])*
             $variant:ident {
@@ -168,6 +179,23 @@ macro_rules! rows {
                 order: $order:literal, adaptive: $adaptive:literal, needs: $needs:ident,
                 stability: $stability:ident,
             }
+        )*
+    ) => {
+        $callback! {
+            $extra
+            $(
+                $(#[$doc])* $variant $module $name $label $order $adaptive $needs $stability;
+            )*
+        }
+    };
+}
+
+macro_rules! rows {
+    (
+        [$($extra:tt)*]
+        $(
+            $(#[$doc:meta])* $variant:ident $module:ident $name:literal $label:literal
+            $order:literal $adaptive:literal $needs:ident $stability:ident;
         )*
     ) => {
         /// Every method's row, in the order of `Method::ALL`.

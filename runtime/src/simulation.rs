@@ -14,12 +14,8 @@ macro_rules! dispatch {
     (
         [$run:ident $plan:ident $method:ident]
         $(
-            $(#[$doc:meta])*
-            $variant:ident {
-                module: $module:ident, name: $name:literal, label: $label:literal,
-                order: $order:literal, adaptive: $adaptive:literal, needs: $needs:ident,
-                stability: $stability:ident,
-            }
+            $(#[$doc:meta])* $variant:ident $module:ident $name:literal $label:literal
+            $order:literal $adaptive:literal $needs:ident $stability:ident;
         )*
     ) => {
         match $method {

@@ -64,12 +64,8 @@ macro_rules! declare_integrators {
     (
         []
         $(
-            $(#[$doc:meta])*
-            $variant:ident {
-                module: $module:ident, name: $name:literal, label: $label:literal,
-                order: $order:literal, adaptive: $adaptive:literal, needs: $needs:ident,
-                stability: $stability:ident,
-            }
+            $(#[$doc:meta])* $variant:ident $module:ident $name:literal $label:literal
+            $order:literal $adaptive:literal $needs:ident $stability:ident;
         )*
     ) => {
         $(
