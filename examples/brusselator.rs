@@ -75,6 +75,12 @@ struct Cli {
     /// Skip the sparse-LU run.
     #[arg(long)]
     krylov_only: bool,
+    /// A reference final state (2·N² numbers, u then v, cell i + N·j, one per line, as
+    /// `scripts/bruss_reference.py` writes them): calibrate BDF and Rodas5P to a final error of
+    /// 1e-6 (max |y − ref| / max |ref|) by a half-decade tolerance sweep, and time the loosest
+    /// tolerance that meets it.
+    #[arg(long)]
+    reference: Option<std::path::PathBuf>,
 }
 
 const T_END: f64 = 11.5;
@@ -89,6 +95,9 @@ fn main() -> odyn::Result<()> {
     }
     let dir = Path::new("out/brusselator");
     let model = brusselator(cli.n)?;
+    if let Some(path) = &cli.reference {
+        return calibrate(&model, cli.n, path);
+    }
     let frames: Vec<f64> = (0..=4).map(|k| T_END * k as f64 / 4.0).collect();
     let unknowns = 2 * cli.n * cli.n;
     println!(
@@ -169,5 +178,72 @@ fn main() -> odyn::Result<()> {
         &rows,
     )?;
     println!("wrote {}/u_0..4.png and brusselator.csv", dir.display());
+    Ok(())
+}
+
+/// The calibration of `--reference`: for BDF and Rodas5P (default linear solver), the loosest
+/// rtol = atol in 1e-3, 3e-4, 1e-4, … whose final error is at most 1e-6 of max |ref|, with its
+/// time (best of three runs) and work.
+fn calibrate(model: &Brusselator, n: usize, path: &Path) -> odyn::Result<()> {
+    let text = std::fs::read_to_string(path).map_err(|e| odyn::Error::InvalidInput {
+        field: "--reference".into(),
+        reason: format!("cannot read {}: {e}", path.display()),
+    })?;
+    let reference: Vec<f64> = text
+        .split_whitespace()
+        .map(str::parse)
+        .collect::<Result<_, _>>()
+        .map_err(|e| odyn::Error::InvalidInput {
+            field: "--reference".into(),
+            reason: format!("{}: {e}", path.display()),
+        })?;
+    if reference.len() != 2 * n * n {
+        return Err(odyn::Error::InvalidInput {
+            field: "--reference".into(),
+            reason: format!("{} values for {} unknowns", reference.len(), 2 * n * n),
+        });
+    }
+    let scale = reference.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    const TARGET: f64 = 1e-6;
+    for method in [Method::Bdf, Method::Rodas5P] {
+        for k in 0..16 {
+            let tol = if k % 2 == 0 { 1e-3 } else { 3e-4 } * 10f64.powi(-(k / 2));
+            let go = || {
+                model
+                    .simulate()
+                    .integrator(method)
+                    .tolerances(tol, tol)
+                    .duration(T_END)
+                    .run()
+            };
+            let run = go()?;
+            let error = run
+                .last()
+                .state
+                .as_slice()
+                .iter()
+                .zip(&reference)
+                .fold(0.0f64, |m, (x, r)| m.max((x - r).abs()))
+                / scale;
+            if error <= TARGET {
+                let mut best = f64::INFINITY;
+                for _ in 0..3 {
+                    let start = Instant::now();
+                    go()?;
+                    best = best.min(start.elapsed().as_secs_f64());
+                }
+                let s = &run.stats;
+                println!(
+                    "N = {n}, {}: tol {tol:.0e}, error {error:.2e}, {best:.3} s (best of 3), {} steps, {} Jacobians, {} factorizations, {} solves",
+                    method.label(),
+                    s.steps,
+                    s.jacobian_evaluations,
+                    s.factorizations,
+                    s.linear_solves
+                );
+                break;
+            }
+        }
+    }
     Ok(())
 }
