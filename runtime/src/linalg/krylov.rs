@@ -50,7 +50,9 @@ pub(crate) enum Structure {
 impl LinearSolver {
     /// Where [`LinearSolver::Auto`] switches a field model to Krylov iterations: 1 024
     /// unknowns. Gray–Scott at h = 10 (Pearson's setup), full Newton, 32² cells (2 048
-    /// unknowns): 0.57 ms a step with block-Jacobi BiCGSTAB against 11.4 ms with sparse LU.
+    /// unknowns): 0.57 ms a step with block-Jacobi BiCGSTAB against 11.4 ms with sparse LU
+    /// (a one-off measurement, 50 steps; `benches/gray_scott.rs` `run_direct`/`run_krylov`
+    /// measure 64² and up, where the ratio is 19–24×).
     pub const FIELD_KRYLOV_FROM: usize = 1024;
 
     /// Iterations of one solve above which [`LinearSolver::Auto`] gives up Krylov for the run:
@@ -173,7 +175,8 @@ pub struct KrylovCounts {
     pub solves: u64,
     /// Their iterations, together.
     pub iterations: u64,
-    /// Block Jacobi preconditioners built.
+    /// Block-Jacobi and ILU(0) preconditioners built (a reused factorization counts as a
+    /// Cholesky or LU instead).
     pub preconditioners: u64,
     /// Solves redone by the direct solver (no convergence within `max_iters`, or a
     /// breakdown).
@@ -244,11 +247,19 @@ impl KrylovSolver {
             warm_start,
             ..
         } = self.options;
-        let guess = warm_start.then_some(&self.guess[..]);
+        // The warm start's scale, found once (one product) for whichever method runs.
+        let scale = if warm_start {
+            warm_scale(a, &self.guess, &mut self.product, &self.rhs)
+        } else {
+            0.0
+        };
         let b = MatRef::from_column_major_slice(&self.rhs, n, 1);
         let mut iterations = None;
+        // Not `InitialGuessStatus::Zero` even from zero: faer 0.24's CG and BiCGSTAB then leave
+        // the residual uninitialised (it should be b); a zero start costs one sparse product.
+        let initial_guess = InitialGuessStatus::MaybeNonZero;
         if symmetric {
-            let initial_guess = start(a, guess, &mut self.product, &self.rhs, x);
+            start(scale, &self.guess, x);
             let params = CgParams {
                 initial_guess,
                 rel_tolerance: rtol,
@@ -265,7 +276,7 @@ impl KrylovSolver {
             }
         }
         if iterations.is_none() {
-            let initial_guess = start(a, guess, &mut self.product, &self.rhs, x);
+            start(scale, &self.guess, x);
             let params = BicgParams {
                 initial_guess,
                 rel_tolerance: rtol,
@@ -330,42 +341,43 @@ impl KrylovSolver {
     }
 }
 
-/// Writes the starting iterate into `x`: α·guess with α minimising ‖b − α·A·guess‖₂ (so
-/// never a worse start than zero), or zero without a guess.
-fn start(
+/// The α minimising ‖b − α·A·guess‖₂ (so α·guess never starts worse than zero): 0 when there is
+/// no guess yet or the product says nothing.
+fn warm_scale(
     a: SparseColMatRef<'_, usize, f64>,
-    guess: Option<&[f64]>,
+    guess: &[f64],
     product: &mut [f64],
     b: &[f64],
-    x: &mut [f64],
-) -> InitialGuessStatus {
-    let n = x.len();
-    if let Some(guess) = guess.filter(|g| g.iter().any(|&v| v != 0.0)) {
-        faer::sparse::linalg::matmul::sparse_dense_matmul(
-            MatMut::from_column_major_slice_mut(product, n, 1),
-            faer::Accum::Replace,
-            a,
-            MatRef::from_column_major_slice(guess, n, 1),
-            1.0,
-            Par::Seq,
-        );
-        let (bq, qq) = b
-            .iter()
-            .zip(product.iter())
-            .fold((0.0, 0.0), |(bq, qq), (b, q)| (bq + b * q, qq + q * q));
-        let alpha = bq / qq;
-        if alpha.is_finite() && alpha != 0.0 {
-            for (xi, g) in x.iter_mut().zip(guess) {
-                *xi = alpha * g;
-            }
-            return InitialGuessStatus::MaybeNonZero;
+) -> f64 {
+    if guess.iter().all(|&v| v == 0.0) {
+        return 0.0;
+    }
+    let n = guess.len();
+    faer::sparse::linalg::matmul::sparse_dense_matmul(
+        MatMut::from_column_major_slice_mut(product, n, 1),
+        faer::Accum::Replace,
+        a,
+        MatRef::from_column_major_slice(guess, n, 1),
+        1.0,
+        Par::Seq,
+    );
+    let (bq, qq) = b
+        .iter()
+        .zip(product.iter())
+        .fold((0.0, 0.0), |(bq, qq), (b, q)| (bq + b * q, qq + q * q));
+    let alpha = bq / qq;
+    if alpha.is_finite() { alpha } else { 0.0 }
+}
+
+/// Writes the starting iterate `scale`·guess into `x`.
+fn start(scale: f64, guess: &[f64], x: &mut [f64]) {
+    if scale == 0.0 {
+        x.fill(0.0);
+    } else {
+        for (xi, g) in x.iter_mut().zip(guess) {
+            *xi = scale * g;
         }
     }
-    x.fill(0.0);
-    // Not `InitialGuessStatus::Zero`: faer 0.24's CG and BiCGSTAB then leave the residual
-    // uninitialised (the first residual should be b); the product with a zero start costs
-    // one sparse product.
-    InitialGuessStatus::MaybeNonZero
 }
 
 impl Clone for KrylovSolver {
