@@ -1,6 +1,6 @@
 //! The integration tests, one module per topic, in one test binary: each binary links faer,
 //! plotters and image on its own, so one binary instead of 23 saves most of `cargo test`'s link
-//! time. Run one topic with `cargo test --test integration grid::`.
+//! time. Run one topic with `cargo test -p odyn-tests --test integration grid::`.
 //!
 //! A new topic is `tests/integration/NAME.rs`, listed below; it reaches the shared models with
 //! `use crate::common;`. Tests that count every allocation of the process stay binaries of their
