@@ -1,6 +1,0 @@
-use odyn::prelude::*;
-
-#[system]
-pub struct Spring(f64, f64);
-
-fn main() {}

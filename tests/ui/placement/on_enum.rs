@@ -1,9 +1,0 @@
-use odyn::prelude::*;
-
-#[system]
-pub enum Phase {
-    Solid,
-    Liquid,
-}
-
-fn main() {}
