@@ -150,6 +150,7 @@ fn main() -> odyn::Result<()> {
     let style = FieldStyle {
         range: (0.0, 5.0),
         scale: (512 / cli.n).max(1) as u32,
+        ..FieldStyle::default()
     };
     for (k, &t) in frames.iter().enumerate() {
         let state = &krylov.sample_at(t)?.state;
@@ -165,11 +166,10 @@ fn main() -> odyn::Result<()> {
                 .chain(u.iter().chain(&v).map(|&x| number(x)))
                 .collect::<Vec<_>>(),
         );
-        let field = Field {
-            width: cli.n,
-            height: cli.n,
-            values: state.field(0),
-        };
+        let field = Field::new(cli.n, cli.n, state.field(0))
+            .titled("Brusselator")
+            .named("u")
+            .at_time(t);
         field_image(dir.join(format!("u_{k}.png")), field, style)?;
     }
     write_table(

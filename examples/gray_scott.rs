@@ -182,18 +182,19 @@ fn run(
     let style = FieldStyle {
         range: (0.2, 1.0),
         scale: (512 / n as u32).max(1),
+        ..FieldStyle::default()
     };
+    let title = format!("Gray–Scott, {name}");
     let field = |state: &GridState| -> Vec<f64> { state.field(0).to_vec() };
     let frames: Vec<Vec<f64>> = trajectory.samples.iter().map(|s| field(&s.state)).collect();
     let quarter = (trajectory.samples.len() - 1) / 4;
     for (k, sample) in trajectory.samples.iter().enumerate() {
         if k > 0 && k % quarter.max(1) == 0 {
             let values = field(&sample.state);
-            let image = Field {
-                width: n,
-                height: n,
-                values: &values,
-            };
+            let image = Field::new(n, n, &values)
+                .titled(&title)
+                .named("u")
+                .at_time(sample.t);
             field_image(
                 dir.join(format!("{name}_{}.png", sample.t.round())),
                 image,
@@ -204,10 +205,12 @@ fn run(
     if gif {
         let fields: Vec<Field<'_>> = frames
             .iter()
-            .map(|values| Field {
-                width: n,
-                height: n,
-                values,
+            .zip(&trajectory.samples)
+            .map(|(values, sample)| {
+                Field::new(n, n, values)
+                    .titled(&title)
+                    .named("u")
+                    .at_time(sample.t)
             })
             .collect();
         field_animation(dir.join(format!("{name}.gif")), &fields, style, 10)?;
@@ -315,14 +318,14 @@ fn main() -> odyn::Result<()> {
         write_table(dir.join("implicit.csv"), &HEADER, &rows)?;
         let last = trajectory.samples.last().expect("a run has samples");
         let values = last.state.field(0);
-        let image = Field {
-            width: cli.implicit_cells,
-            height: cli.implicit_cells,
-            values,
-        };
+        let image = Field::new(cli.implicit_cells, cli.implicit_cells, values)
+            .titled("Gray–Scott, implicit Euler")
+            .named("u")
+            .at_time(last.t);
         let style = FieldStyle {
             range: (0.2, 1.0),
             scale: 4,
+            ..FieldStyle::default()
         };
         field_image(dir.join(format!("implicit_{duration}.png")), image, style)?;
         last.state.clone()

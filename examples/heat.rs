@@ -132,7 +132,7 @@ fn main() -> odyn::Result<()> {
     ];
     let mut series = Vec::new();
     let mut columns: Vec<Vec<(f64, f64)>> = Vec::new();
-    let mut last: Option<GridState> = None;
+    let mut last: Option<(f64, GridState)> = None;
     for (name, method, dt) in runs.iter().cloned() {
         let started = Instant::now();
         let simulation = model.simulate().integrator(method).duration(duration);
@@ -158,7 +158,7 @@ fn main() -> odyn::Result<()> {
             1e3 * seconds
         );
         if method == Method::ImplicitEuler {
-            last = trajectory.samples.last().map(|s| s.state.clone());
+            last = trajectory.samples.last().map(|s| (s.t, s.state.clone()));
         }
         series.push(Series::line(name.as_str(), points.clone()));
         columns.push(points);
@@ -183,17 +183,17 @@ fn main() -> odyn::Result<()> {
     let style = FieldStyle {
         range: (-0.6, 1.1),
         scale: 8,
+        ..FieldStyle::default()
     };
-    fn image(values: &[f64]) -> Field<'_> {
-        Field {
-            width: N,
-            height: N,
-            values,
-        }
-    }
-    field_image(dir.join("start.png"), image(start.field(0)), style)?;
-    if let Some(end) = &last {
-        field_image(dir.join("end.png"), image(end.field(0)), style)?;
+    let image = |values, t| {
+        Field::new(N, N, values)
+            .titled("Heat")
+            .named("u")
+            .at_time(t)
+    };
+    field_image(dir.join("start.png"), image(start.field(0), 0.0), style)?;
+    if let Some((t, end)) = &last {
+        field_image(dir.join("end.png"), image(end.field(0), *t), style)?;
     }
     // The semi-discrete solution decays each mode at the grid's rate
     // −(4D/dx²)(sin²(mπdx/2) + sin²(kπdx/2)): its distance from the exact one is the spatial

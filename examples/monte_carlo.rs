@@ -203,6 +203,7 @@ fn pi(dir: &Path, seed: u64) -> odyn::Result<()> {
                 sizes.iter().map(|&n| (n as f64, theory(n))).collect(),
             ),
         ],
+        ..Chart::default()
     }
     .write(dir.join("pi.png"), (900, 600))
 }

@@ -150,6 +150,7 @@ fn run() -> odyn::Result<()> {
         log_x: true,
         log_y: true,
         series: vec![Series::markers("implicit Euler", points)],
+        ..Chart::default()
     }
     .write(dir.join("convergence.png"), (960, 600))?;
 

@@ -45,8 +45,9 @@ fn main() -> odyn::Result<()> {
     let style = FieldStyle {
         range: (0.0, 1.0),
         scale: 3,
+        ..FieldStyle::default()
     };
-    let mut frames: Vec<Vec<f64>> = Vec::new();
+    let mut frames: Vec<(f64, Vec<f64>)> = Vec::new();
     let mut rows = Vec::new();
     let (mut worst_divergence, mut worst_cfl) = (0.0f64, 0.0f64);
     let started = Instant::now();
@@ -76,14 +77,13 @@ fn main() -> odyn::Result<()> {
             number(fluid.density.iter().sum::<f64>() * h * h),
         ]);
         if step % 5 == 0 {
-            frames.push(fluid.density.clone());
+            frames.push((t, fluid.density.clone()));
         }
         if step % 100 == 0 {
-            let field = Field {
-                width: nx,
-                height: ny,
-                values: &fluid.density,
-            };
+            let field = Field::new(nx, ny, &fluid.density)
+                .titled("Smoke plume")
+                .named("density")
+                .at_time(t);
             field_image(dir.join(format!("frame_{}s.png", t.round())), field, style)?;
         }
     }
@@ -100,10 +100,11 @@ fn main() -> odyn::Result<()> {
     )?;
     let fields: Vec<Field<'_>> = frames
         .iter()
-        .map(|values| Field {
-            width: nx,
-            height: ny,
-            values,
+        .map(|(t, values)| {
+            Field::new(nx, ny, values)
+                .titled("Smoke plume")
+                .named("density")
+                .at_time(*t)
         })
         .collect();
     field_animation(dir.join("smoke.gif"), &fields, style, 50)?;

@@ -126,6 +126,7 @@ fn run() -> odyn::Result<()> {
         log_x: true,
         log_y: true,
         series,
+        ..Chart::default()
     };
     chart.write(dir.join("limits.png"), (960, 640))?;
     println!(

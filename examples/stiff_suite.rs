@@ -14,7 +14,8 @@
 //! `cargo run --release --example stiff_suite` writes under `out/stiff_suite/`, per problem,
 //! `<problem>.csv` (one row per run: method, dt or rtol, steps, rejected, error, time, the
 //! evaluations, factorizations and solves), `<problem>.png` (work-precision: max-norm error of
-//! the final state against wall time, log-log; lower left is better) and
+//! the final state against wall time, log-log; lower left is better; `<problem>.svg` is the same
+//! chart, where each point shows its dt or rtol on hover) and
 //! `<problem>_evaluations.png` (against f, J and ∂f/∂t evaluations).
 
 use std::path::Path;
@@ -42,6 +43,13 @@ fn study<M: Model>(
     dir: &Path,
 ) -> odyn::Result<WorkPrecisionSet> {
     let mut study = WorkPrecision::new(name, model.state(), horizon, Reference::Final(reference));
+    study.title = match name {
+        "robertson_1e11" => "Robertson to t = 1e11".to_owned(),
+        "hires" => "HIRES".to_owned(),
+        "pollu" => "POLLU".to_owned(),
+        "van_der_pol" => "Van der Pol, μ = 1000".to_owned(),
+        _ => study.title,
+    };
     study.methods = vec![Method::Rodas5P, Method::Rosenbrock23];
     if !dts.is_empty() {
         study.methods.push(Method::ImplicitEuler);
@@ -52,11 +60,13 @@ fn study<M: Model>(
     study.newton.max_halvings = 30;
     let set = measure(model, &study)?;
     set.write_csv(dir.join(format!("{name}.csv")))?;
-    set.plot(
-        dir.join(format!("{name}.png")),
-        Accuracy::FinalState,
-        Cost::Seconds,
-    )?;
+    for image in ["png", "svg"] {
+        set.plot(
+            dir.join(format!("{name}.{image}")),
+            Accuracy::FinalState,
+            Cost::Seconds,
+        )?;
+    }
     set.plot(
         dir.join(format!("{name}_evaluations.png")),
         Accuracy::FinalState,

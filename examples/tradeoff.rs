@@ -5,7 +5,8 @@
 //! (`spring`, `kepler`, `lorenz`, `arenstorf`, `pleiades`, `robertson`): `<scene>.csv`
 //! (`scene,method,dt,steps,error,energy_error,seconds,evaluations`), `<scene>.png` (error against
 //! wall time; for Kepler the energy error, since over 1000 orbits the final state's error is
-//! phase error) and `<scene>_evaluations.png` (against evaluations); and
+//! phase error; `<scene>.svg` is the same chart, where each point shows its dt or rtol on
+//! hover) and `<scene>_evaluations.png` (against evaluations); and
 //! `kepler_invariants.csv` (`method,dt,orbits,energy_error,angular_momentum_error`).
 //! `--quick` runs fewer steps and a single timing repeat.
 
@@ -216,14 +217,17 @@ impl Robertson {
 /// scenes, each against its own reference.
 ///
 /// Writes its CSV files and charts under `out/tradeoff/` (the example's source says what each
-/// holds); takes no options.
+/// holds).
 #[derive(clap::Parser)]
-struct Cli {}
+struct Cli {
+    /// Fewer steps and tolerances, shorter horizons and one timing repeat instead of three
+    #[arg(long)]
+    quick: bool,
+}
 
 fn main() -> ExitCode {
-    <Cli as clap::Parser>::parse();
-    let quick = std::env::args().any(|a| a == "--quick");
-    match run(quick) {
+    let cli = <Cli as clap::Parser>::parse();
+    match run(cli.quick) {
         Ok(()) => ExitCode::SUCCESS,
         Err(error) => {
             eprintln!("error: {error}");
@@ -437,7 +441,7 @@ fn run(quick: bool) -> odyn::Result<()> {
     study.repeats = repeats;
     report(&measure(&robertson, &study)?, dir, Accuracy::FinalState)?;
     println!(
-        "\nwrote {}/{{spring,kepler,lorenz,arenstorf,pleiades,robertson}}.{{csv,png}} and \
+        "\nwrote {}/{{spring,kepler,lorenz,arenstorf,pleiades,robertson}}.{{csv,png,svg}} and \
          *_evaluations.png",
         dir.display()
     );
@@ -532,11 +536,13 @@ fn report(set: &WorkPrecisionSet, dir: &Path, accuracy: Accuracy) -> odyn::Resul
         .collect();
     println!("  observed orders: {}", orders.join(", "));
     set.write_csv(dir.join(format!("{}.csv", set.scene)))?;
-    set.plot(
-        dir.join(format!("{}.png", set.scene)),
-        accuracy,
-        Cost::Seconds,
-    )?;
+    for image in ["png", "svg"] {
+        set.plot(
+            dir.join(format!("{}.{image}", set.scene)),
+            accuracy,
+            Cost::Seconds,
+        )?;
+    }
     set.plot(
         dir.join(format!("{}_evaluations.png", set.scene)),
         accuracy,

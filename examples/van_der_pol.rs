@@ -134,6 +134,7 @@ fn run() -> odyn::Result<()> {
         log_x: true,
         log_y: true,
         series,
+        ..Chart::default()
     }
     .write(dir.join("convergence.png"), (960, 600))?;
 

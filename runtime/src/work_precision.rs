@@ -13,7 +13,9 @@ use std::path::Path;
 use std::time::Instant;
 
 use crate::output::{number, write_table};
-use crate::{Error, Method, Model, NewtonOptions, Result, State, Stats, Tolerances, Trajectory};
+use crate::{
+    Atol, Error, Method, Model, NewtonOptions, Result, State, Stats, Tolerances, Trajectory,
+};
 
 /// What a run's final state is compared with.
 pub enum Reference<S> {
@@ -37,6 +39,9 @@ pub enum Reference<S> {
 pub struct WorkPrecision<S> {
     /// Name of the scene, the first CSV column.
     pub scene: String,
+    /// The scene as the charts title it (default: the name with spaces for underscores and a
+    /// capital first letter, `van_der_pol` → `Van der pol`).
+    pub title: String,
     /// The initial state.
     pub initial: S,
     /// Final time (the runs start at 0).
@@ -66,8 +71,10 @@ impl<S: State> WorkPrecision<S> {
         horizon: f64,
         reference: Reference<S>,
     ) -> Self {
+        let scene = scene.into();
         WorkPrecision {
-            scene: scene.into(),
+            title: readable(&scene),
+            scene,
             initial,
             horizon,
             reference,
@@ -153,6 +160,8 @@ impl Measurement {
 pub struct WorkPrecisionSet {
     /// The scene.
     pub scene: String,
+    /// Its title on charts.
+    pub title: String,
     /// The estimated error of the reference itself: 0 for an exact one, NaN when unknown (a
     /// given final state), the max-norm difference between the dt and dt/2 runs for a computed one.
     pub reference_error: f64,
@@ -214,6 +223,7 @@ pub fn measure<M: Model>(model: &M, study: &WorkPrecision<M::State>) -> Result<W
     }
     Ok(WorkPrecisionSet {
         scene: study.scene.clone(),
+        title: study.title.clone(),
         reference_error,
         measurements,
     })
@@ -552,7 +562,9 @@ impl WorkPrecisionSet {
     }
 
     /// Draws `accuracy` against `cost`, log-log, one line per method with a marker per run, as
-    /// PNG or SVG. Failed runs, and runs without the chosen error, are left out.
+    /// PNG or SVG, titled with the study's title and a note that lower left is better. In an
+    /// SVG each marker shows its run's dt or rtol, error and cost on hover. Failed runs, and
+    /// runs without the chosen error, are left out.
     #[cfg(feature = "plot")]
     pub fn plot(&self, path: impl AsRef<Path>, accuracy: Accuracy, cost: Cost) -> Result<()> {
         use crate::plot::{Chart, Series};
@@ -565,7 +577,7 @@ impl WorkPrecisionSet {
         let series = methods
             .into_iter()
             .map(|method| {
-                let points = self
+                let (points, notes): (Vec<_>, Vec<_>) = self
                     .of(method)
                     .filter(|m| !m.diverged)
                     .filter_map(|m| {
@@ -573,18 +585,33 @@ impl WorkPrecisionSet {
                             Accuracy::FinalState => m.error,
                             Accuracy::Energy => m.energy_error?,
                         };
-                        Some(match cost {
-                            Cost::Seconds => (error, m.seconds),
-                            Cost::Evaluations => (error, m.evaluations() as f64),
-                        })
+                        let (work, spent) = match cost {
+                            Cost::Seconds => (m.seconds, format!("{:.3e} s", m.seconds)),
+                            Cost::Evaluations => {
+                                let n = m.evaluations();
+                                (n as f64, format!("{n} evaluations"))
+                            }
+                        };
+                        let setting = match &m.setting {
+                            Setting::Dt(dt) => format!("dt = {dt:e}"),
+                            Setting::Tolerances(t) => match &t.atol {
+                                Atol::Scalar(atol) => {
+                                    format!("rtol = {:e}, atol = {atol:e}", t.rtol)
+                                }
+                                Atol::PerComponent(_) => format!("rtol = {:e}", t.rtol),
+                            },
+                        };
+                        let note = format!("{setting}: error {error:.2e}, {spent}");
+                        Some(((error, work), note))
                     })
-                    .collect();
+                    .unzip();
                 let kind = if method.is_adaptive() {
                     " (rtol)"
                 } else {
                     " (dt)"
                 };
                 Series::line_and_markers(format!("{}{kind}", method.label()), points)
+                    .with_notes(notes)
             })
             .collect();
         let (what, unit) = match cost {
@@ -596,7 +623,8 @@ impl WorkPrecisionSet {
             Accuracy::Energy => "max relative energy error",
         };
         Chart {
-            title: format!("{}: {error} against {what}", self.scene),
+            title: format!("{}: {error} against {what}", self.title),
+            note: "lower left is better: more accurate for less work".to_owned(),
             x_label: error.to_owned(),
             y_label: unit.to_owned(),
             log_x: true,
@@ -605,6 +633,16 @@ impl WorkPrecisionSet {
         }
         .write(path, (1000, 640))
     }
+}
+
+/// `van_der_pol` → `Van der pol`: a scene name as a chart title.
+fn readable(scene: &str) -> String {
+    let spaced = scene.replace('_', " ");
+    let mut chars = spaced.chars();
+    chars
+        .next()
+        .map(|first| first.to_uppercase().chain(chars).collect())
+        .unwrap_or_default()
 }
 
 /// Least-squares slope of y against x; `None` with fewer than two distinct x.

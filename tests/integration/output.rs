@@ -137,11 +137,7 @@ fn field_images_refuse_a_grid_whose_size_overflows() {
     let dir = tempfile::tempdir().unwrap();
     let style = plot::FieldStyle::default();
     for (width, height) in [(usize::MAX, 2), (1 << 33, 1 << 33)] {
-        let field = plot::Field {
-            width,
-            height,
-            values: &[],
-        };
+        let field = plot::Field::new(width, height, &[]);
         for error in [
             plot::field_image(dir.path().join("f.png"), field, style).unwrap_err(),
             plot::field_animation(dir.path().join("f.gif"), &[field], style, 100).unwrap_err(),

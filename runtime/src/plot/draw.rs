@@ -32,21 +32,30 @@ pub(crate) const PALETTE: [(u8, u8, u8); 10] = [
     (23, 190, 207),
 ];
 
-/// The colour of series `i`.
+/// The colour of series `i`: `tab10`, then hues a golden angle (137.5°) apart at two
+/// lightnesses, dark enough to read on white, so no colour comes round again.
 pub(crate) fn colour(i: usize) -> RGBAColor {
-    let (r, g, b) = PALETTE[i % PALETTE.len()];
-    RGBColor(r, g, b).to_rgba()
+    match PALETTE.get(i) {
+        Some(&(r, g, b)) => RGBColor(r, g, b).to_rgba(),
+        None => {
+            let k = (i - PALETTE.len()) as f64;
+            let hue = (0.05 + k * 0.381_966_011_250_105).fract();
+            let lightness = if i.is_multiple_of(2) { 0.36 } else { 0.5 };
+            HSLColor(hue, 0.75, lightness).to_rgba()
+        }
+    }
 }
 
 /// A drawing failure, as plotters reports it.
 pub(crate) type Failure = String;
 
 /// Renders `draw` at `size` and writes it atomically to `path` as PNG or SVG (by extension).
+/// `draw_svg` returns markup to add on top of what it drew (tooltips).
 pub(crate) fn write_image(
     path: &Path,
     size: (u32, u32),
     draw: impl FnOnce(&DrawingArea<BitMapBackend<'_>, Shift>) -> std::result::Result<(), Failure>,
-    draw_svg: impl FnOnce(&DrawingArea<SVGBackend<'_>, Shift>) -> std::result::Result<(), Failure>,
+    draw_svg: impl FnOnce(&DrawingArea<SVGBackend<'_>, Shift>) -> std::result::Result<String, Failure>,
 ) -> Result<()> {
     let kind = image_kind(path)?;
     check_size(size)?;
@@ -54,9 +63,15 @@ pub(crate) fn write_image(
     match kind {
         ImageKind::Svg => {
             let mut text = String::new();
-            {
+            let extra = {
                 let root = SVGBackend::with_string(&mut text, size).into_drawing_area();
-                draw_svg(&root).map_err(|reason| plot_error(path, reason))?;
+                let extra = draw_svg(&root).map_err(|reason| plot_error(path, reason))?;
+                root.present()
+                    .map_err(|e| plot_error(path, e.to_string()))?;
+                extra
+            };
+            if let Some(end) = text.rfind("</svg>") {
+                text.insert_str(end, &extra);
             }
             write_atomic(path, text.as_bytes())
         }

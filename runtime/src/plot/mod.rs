@@ -67,6 +67,7 @@ pub fn energy_with<S: State>(
     }
     let chart = Chart {
         title: look.title.clone(),
+        note: String::new(),
         x_label: "t".to_owned(),
         y_label: if look.relative {
             "E(t) / E(0)"
@@ -103,6 +104,9 @@ pub struct Series {
     pub points: Vec<(f64, f64)>,
     /// How the points are drawn.
     pub style: Style,
+    /// One note per point (such as the rtol or dt of the run it came from), shown when the
+    /// pointer rests on the point in an SVG chart; empty for none.
+    pub notes: Vec<String>,
 }
 
 impl Series {
@@ -112,6 +116,7 @@ impl Series {
             label: label.into(),
             points,
             style: Style::Line,
+            notes: Vec::new(),
         }
     }
 
@@ -121,7 +126,13 @@ impl Series {
             label: label.into(),
             points,
             style: Style::LineAndMarkers,
+            notes: Vec::new(),
         }
+    }
+
+    /// With a note for each point, shown on hover in an SVG chart (see [`Series::notes`]).
+    pub fn with_notes(self, notes: Vec<String>) -> Self {
+        Series { notes, ..self }
     }
 
     /// Markers at `points`.
@@ -130,6 +141,7 @@ impl Series {
             label: label.into(),
             points,
             style: Style::Markers,
+            notes: Vec::new(),
         }
     }
 }
@@ -144,6 +156,8 @@ impl Series {
 pub struct Chart {
     /// Title above the plot.
     pub title: String,
+    /// A smaller line under the title: how to read the chart (empty for none).
+    pub note: String,
     /// Label of the horizontal axis.
     pub x_label: String,
     /// Label of the vertical axis.
@@ -152,12 +166,15 @@ pub struct Chart {
     pub log_x: bool,
     /// Logarithmic vertical axis.
     pub log_y: bool,
-    /// The series, drawn in order with the `tab10` colours and one marker shape each.
+    /// The series, drawn in order with the `tab10` colours (then further hues, so no two of a
+    /// chart share a colour) and one of six marker shapes each.
     pub series: Vec<Series>,
 }
 
 impl Chart {
     /// Draws the chart at `size` pixels and writes it atomically to `path` (`.png` or `.svg`).
+    /// In an SVG, each point that has a note (see [`Series::notes`]) shows its series' label and
+    /// the note when the pointer rests on it.
     ///
     /// Errors: [`Error::InvalidInput`] for a path that is not `.png`/`.svg`, a size outside
     /// 16–16384 pixels, or data that cannot be drawn (no finite point; on a linear axis, values
@@ -170,7 +187,7 @@ impl Chart {
             path,
             size,
             |root| self.draw(root, x, y).map(|_| ()),
-            |root| self.draw(root, x, y).map(|_| ()),
+            |root| self.draw(root, x, y).map(|drawn| hover_notes(&drawn.notes)),
         )
     }
 
@@ -196,13 +213,14 @@ impl Chart {
         }
     }
 
-    /// Draws onto `root`; returns the plotting area's pixel rectangle.
+    /// Draws onto `root`; returns the plotting area's pixel rectangle and where the noted
+    /// points were drawn.
     fn draw<DB: DrawingBackend>(
         &self,
         root: &DrawingArea<DB, Shift>,
         x: Axis,
         y: Axis,
-    ) -> std::result::Result<PixelRect, String> {
+    ) -> std::result::Result<Drawn, String> {
         let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
         root.fill(&WHITE).map_err(e)?;
         let drawable = |&(px, py): &(f64, f64)| x.takes(px) && y.takes(py);
@@ -215,8 +233,32 @@ impl Chart {
         let width = root.dim_in_pixel().0;
         let legend = draw::legend_width(labelled.map(|&i| self.series[i].label.as_str()), width);
         let (plot, panel) = root.split_horizontally(width - legend);
+        let heading = match (self.title.is_empty(), self.note.is_empty()) {
+            (true, true) => 0,
+            (false, true) => 34,
+            (_, false) => 54,
+        };
+        let (head, plot) = plot.split_vertically(heading);
+        let centre = |text: &str, y, size| -> std::result::Result<(), String> {
+            let font = ("sans-serif", size).into_font();
+            let (w, _) = head
+                .estimate_text_size(text, &font.clone().into())
+                .map_err(e)?;
+            let x = (head.dim_in_pixel().0 as i32 - w as i32) / 2;
+            head.draw(&Text::new(text.to_owned(), (x.max(4), y), font))
+                .map_err(e)
+        };
+        if !self.title.is_empty() {
+            centre(&self.title, 10, 22.0)?;
+        }
+        if !self.note.is_empty() {
+            centre(
+                &self.note,
+                if self.title.is_empty() { 10 } else { 36 },
+                15.0,
+            )?;
+        }
         let mut chart = ChartBuilder::on(&plot)
-            .caption(&self.title, ("sans-serif", 22))
             .margin(16)
             .x_label_area_size(48)
             .y_label_area_size(90)
@@ -234,6 +276,7 @@ impl Chart {
             .map_err(e)?;
         let columns = chart.plotting_area().dim_in_pixel().0;
         let mut entries = Vec::new();
+        let mut notes = Vec::new();
         for &i in &shown {
             let s = &self.series[i];
             let style = ShapeStyle::from(draw::colour(i)).stroke_width(2);
@@ -263,6 +306,17 @@ impl Chart {
                 let (px, py) = chart.backend_coord(&points[k]);
                 draw::draw_marker(&plot, i, (px - ox, py - oy), style)?;
             }
+            // The notes go with the drawable points, in their order.
+            let noted = s.points.iter().filter(|p| drawable(p)).zip(&s.notes);
+            for ((px, py), note) in noted {
+                let at = chart.backend_coord(&(x.project(*px), y.project(*py)));
+                let text = if s.label.is_empty() {
+                    note.clone()
+                } else {
+                    format!("{}: {note}", s.label)
+                };
+                notes.push((at, text));
+            }
             if !s.label.is_empty() {
                 entries.push(LegendEntry {
                     label: &s.label,
@@ -273,8 +327,39 @@ impl Chart {
             }
         }
         draw::draw_legend(&panel, &entries, 56)?;
-        Ok(chart.plotting_area().get_pixel_range())
+        Ok(Drawn {
+            plot: chart.plotting_area().get_pixel_range(),
+            notes,
+        })
     }
+}
+
+/// What [`Chart::draw`] drew where.
+struct Drawn {
+    /// The plotting area's pixel rectangle.
+    #[cfg_attr(not(test), expect(dead_code, reason = "read by the chart-bounds test"))]
+    plot: PixelRect,
+    /// The noted points: pixel and text.
+    notes: Vec<((i32, i32), String)>,
+}
+
+/// SVG markup that shows each note as the tooltip of an invisible disc over its point.
+fn hover_notes(notes: &[((i32, i32), String)]) -> String {
+    let escape = |text: &str| {
+        text.replace('&', "&amp;")
+            .replace('<', "&lt;")
+            .replace('>', "&gt;")
+    };
+    notes
+        .iter()
+        .map(|((x, y), note)| {
+            format!(
+                "<circle cx=\"{x}\" cy=\"{y}\" r=\"7\" fill=\"none\" pointer-events=\"all\">\
+                 <title>{}</title></circle>\n",
+                escape(note)
+            )
+        })
+        .collect()
 }
 
 /// A tick label: on a log axis `v` is log₁₀ of the value.
@@ -334,7 +419,7 @@ pub fn views(path: impl AsRef<Path>, title: &str, views: &[View], size: (u32, u3
         path,
         size,
         |root| draw_views(root, title, views, &regions),
-        |root| draw_views(root, title, views, &regions),
+        |root| draw_views(root, title, views, &regions).map(|()| String::new()),
     )
 }
 
@@ -478,6 +563,53 @@ mod tests {
     /// a leapfrog energy recorded every step over 1000 orbits looks like), must draw only inside
     /// the plotting area and within the data's rows: wide strokes joined at sharp reversals used
     /// to spike above the frame and over the title.
+    /// Sixty series get sixty different colours (`tab10` used to come round after ten).
+    #[test]
+    fn series_colours_never_repeat() {
+        let colours: Vec<_> = (0..60)
+            .map(|i| {
+                let c = draw::colour(i);
+                (c.0, c.1, c.2)
+            })
+            .collect();
+        for (i, a) in colours.iter().enumerate() {
+            assert!(
+                colours[..i].iter().all(|b| b != a),
+                "series {i} repeats colour {a:?}"
+            );
+        }
+    }
+
+    /// An SVG chart carries each noted point's note as a tooltip over the point, after what it
+    /// drew, escaped; a PNG of the same chart is written as before.
+    #[test]
+    fn svg_points_show_their_notes_on_hover() {
+        let dir = std::env::temp_dir().join(format!("odyn-hover-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let chart = Chart {
+            title: "Spring".into(),
+            note: "lower left is better".into(),
+            log_x: true,
+            log_y: true,
+            series: vec![
+                Series::line_and_markers("RK4 (dt)", vec![(1e-3, 2.0), (1e-6, 8.0)])
+                    .with_notes(vec!["dt = 0.1".into(), "dt < 0.01".into()]),
+            ],
+            ..Chart::default()
+        };
+        let svg = dir.join("chart.svg");
+        chart.write(&svg, (640, 400)).unwrap();
+        let text = std::fs::read_to_string(&svg).unwrap();
+        let hovers: Vec<&str> = text.matches("<title>").collect();
+        assert_eq!(hovers.len(), 2);
+        assert!(text.contains("<title>RK4 (dt): dt = 0.1</title>"));
+        assert!(text.contains("<title>RK4 (dt): dt &lt; 0.01</title>"));
+        assert!(text.find("<title>").unwrap() > text.find("lower left is better").unwrap());
+        assert!(text.trim_end().ends_with("</svg>"));
+        chart.write(dir.join("chart.png"), (640, 400)).unwrap();
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
     #[test]
     fn dense_series_draw_only_inside_the_plot_area() {
         let points = (0..200_000)
@@ -493,7 +625,7 @@ mod tests {
         let size = (800u32, 500u32);
         let mut area = None;
         let rgb = draw::render_rgb(size, |root| {
-            area = Some(chart.draw(root, x, y)?);
+            area = Some(chart.draw(root, x, y)?.plot);
             Ok(())
         })
         .unwrap();
