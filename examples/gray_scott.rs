@@ -16,7 +16,7 @@
 //!
 //! `cargo run --release --example gray_scott [-- --steps N]` writes under `out/gray_scott/`:
 //! for each pattern, `<name>_<t>.png` (u, colour-mapped, every quarter of the run),
-//! `<name>.gif` (u every 1/40 of the run) and `<name>.csv` (t, mean and range of u and v, the
+//! `<name>.gif` (u every 1/40 of the run; `--gif-frames` for fewer, `--pixels` for smaller) and `<name>.csv` (t, mean and range of u and v, the
 //! share of cells where v > 0.1); `explicit_<t>.png`, `explicit.csv`, `implicit_<t>.png` and
 //! `implicit.csv` for the comparison.
 
@@ -90,6 +90,21 @@ struct Cli {
     /// Duration of the explicit-against-implicit comparison.
     #[arg(long, default_value_t = 1000)]
     implicit_time: u64,
+    /// Frames of each pattern's GIF, at most 41 (0 writes no GIF).
+    #[arg(long, default_value_t = 41)]
+    gif_frames: usize,
+    /// Side of each image's field in pixels, rounded down to whole pixels a cell.
+    #[arg(long, default_value_t = 512)]
+    pixels: u32,
+}
+
+/// How the images of a run are written.
+#[derive(Clone, Copy)]
+struct Look {
+    /// Frames of the GIF (0 for none).
+    gif_frames: usize,
+    /// Side of the field in pixels.
+    pixels: u32,
 }
 
 /// Pearson's initial state with ±1 % noise from a seeded generator; `noise = false` gives the
@@ -154,7 +169,7 @@ const HEADER: [&str; 8] = [
 ];
 
 /// Runs `model` with `method` at `dt` for `steps` steps, writing PNG frames (every quarter), a
-/// GIF (if `gif`) and the summary CSV under `dir` as `<name>…`; returns the final state.
+/// GIF (as `look` asks) and the summary CSV under `dir` as `<name>…`; returns the final state.
 fn run(
     dir: &Path,
     name: &str,
@@ -162,7 +177,7 @@ fn run(
     method: Method,
     dt: f64,
     steps: u64,
-    gif: bool,
+    look: Look,
 ) -> odyn::Result<GridState> {
     let n = model.u.nx();
     let every = (steps / 40).max(1);
@@ -181,7 +196,7 @@ fn run(
     );
     let style = FieldStyle {
         range: (0.2, 1.0),
-        scale: (512 / n as u32).max(1),
+        scale: (look.pixels / n as u32).max(1),
         ..FieldStyle::default()
     };
     let title = format!("Gray–Scott, {name}");
@@ -202,10 +217,13 @@ fn run(
             )?;
         }
     }
-    if gif {
+    if look.gif_frames > 0 {
+        // Every k-th recorded sample, the first and about `gif_frames` in all.
+        let stride = frames.len().div_ceil(look.gif_frames);
         let fields: Vec<Field<'_>> = frames
             .iter()
             .zip(&trajectory.samples)
+            .step_by(stride)
             .map(|(values, sample)| {
                 Field::new(n, n, values)
                     .titled(&title)
@@ -276,7 +294,10 @@ fn main() -> odyn::Result<()> {
             Method::ExplicitEuler,
             1.0,
             cli.steps,
-            true,
+            Look {
+                gif_frames: cli.gif_frames,
+                pixels: cli.pixels,
+            },
         )?;
     }
     // Coral grows steadily from the start, so the two runs have a moving pattern to disagree on.
@@ -295,7 +316,10 @@ fn main() -> odyn::Result<()> {
         Method::ExplicitEuler,
         1.0,
         duration,
-        false,
+        Look {
+            gif_frames: 0,
+            pixels: cli.pixels,
+        },
     )?;
     let implicit = {
         let started = Instant::now();

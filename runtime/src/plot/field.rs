@@ -13,7 +13,7 @@ use crate::{Error, Result};
 /// (i, j) is `values[i + j·width]`, with what its caption says about it.
 ///
 /// ```
-/// use odyn::plot::Field;
+/// use odyn_runtime::plot::Field;
 /// let values = vec![0.0; 4 * 3];
 /// let field = Field::new(4, 3, &values).titled("Gray–Scott, coral").named("u").at_time(10.0);
 /// assert_eq!(field.caption(), "Gray–Scott, coral: u at t = 10");
