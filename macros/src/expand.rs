@@ -51,13 +51,16 @@ fn forward_impl(args: TokenStream, item: &ItemImpl) -> TokenStream {
             "`#[system]` goes on the model's own `impl` block, not on a trait impl",
         );
     }
-    if !item.generics.params.is_empty() {
-        errors.at(&item.generics, "generic models are not supported");
-    }
     let model = match &*item.self_ty {
         Type::Path(p) if p.qself.is_none() && p.path.segments.len() == 1 => {
             let segment = &p.path.segments[0];
-            segment.arguments.is_none().then_some(&segment.ident)
+            if !(item.generics.params.is_empty() && segment.arguments.is_none()) {
+                // The impl of a generic struct, which `#[system]` on the struct has reported
+                // (rustc reports generics on the impl of a plain one): the impl block stays, its
+                // bodies never run, and nothing more is said.
+                return never_run(item.clone()).into_token_stream();
+            }
+            Some(&segment.ident)
         }
         _ => None,
     };
@@ -102,25 +105,29 @@ struct Rejected(ItemImpl);
 impl Parse for Rejected {
     fn parse(input: ParseStream<'_>) -> syn::Result<Self> {
         input.parse::<syn::Token![!]>()?;
-        let mut imp: ItemImpl = input.parse()?;
-        for member in &mut imp.items {
-            if let syn::ImplItem::Fn(f) = member {
-                f.attrs.retain(|a| {
-                    !["cell", "pair", "particle"]
-                        .iter()
-                        .any(|name| a.path().is_ident(name))
-                });
-                // The bodies read fields the rejected struct may not have as declared (its state
-                // type is a stub): never run, they would only add follow-on errors.
-                f.attrs
-                    .push(syn::parse_quote!(#[allow(unused_variables, unreachable_code)]));
-                f.block = syn::parse_quote!({
-                    ::core::unreachable!("odyn rejected this model at compile time")
-                });
-            }
-        }
-        Ok(Rejected(imp))
+        Ok(Rejected(never_run(input.parse()?)))
     }
+}
+
+/// `imp` with odyn's method attributes removed and its bodies replaced by ones that never run.
+fn never_run(mut imp: ItemImpl) -> ItemImpl {
+    for member in &mut imp.items {
+        if let syn::ImplItem::Fn(f) = member {
+            f.attrs.retain(|a| {
+                !["cell", "pair", "particle"]
+                    .iter()
+                    .any(|name| a.path().is_ident(name))
+            });
+            // The bodies read fields the rejected struct may not have as declared (its state
+            // type is a stub): never run, they would only add follow-on errors.
+            f.attrs
+                .push(syn::parse_quote!(#[allow(unused_variables, unreachable_code)]));
+            f.block = syn::parse_quote!({
+                ::core::unreachable!("odyn rejected this model at compile time")
+            });
+        }
+    }
+    imp
 }
 
 /// Struct and impl together: the runtime trait impls.

@@ -29,7 +29,46 @@ mod generic_model {
         pub k: T,
     }
 
-    fn main() {}
+    #[system]
+    impl<T> Spring<T> {
+        fn acceleration(&self) -> f64 {
+            -self.x
+        }
+    }
+
+    fn main() {
+        let spring = Spring { x: 1.0, v: 0.0, k: 1.0 };
+        let _ = spring.simulate().steps(10).run();
+    }
+}
+
+mod const_generic_model {
+    use odyn::prelude::*;
+
+    #[system]
+    pub struct Chain<const N: usize> {
+        #[position]
+        pub x: [f64; N],
+        #[velocity]
+        pub v: [f64; N],
+        pub k: f64,
+    }
+
+    #[system]
+    impl<const N: usize> Chain<N> {
+        fn acceleration(&self) -> [f64; N] {
+            let mut a = [0.0; N];
+            for i in 0..N {
+                a[i] = -self.k * self.x[i];
+            }
+            a
+        }
+    }
+
+    fn main() {
+        let chain = Chain::<3> { x: [1.0; 3], v: [0.0; 3], k: 1.0 };
+        let _ = chain.simulate().steps(10).run();
+    }
 }
 
 mod misspelt_role_attribute {

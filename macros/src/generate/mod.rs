@@ -34,13 +34,23 @@ pub(crate) fn forwarder_name(model: &syn::Ident) -> syn::Ident {
 /// compile), but with it the rest of the user's crate type-checks, so the user sees the real error
 /// and not "no method named `simulate`" at every call site.
 pub(crate) fn stub_model(model: &syn::Ident, state: &syn::Ident) -> TokenStream {
+    stub_model_with(model, state, &syn::Generics::default())
+}
+
+/// [`stub_model`] for a struct with `generics`.
+fn stub_model_with(
+    model: &syn::Ident,
+    state: &syn::Ident,
+    generics: &syn::Generics,
+) -> TokenStream {
+    let (impl_generics, type_generics, where_clause) = generics.split_for_impl();
     let name = model.to_string();
     let never = quote!(::core::unreachable!(
         "odyn rejected this model at compile time"
     ));
     quote! {
         #[automatically_derived]
-        impl ::odyn::Model for #model {
+        impl #impl_generics ::odyn::Model for #model #type_generics #where_clause {
             type State = #state;
             type SecondOrder = ::odyn::Unavailable<Self>;
             type Jacobian = ::odyn::Unavailable<Self>;
@@ -73,10 +83,7 @@ pub(crate) fn stub_model(model: &syn::Ident, state: &syn::Ident) -> TokenStream 
 pub(crate) fn rejected_struct(item: &ItemStruct) -> TokenStream {
     let vis = &item.vis;
     let state = format_ident!("{}State", item.ident);
-    let stub = stub_model(&item.ident, &state);
-    if !item.generics.params.is_empty() {
-        return TokenStream::new();
-    }
+    let stub = stub_model_with(&item.ident, &state, &item.generics);
     quote! {
         #[doc(hidden)]
         #vis type #state = ::odyn::__private::RejectedState;

@@ -59,6 +59,26 @@ pub(crate) fn expand_struct(args_tokens: TokenStream, item: &ItemStruct) -> Toke
     let mut errors = Errors::default();
     let args = args::parse(args_tokens.clone(), &mut errors);
     let item = &unknown_attributes(item, &mut errors);
+    if is_generic(item) {
+        // One error: the fields of a generic model (`[f64; N]`, `k: T`) would each be refused
+        // only because of the generics.
+        errors.at(
+            &item.generics,
+            "generic models are not supported: `#[system]` lays out the state and derives its \
+             Jacobian for one concrete struct; write array lengths as integer literals \
+             (`[f64; 3]`) and parameters as `f64` fields",
+        );
+        let error = errors.finish().err().map(|e| e.to_compile_error());
+        let forwarder = generate::forwarder(item, &args_tokens, false);
+        let stub = generate::rejected_struct(item);
+        let mut stripped = item.clone();
+        for field in &mut stripped.fields {
+            field
+                .attrs
+                .retain(|a| !FIELD_ATTRIBUTES.iter().any(|name| a.path().is_ident(name)));
+        }
+        return quote!(#stripped #error #forwarder #stub);
+    }
     let (stripped, state) = match Kind::of(item) {
         Kind::Fixed => fixed::expand_struct(item, &args, &mut errors),
         Kind::Particles => particles::expand_struct(item, &mut errors),
@@ -76,6 +96,11 @@ pub(crate) fn expand_struct(args_tokens: TokenStream, item: &ItemStruct) -> Toke
             quote!(#stripped #error #forwarder #stub)
         }
     }
+}
+
+/// Whether the struct has generic parameters or a `where` clause.
+fn is_generic(item: &ItemStruct) -> bool {
+    !item.generics.params.is_empty() || item.generics.where_clause.is_some()
 }
 
 /// The impl half, with the struct: the runtime trait impls of the struct's kind.

@@ -7,12 +7,6 @@ use crate::model::{Model, Order, Role, StateField, array_of_f64_with_computed_le
 
 /// Reads the model from its struct, reporting every problem to `errors`.
 pub(crate) fn parse<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Option<Model<'a>> {
-    if !item.generics.params.is_empty() || item.generics.where_clause.is_some() {
-        errors.at(
-            &item.generics,
-            "generic models are not supported; use concrete `f64` fields",
-        );
-    }
     let Fields::Named(named) = &item.fields else {
         errors.at_span(
             item.ident.span(),

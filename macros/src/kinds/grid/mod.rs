@@ -75,12 +75,6 @@ fn last_segment_is(ty: &Type, name: &str) -> bool {
 
 /// Reads a field model's struct, reporting every problem to `errors`.
 pub(crate) fn parse_struct<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Option<Fields<'a>> {
-    if !item.generics.params.is_empty() || item.generics.where_clause.is_some() {
-        errors.at(
-            &item.generics,
-            "generic models are not supported; use concrete `f64` fields",
-        );
-    }
     let mut fields = Vec::new();
     for field in &item.fields {
         let Some(ident) = field.ident.as_ref() else {

@@ -111,12 +111,6 @@ fn attribute<'a>(attrs: &'a [Attribute], names: &[&str]) -> Option<&'a Attribute
 
 /// Reads a particle model's struct, reporting every problem to `errors`.
 pub(crate) fn parse_struct<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Option<Particles<'a>> {
-    if !item.generics.params.is_empty() || item.generics.where_clause.is_some() {
-        errors.at(
-            &item.generics,
-            "generic models are not supported; use concrete `f64` fields",
-        );
-    }
     let mut position = None;
     let mut velocity = None;
     let mut mass = None;
