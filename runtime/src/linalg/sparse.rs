@@ -30,7 +30,8 @@ use super::precond::{BlockJacobi, Factors, Ilu0, Ilu0Ref};
 /// the numeric factorizations once per Newton iteration (or Rosenbrock step).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Factorizations {
-    /// Symbolic Cholesky analyses (fill-reducing ordering and elimination tree).
+    /// Symbolic Cholesky analyses (fill-reducing ordering and elimination tree), made when a
+    /// direct factorization first meets a symmetric matrix: none in a run solved by Krylov alone.
     pub symbolic_cholesky: u64,
     /// Symbolic LU analyses (made only if a Newton matrix is unsymmetric or indefinite).
     pub symbolic_lu: u64,
@@ -63,8 +64,10 @@ pub(crate) struct SparseSolver {
     transpose: Vec<usize>,
     /// The right-hand side [`SparseSolver::substitute`] solves in place.
     pub(crate) rhs: Vec<f64>,
-    cholesky: Arc<SymbolicCholesky<usize>>,
-    cholesky_values: Vec<f64>,
+    /// The sparse Cholesky: its symbolic analysis (AMD ordering; shared by clones), made the
+    /// first time a direct factorization tries it, and the numeric factor's values. A run that
+    /// only ever solves by Krylov never pays for it.
+    cholesky: Option<(Arc<SymbolicCholesky<usize>>, Vec<f64>)>,
     lu: Option<SparseLu>,
     scratch: MemBuffer,
     pub(crate) counts: Factorizations,
@@ -111,28 +114,16 @@ impl SparseSolver {
                 solver_transpose[start + k] = slot_in(&pattern, col, row);
             }
         }
-        let cholesky = factorize_symbolic_cholesky(
-            pattern.as_ref(),
-            Side::Lower,
-            SymmetricOrdering::Amd,
-            CholeskySymbolicParams::default(),
-        )
-        .expect("a symmetric pattern of checked size always has a symbolic Cholesky factor");
-        let scratch = MemBuffer::new(Self::cholesky_scratch(&cholesky));
         let jacobi = BlockJacobi::new(1, (0..n).collect(), &pattern);
         SparseSolver {
             values: vec![0.0; pattern.compute_nnz()],
-            cholesky_values: vec![0.0; cholesky.len_val()],
-            cholesky: Arc::new(cholesky),
+            cholesky: None,
             pattern,
             transpose: solver_transpose,
             rhs: vec![0.0; n],
             lu: None,
-            scratch,
-            counts: Factorizations {
-                symbolic_cholesky: 1,
-                ..Factorizations::default()
-            },
+            scratch: MemBuffer::new(StackReq::EMPTY),
+            counts: Factorizations::default(),
             factored: None,
             skip_cholesky: 0,
             krylov: None,
@@ -238,9 +229,25 @@ impl SparseSolver {
         if self.skip_cholesky > 0 {
             self.skip_cholesky -= 1;
         } else if self.is_symmetric() {
+            if self.cholesky.is_none() {
+                let symbolic = factorize_symbolic_cholesky(
+                    self.pattern.as_ref(),
+                    Side::Lower,
+                    SymmetricOrdering::Amd,
+                    CholeskySymbolicParams::default(),
+                )
+                .expect("a symmetric pattern of checked size always has a symbolic Cholesky");
+                let values = vec![0.0; symbolic.len_val()];
+                self.cholesky = Some((Arc::new(symbolic), values));
+                self.counts.symbolic_cholesky += 1;
+                self.scratch = MemBuffer::new(self.scratch_size());
+            }
+            let Some((symbolic, values)) = &mut self.cholesky else {
+                unreachable!("made above")
+            };
             let matrix = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
-            let factored = self.cholesky.factorize_numeric_llt(
-                &mut self.cholesky_values,
+            let factored = symbolic.factorize_numeric_llt(
+                values,
                 matrix,
                 Side::Lower,
                 LltRegularization::default(),
@@ -270,13 +277,9 @@ impl SparseSolver {
             let Ok(symbolic) = factorize_symbolic_lu(self.pattern.as_ref(), params) else {
                 return false;
             };
-            let need = symbolic
-                .factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default())
-                .or(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq))
-                .or(Self::cholesky_scratch(&self.cholesky));
-            self.scratch = MemBuffer::new(need);
             self.lu = Some((Arc::new(symbolic), NumericLu::new()));
             self.counts.symbolic_lu += 1;
+            self.scratch = MemBuffer::new(self.scratch_size());
         }
         let Some((symbolic, numeric)) = &mut self.lu else {
             return false;
@@ -343,13 +346,16 @@ impl SparseSolver {
                 ),
                 None => Outcome::Failed,
             },
-            (_, Some(Factored::Cholesky), _) => krylov.solve(
-                matrix,
-                self.symmetric,
-                Factors::Cholesky(LltRef::new(&self.cholesky, &self.cholesky_values)),
-                &mut self.rhs,
-                &mut self.counts.krylov,
-            ),
+            (_, Some(Factored::Cholesky), _) => match &self.cholesky {
+                Some((symbolic, values)) => krylov.solve(
+                    matrix,
+                    self.symmetric,
+                    Factors::Cholesky(LltRef::new(symbolic, values)),
+                    &mut self.rhs,
+                    &mut self.counts.krylov,
+                ),
+                None => Outcome::Failed,
+            },
             (_, Some(Factored::Lu), Some((symbolic, numeric))) => krylov.solve(
                 matrix,
                 self.symmetric,
@@ -376,8 +382,16 @@ impl SparseSolver {
         let rhs = MatMut::from_column_major_slice_mut(&mut self.rhs, n, 1);
         let stack = MemStack::new(&mut self.scratch);
         match (&self.factored, &self.lu) {
-            (Some(Factored::Cholesky), _) => LltRef::new(&self.cholesky, &self.cholesky_values)
-                .solve_in_place_with_conj(Conj::No, rhs, Par::Seq, stack),
+            (Some(Factored::Cholesky), _) => {
+                if let Some((symbolic, values)) = &self.cholesky {
+                    LltRef::new(symbolic, values).solve_in_place_with_conj(
+                        Conj::No,
+                        rhs,
+                        Par::Seq,
+                        stack,
+                    )
+                }
+            }
             (Some(Factored::Lu), Some((symbolic, numeric))) => LuRef::new_unchecked(
                 symbolic, numeric,
             )
@@ -386,8 +400,12 @@ impl SparseSolver {
         }
     }
 
+    /// Scratch for the factorizations made so far and their solves.
     fn scratch_size(&self) -> StackReq {
-        let cholesky = Self::cholesky_scratch(&self.cholesky);
+        let cholesky = match &self.cholesky {
+            Some((symbolic, _)) => Self::cholesky_scratch(symbolic),
+            None => StackReq::EMPTY,
+        };
         match &self.lu {
             None => cholesky,
             Some((lu, _)) => cholesky
@@ -413,8 +431,7 @@ impl Clone for SparseSolver {
             values: self.values.clone(),
             transpose: self.transpose.clone(),
             rhs: self.rhs.clone(),
-            cholesky: Arc::clone(&self.cholesky),
-            cholesky_values: self.cholesky_values.clone(),
+            cholesky: self.cholesky.clone(),
             lu: self.lu.clone(),
             scratch: MemBuffer::new(self.scratch_size()),
             counts: self.counts,
