@@ -354,3 +354,125 @@ fn arrays_filled_in_place_are_differentiated() {
     // [[−k·n, 0], [k, −2·x₁]]
     assert_eq!(jacobian, odyn::nalgebra::Matrix2::new(-6.0, 0.0, 3.0, 0.5));
 }
+
+/// Branches on the state: a contact force only while the ball is inside the wall (`if` as a
+/// value), drag that switches on above a speed in either direction (`if`/`else if` as
+/// statements changing a local), and an early `return` past a line. Each arm is differentiated
+/// on its own.
+#[system]
+#[derive(Clone, Copy, Debug)]
+struct Wall {
+    #[position]
+    x: f64,
+    #[velocity]
+    v: f64,
+    k: f64,
+    c: f64,
+}
+
+#[system]
+impl Wall {
+    fn acceleration(&self) -> f64 {
+        let contact = if self.x < 0.0 { -self.k * self.x } else { 0.0 };
+        let mut drag = 0.0;
+        if self.v > 1.0 {
+            drag = -self.c * (self.v - 1.0) * (self.v - 1.0);
+        } else if self.v <= -1.0 {
+            drag = self.c * (self.v + 1.0).powi(2);
+        }
+        if self.x >= 3.0 {
+            return -self.x * self.v;
+        }
+        contact + drag - 0.1 * self.x * self.x.sin()
+    }
+}
+
+#[test]
+fn branches_on_the_state_are_differentiated_arm_by_arm() {
+    let model = Wall {
+        x: 1.0,
+        v: 0.0,
+        k: 1e3,
+        c: 0.5,
+    };
+    // Central differences straddle no switching surface: x = 0 and 3, v = ±1 are avoided.
+    let away = |r: &mut Rng, lo: f64, hi: f64, surfaces: &[f64]| loop {
+        let value = r.uniform(lo, hi);
+        if surfaces.iter().all(|s| (value - s).abs() > 0.05) {
+            return value;
+        }
+    };
+    check(&model, 0.0, 200, |r| WallState {
+        x: away(r, -1.0, 4.0, &[0.0, 3.0]),
+        v: away(r, -2.0, 2.0, &[-1.0, 1.0]),
+    });
+    // On a switching surface the comparison chooses the arm, and the Jacobian is that arm's:
+    // at x = 0, `x < 0.0` is false, so the contact's −k is not in ∂a/∂x; at x = 3, `x >= 3.0`
+    // holds, so ∂a/∂x = −v.
+    for (x, expected) in [(0.0, 0.0), (3.0, -0.5)] {
+        let y = WallState { x, v: 0.5 };
+        let mut jacobian = model.jacobian_matrix(&y);
+        model.jacobian(0.0, &y, &mut jacobian);
+        assert_eq!(
+            odyn::DenseMatrix::entry(&jacobian, 1, 0),
+            expected,
+            "x = {x}"
+        );
+    }
+}
+
+/// A ball falling onto a stiff penalty wall, a = −g + k·max(−x, 0) written as an `if`, bounces
+/// back to the height it fell from: the contact is conservative (energy v²/2 + g·x +
+/// k·min(x, 0)²/2), and the stiff methods, which need the Jacobian through the branch, keep it.
+#[system]
+#[derive(Clone, Copy, Debug)]
+struct Drop {
+    #[position]
+    x: f64,
+    #[velocity]
+    v: f64,
+    k: f64,
+}
+
+#[system]
+impl Drop {
+    fn acceleration(&self) -> f64 {
+        if self.x < 0.0 {
+            -9.81 - self.k * self.x
+        } else {
+            -9.81
+        }
+    }
+}
+
+#[test]
+fn a_stiff_method_runs_through_a_branch_on_the_state() {
+    let ball = Drop {
+        x: 1.0,
+        v: 0.0,
+        k: 1e6,
+    };
+    for method in [Method::Rodas5P, Method::Bdf] {
+        let run = ball
+            .simulate()
+            .integrator(method)
+            .tolerances(1e-9, 1e-12)
+            .duration(0.9)
+            .run()
+            .unwrap();
+        // Free fall from 1 m lasts √(2/g) = 0.4515 s; the contact, half a period of √k rad/s,
+        // 3.1 ms; the way back up another 0.4515 s: at t = 0.9 the ball is near the top again,
+        // out of the wall, with the energy it fell with, g·1 m.
+        assert!(
+            run.samples.iter().any(|s| s.state.x < 0.0),
+            "{method:?} never touched"
+        );
+        let end = run.last().state;
+        let energy = 0.5 * end.v * end.v + 9.81 * end.x;
+        assert!(end.x > 0.9, "{method:?}: x(0.9) = {}", end.x);
+        assert!(
+            (energy / 9.81 - 1.0).abs() < 1e-4,
+            "{method:?}: energy {energy}"
+        );
+    }
+}

@@ -714,3 +714,44 @@ fn a_grid_whose_run_copies_do_not_fit_is_a_typed_error() {
     });
     assert_eq!(run.unwrap().steps(), 1);
 }
+
+/// A threshold reaction written as an `if` on the cell's value (a bistable medium: growth above
+/// 1/2, decay below) and a flux that switches on against a neighbour: the cell kernel's branches
+/// on the state are differentiated arm by arm, placed through the grid like any block.
+#[system]
+pub struct Threshold {
+    /// The medium.
+    #[field]
+    pub u: Grid,
+    /// Diffusivity over dx².
+    pub d: f64,
+}
+
+#[system]
+impl Threshold {
+    #[cell]
+    fn rate(&self, u: Stencil) -> f64 {
+        let reaction = if u.c > 0.5 {
+            u.c * (1.0 - u.c)
+        } else {
+            -u.c * u.c
+        };
+        let mut flux = self.d * u.laplacian();
+        if u.e >= u.c {
+            flux += 0.3 * (u.e - u.c);
+        }
+        reaction + flux
+    }
+}
+
+#[test]
+fn a_cell_branching_on_the_state_has_the_jacobian_of_its_arms() {
+    // Values spread over [0, 1] so both arms of each branch are taken, none within 1e-6 (the
+    // difference step) of a switching surface: 0.5, or a neighbour's value.
+    let value =
+        |i: usize, j: usize| 0.05 + 0.9 * (((7 * i + 3 * j) % 11) as f64 / 10.0) + 0.001 * j as f64;
+    for boundary in [Boundary::Periodic, Boundary::Neumann] {
+        let u = Grid::from_fn(6, 5, boundary, value).unwrap();
+        check_jacobian(&Threshold { u, d: 0.7 });
+    }
+}

@@ -127,7 +127,7 @@ pub(crate) fn shaken(model: &Cloth, amount: f64, seed: u64) -> ParticleState<3> 
 }
 
 /// The forces of `model` at `state` as one flat vector.
-fn forces(model: &Cloth, state: &ParticleState<3>) -> Vec<f64> {
+fn forces<M: ParticleSystem<3>>(model: &M, state: &ParticleState<3>) -> Vec<f64> {
     model
         .net_forces(0.0, state)
         .iter()
@@ -137,7 +137,10 @@ fn forces(model: &Cloth, state: &ParticleState<3>) -> Vec<f64> {
 
 /// ∂f/∂x and ∂f/∂v by central differences, h = 1e-6: truncation O(h²·f‴) and round-off
 /// O(ε·|f|/h) both near 1e-9 relative at these magnitudes.
-fn central_force_jacobians(model: &Cloth, state: &ParticleState<3>) -> [Vec<Vec<f64>>; 2] {
+fn central_force_jacobians<M: ParticleSystem<3>>(
+    model: &M,
+    state: &ParticleState<3>,
+) -> [Vec<Vec<f64>>; 2] {
     let n = state.as_slice().len() / 2;
     let h = 1e-6;
     let column = |index: usize| {
@@ -538,4 +541,87 @@ fn a_replaced_state_of_another_size_is_a_typed_error() {
     *stepper.state_mut() = model.state();
     stepper.step().unwrap();
     assert_eq!(stepper.steps(), 2);
+}
+
+/// Cables: links that pull only while stretched, written as an `if` on the state in the pair
+/// kernel, over a random tangle in which some are taut and some slack.
+#[system]
+struct Cables {
+    #[position]
+    x: Vec<Vector3<f64>>,
+    #[velocity]
+    v: Vec<Vector3<f64>>,
+    #[mass]
+    mass: Vec<f64>,
+    links: Vec<Spring>,
+}
+
+#[system]
+impl Cables {
+    #[pair(links)]
+    fn cable(&self, s: &Spring, xa: Vector3<f64>, xb: Vector3<f64>) -> Vector3<f64> {
+        let d = xb - xa;
+        let length = d.norm();
+        if length > s.rest {
+            d * (s.stiffness * (length - s.rest) / length)
+        } else {
+            Vector3::zeros()
+        }
+    }
+}
+
+#[test]
+fn a_kernel_branching_on_the_state_matches_central_differences() {
+    let mut seed = 11;
+    let n = 12;
+    let x: Vec<Vector3<f64>> = (0..n)
+        .map(|_| Vector3::new(noise(&mut seed), noise(&mut seed), noise(&mut seed)))
+        .collect();
+    let mut links = Vec::new();
+    let (mut taut, mut slack) = (0, 0);
+    for a in 0..n {
+        for b in [(a + 1) % n, (a + 5) % n] {
+            // A rest length within 20 % of the distance either way, but never within 1e-3 of
+            // it, so central differences (h = 1e-6) do not straddle the switch.
+            let distance = (x[b] - x[a]).norm();
+            let mut rest = distance * (1.0 + 0.2 * noise(&mut seed));
+            if (rest - distance).abs() < 1e-3 {
+                rest = distance + 1e-2;
+            }
+            if distance > rest {
+                taut += 1
+            } else {
+                slack += 1
+            }
+            links.push(Spring {
+                a,
+                b,
+                rest,
+                stiffness: 50.0,
+                damping: 0.0,
+            });
+        }
+    }
+    assert!(taut > 3 && slack > 3, "{taut} taut, {slack} slack");
+    let model = Cables {
+        v: vec![Vector3::zeros(); n],
+        mass: vec![1.0; n],
+        links,
+        x,
+    };
+    let state = model.state();
+    let mut jacobian = model.jacobian_matrix(&state);
+    model.jacobian(0.0, &state, &mut jacobian);
+    let (dx, _) = jacobian.force_jacobians();
+    let [fd_x, _] = central_force_jacobians(&model, &state);
+    let scale = dx.norm_max();
+    for (column, values) in fd_x.iter().enumerate() {
+        for (row, value) in values.iter().enumerate() {
+            let e = dx[(row, column)];
+            assert!(
+                (e - value).abs() <= 1e-6 * scale,
+                "({row}, {column}): generated {e}, central {value}"
+            );
+        }
+    }
 }

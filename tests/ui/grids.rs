@@ -3,7 +3,7 @@
 //! topic: trybuild compiles each file as a crate, and one crate per case cost a minute.)
 #![allow(dead_code)]
 
-mod cell_branches_on_state {
+mod cell_matches_on_state {
     use odyn::grid::{Grid, Stencil};
     use odyn::system;
 
@@ -18,7 +18,7 @@ mod cell_branches_on_state {
     impl Heat {
         #[cell]
         fn rate(&self, u: Stencil) -> f64 {
-            if u.c > 0.5 { self.d * u.laplacian() } else { 0.0 }
+            match u.c > 0.5 { true => self.d * u.laplacian(), false => 0.0 }
         }
     }
 

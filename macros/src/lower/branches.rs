@@ -1,20 +1,45 @@
-//! Branches on parameters — `if`/`match` whose conditions do not read the state — as statements
-//! and as values, with early `return`s from them: each arm is lowered in its own scope, and the
-//! locals the arms change, and the branch's value, are selected by the arm the prologue's copy of
-//! the branch took.
+//! Branches — `if`/`match` — as statements and as values, with early `return`s from them: each
+//! arm is lowered in its own scope, and the locals the arms change, and the branch's value, are
+//! chosen by the arm taken.
+//!
+//! - A branch on parameters (its conditions do not read the state) is chosen by the prologue's
+//!   copy of the branch, which records the arm it took in a selector ([`crate::ir::Node::Select`]).
+//! - An `if` on the state, each condition one comparison (`<`, `<=`, `>`, `>=`) of two numbers,
+//!   is chosen in the graph by those comparisons ([`crate::ir::Node::Pick`], as `min` and `max`
+//!   are). Each arm is differentiated on its own: the Jacobian is the taken arm's, and at the
+//!   switching surface it is the one-sided derivative of the arm the comparison chose there.
 
 use std::collections::HashMap;
 
-use syn::{Expr, ExprIf, ExprMatch, Stmt};
+use syn::{BinOp, Expr, ExprIf, ExprMatch, Stmt};
 
 use super::scope::{Binding, pattern_names};
 use super::statements::{Context, Ending};
 use super::{Branch, BranchKind, Lowering, Prologue, Value};
+use crate::ir::ExprId;
 
 /// The arms of a branch as statement lists, with the names each arm's pattern binds.
 struct Arms {
     kind: BranchKind,
     bodies: Vec<(Vec<Stmt>, Vec<String>)>,
+    /// The conditions read the state: the arms are chosen in the graph.
+    on_state: bool,
+}
+
+/// How the arm taken is chosen.
+enum Chooser {
+    /// By the selector the prologue's copy of a branch on parameters sets.
+    Selector(u32),
+    /// By comparisons of graph values, one per arm but the last (the `else`).
+    Comparisons(Vec<Comparison>),
+}
+
+/// An arm is taken when `a <= b` holds, or, `negated`, when it does not.
+#[derive(Clone, Copy)]
+struct Comparison {
+    a: ExprId,
+    b: ExprId,
+    negated: bool,
 }
 
 type Scopes = Vec<HashMap<String, Binding>>;
@@ -32,9 +57,15 @@ impl Lowering<'_> {
 
     fn if_arms(&self, mut branch: &ExprIf) -> syn::Result<Arms> {
         let (mut conditions, mut bodies) = (Vec::new(), Vec::new());
+        let on_state = self.depends_any(branch);
         loop {
-            if self.depends(&branch.cond) {
-                return Err(self.error(&branch.cond, "branching on the state (`if`)"));
+            if on_state && comparison_operands(&branch.cond).is_none() {
+                return Err(self.error(
+                    &branch.cond,
+                    "this condition on the state (`if` on the state takes one comparison, \
+                     `a < b`, `a <= b`, `a > b` or `a >= b`, per condition; `min`, `max` and \
+                     `clamp` are exact too)",
+                ));
             }
             bodies.push((branch.then_branch.stmts.clone(), let_names(&branch.cond)));
             conditions.push((*branch.cond).clone());
@@ -54,7 +85,57 @@ impl Lowering<'_> {
         Ok(Arms {
             kind: BranchKind::If(conditions),
             bodies,
+            on_state,
         })
+    }
+
+    /// Whether any condition of the `if`/`else if` chain from `branch` reads the state.
+    fn depends_any(&self, mut branch: &ExprIf) -> bool {
+        loop {
+            if self.depends(&branch.cond) {
+                return true;
+            }
+            match branch.else_branch.as_ref().map(|(_, e)| &**e) {
+                Some(Expr::If(next)) => branch = next,
+                _ => return false,
+            }
+        }
+    }
+
+    /// The comparisons of an `if` on the state, lowered in the scope before its arms.
+    fn comparisons(&mut self, conditions: &[Expr]) -> syn::Result<Vec<Comparison>> {
+        conditions
+            .iter()
+            .map(|condition| {
+                let (left, op, right) =
+                    comparison_operands(condition).expect("checked by `if_arms`");
+                let (left, right) = (self.scalar(left)?, self.scalar(right)?);
+                // `l <= r` as is; `l < r` is `!(r <= l)`; `l >= r` is `r <= l`; `l > r` is
+                // `!(l <= r)` (the same for every number but NaN, where no branch is meaningful).
+                Ok(match op {
+                    BinOp::Le(_) => Comparison {
+                        a: left,
+                        b: right,
+                        negated: false,
+                    },
+                    BinOp::Lt(_) => Comparison {
+                        a: right,
+                        b: left,
+                        negated: true,
+                    },
+                    BinOp::Ge(_) => Comparison {
+                        a: right,
+                        b: left,
+                        negated: false,
+                    },
+                    _ => Comparison {
+                        a: left,
+                        b: right,
+                        negated: true,
+                    },
+                })
+            })
+            .collect()
     }
 
     fn match_arms(&self, m: &ExprMatch) -> syn::Result<Arms> {
@@ -80,16 +161,60 @@ impl Lowering<'_> {
         Ok(Arms {
             kind: BranchKind::Match(m.expr.clone(), patterns),
             bodies,
+            on_state: false,
         })
     }
 
-    /// Lowers each arm with `each`, every arm from the same scopes, its prologue collected into
-    /// one [`Branch`]; returns the selector and, per arm, `each`'s result and the scopes after it.
+    /// Lowers each arm with `each`, every arm from the same scopes; returns how the arm taken
+    /// is chosen and, per arm, `each`'s result and the scopes after it. The arms' prologues go
+    /// into one [`Branch`] for a branch on parameters; for one on the state, they run whatever
+    /// the arm (they compute parameter-only values), so an arm may not add statements to them.
     fn lower_arms<T>(
         &mut self,
         arms: Arms,
         mut each: impl FnMut(&mut Self, &[Stmt]) -> syn::Result<T>,
-    ) -> syn::Result<(u32, Vec<(T, Scopes)>)> {
+    ) -> syn::Result<(Chooser, Vec<(T, Scopes)>)> {
+        if arms.on_state {
+            let BranchKind::If(conditions) = &arms.kind else {
+                unreachable!("only `if` branches on the state")
+            };
+            let chooser = Chooser::Comparisons(self.comparisons(conditions)?);
+            let before = self.scopes.clone();
+            let mut results = Vec::with_capacity(arms.bodies.len());
+            for (stmts, names) in arms.bodies {
+                self.scopes = before.clone();
+                self.scopes.push(HashMap::new());
+                for name in names {
+                    self.bind(name, None, false);
+                }
+                let from = self.prologue.len();
+                let result = each(self, &stmts)?;
+                if let Some(Prologue::Stmt(stmt)) = self.prologue[from..]
+                    .iter()
+                    .find(|p| !matches!(p, Prologue::Opaque(..)))
+                {
+                    return Err(self.error(
+                        stmt,
+                        "a statement that does not read the state inside an `if` on the state \
+                         (move it before the `if`)",
+                    ));
+                }
+                if self.prologue[from..]
+                    .iter()
+                    .any(|p| !matches!(p, Prologue::Opaque(..)))
+                {
+                    return Err(self.error(
+                        &stmts[0],
+                        "a branch on parameters inside an `if` on the state (move it before \
+                         the `if`)",
+                    ));
+                }
+                self.scopes.pop();
+                let after = std::mem::replace(&mut self.scopes, before.clone());
+                results.push((result, after));
+            }
+            return Ok((chooser, results));
+        }
         let selector = self.selectors;
         self.selectors += 1;
         let outer = std::mem::take(&mut self.prologue);
@@ -120,25 +245,25 @@ impl Lowering<'_> {
             kind: arms.kind,
             arms: prologues,
         })));
-        Ok((selector, results))
+        Ok((Chooser::Selector(selector), results))
     }
 
     /// `if`/`match` as a statement: each arm's changes to locals are selected by the arm taken.
     pub(super) fn branch_statement(&mut self, e: &Expr) -> syn::Result<()> {
         let arms = self.arms(e)?;
-        let (selector, results) =
+        let (chooser, results) =
             self.lower_arms(arms, |l, stmts| match l.run(stmts, Context::Arm)? {
                 Ending::Continue | Ending::Value(_) => Ok(()),
             })?;
         let scopes: Vec<Scopes> = results.into_iter().map(|(_, s)| s).collect();
-        self.merge(selector, &scopes, e)
+        self.merge(&chooser, &scopes, e)
     }
 
     /// `if`/`match` as a value: the arms' values (and changes to locals) selected by the arm
     /// taken.
     pub(super) fn branch_value(&mut self, e: &Expr) -> syn::Result<Value> {
         let arms = self.arms(e)?;
-        let (selector, results) =
+        let (chooser, results) =
             self.lower_arms(arms, |l, stmts| match l.run(stmts, Context::Block)? {
                 Ending::Value(v) => Ok(v),
                 Ending::Continue => Err(l.error(
@@ -147,8 +272,8 @@ impl Lowering<'_> {
                 )),
             })?;
         let (values, scopes): (Vec<Value>, Vec<Scopes>) = results.into_iter().unzip();
-        self.merge(selector, &scopes, e)?;
-        self.select(selector, values, e)
+        self.merge(&chooser, &scopes, e)?;
+        self.select(&chooser, values, e)
     }
 
     /// A branch with a `return` among the function's own statements: the rest of the function
@@ -165,7 +290,7 @@ impl Lowering<'_> {
             }
             stmts.extend_from_slice(rest);
         }
-        let (selector, results) =
+        let (chooser, results) =
             self.lower_arms(arms, |l, stmts| match l.run(stmts, Context::Function)? {
                 Ending::Value(v) => Ok(v),
                 Ending::Continue => Err(l.error(
@@ -174,12 +299,12 @@ impl Lowering<'_> {
                 )),
             })?;
         let values = results.into_iter().map(|(v, _)| v).collect();
-        self.select(selector, values, e)
+        self.select(&chooser, values, e)
     }
 
     /// Brings the arms' scopes back together: every binding the arms left different is selected
     /// by the arm taken (a local the lowering does not follow is read back by name instead).
-    fn merge(&mut self, selector: u32, arms: &[Scopes], at: &Expr) -> syn::Result<()> {
+    fn merge(&mut self, chooser: &Chooser, arms: &[Scopes], at: &Expr) -> syn::Result<()> {
         let names: Vec<(usize, String)> = self
             .scopes
             .iter()
@@ -195,7 +320,7 @@ impl Lowering<'_> {
             let dependent = bindings.iter().any(|b| b.dependent);
             let values: Option<Vec<Value>> = bindings.iter().map(|b| b.value.clone()).collect();
             let value = match values {
-                Some(values) => Some(self.select(selector, values, at)?),
+                Some(values) => Some(self.select(chooser, values, at)?),
                 None if dependent => {
                     return Err(self.error(
                         at,
@@ -212,43 +337,78 @@ impl Lowering<'_> {
         Ok(())
     }
 
-    /// `if selector == 0 { v₀ } else if selector == 1 { v₁ } … else { vₙ }`, part by part.
-    fn select(&mut self, selector: u32, values: Vec<Value>, at: &Expr) -> syn::Result<Value> {
+    /// `if arm 0 was taken { v₀ } else if arm 1 was { v₁ } … else { vₙ }`, part by part.
+    fn select(&mut self, chooser: &Chooser, values: Vec<Value>, at: &Expr) -> syn::Result<Value> {
         let mut values = values;
         let mut merged = values.pop().expect("a branch has arms");
         while let Some(value) = values.pop() {
-            let arm = u32::try_from(values.len()).expect("fewer than 2³² arms");
-            merged = self.select_pair(selector, arm, value, merged, at)?;
+            let arm = values.len();
+            merged = self.select_pair(chooser, arm, value, merged, at)?;
         }
         Ok(merged)
     }
 
     fn select_pair(
         &mut self,
-        selector: u32,
-        arm: u32,
+        chooser: &Chooser,
+        arm: usize,
         then: Value,
         otherwise: Value,
         at: &Expr,
     ) -> syn::Result<Value> {
         match (then, otherwise) {
             (Value::Scalar(a), Value::Scalar(b)) => {
-                Ok(Value::Scalar(self.graph.select(selector, arm, a, b)))
+                Ok(Value::Scalar(self.choose(chooser, arm, a, b)))
             }
             (Value::Vector(a), Value::Vector(b)) if a.len() == b.len() => Ok(Value::Vector(
                 a.into_iter()
                     .zip(b)
-                    .map(|(x, y)| self.graph.select(selector, arm, x, y))
+                    .map(|(x, y)| self.choose(chooser, arm, x, y))
                     .collect(),
             )),
             (Value::Tuple(a), Value::Tuple(b)) if a.len() == b.len() => Ok(Value::Tuple(
                 a.into_iter()
                     .zip(b)
-                    .map(|(x, y)| self.select_pair(selector, arm, x, y, at))
+                    .map(|(x, y)| self.select_pair(chooser, arm, x, y, at))
                     .collect::<syn::Result<_>>()?,
             )),
             _ => Err(self.error(at, "branch arms whose values have different shapes")),
         }
+    }
+
+    /// `then` if `arm` was taken, else `otherwise`.
+    fn choose(&mut self, chooser: &Chooser, arm: usize, then: ExprId, otherwise: ExprId) -> ExprId {
+        match chooser {
+            Chooser::Selector(selector) => {
+                let arm = u32::try_from(arm).expect("fewer than 2³² arms");
+                self.graph.select(*selector, arm, then, otherwise)
+            }
+            Chooser::Comparisons(comparisons) => {
+                let Comparison { a, b, negated } = comparisons[arm];
+                if negated {
+                    self.graph.pick(a, b, otherwise, then)
+                } else {
+                    self.graph.pick(a, b, then, otherwise)
+                }
+            }
+        }
+    }
+}
+
+/// The operands and operator of a condition that is one comparison, `a < b`, `a <= b`, `a > b`
+/// or `a >= b` (in parentheses or not).
+fn comparison_operands(condition: &Expr) -> Option<(&Expr, BinOp, &Expr)> {
+    match condition {
+        Expr::Paren(p) => comparison_operands(&p.expr),
+        Expr::Binary(b)
+            if matches!(
+                b.op,
+                BinOp::Lt(_) | BinOp::Le(_) | BinOp::Gt(_) | BinOp::Ge(_)
+            ) =>
+        {
+            Some((&b.left, b.op, &b.right))
+        }
+        _ => None,
     }
 }
 
