@@ -409,4 +409,32 @@ mod unsupported_operator {
     fn main() {}
 }
 
+mod while_body_reads_state {
+    use odyn::prelude::*;
+
+    #[system()]
+    pub struct Model {
+        #[position]
+        pub x: f64,
+        #[velocity]
+        pub v: f64,
+        pub n: usize,
+    }
+
+    #[system]
+    impl Model {
+        fn acceleration(&self) -> f64 {
+            let mut a = 0.0;
+            let mut i = 0;
+            while i < self.n {
+                a = a - self.x;
+                i += 1;
+            }
+            a
+        }
+    }
+
+    fn main() {}
+}
+
 fn main() {}

@@ -138,8 +138,11 @@ impl Lowering<'_> {
             Stmt::Expr(Expr::ForLoop(l), _) => {
                 Err(self.error(l.for_token, "a loop whose body reads the state (`for`)"))
             }
+            Stmt::Expr(Expr::While(w), _) if self.depends(&w.cond) => {
+                Err(self.error(&w.cond, "the state in a loop condition (`while`)"))
+            }
             Stmt::Expr(Expr::While(w), _) => {
-                Err(self.error(&w.cond, "a loop that reads the state (`while`)"))
+                Err(self.error(w.while_token, "a loop whose body reads the state (`while`)"))
             }
             Stmt::Expr(Expr::Loop(l), _) => {
                 Err(self.error(l.loop_token, "a loop that reads the state (`loop`)"))
