@@ -30,8 +30,7 @@ use super::precond::{BlockJacobi, Factors, Ilu0, Ilu0Ref};
 /// the numeric factorizations once per Newton iteration (or Rosenbrock step).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Factorizations {
-    /// Symbolic Cholesky analyses (fill-reducing ordering and elimination tree), made when a
-    /// direct factorization first meets a symmetric matrix: none in a run solved by Krylov alone.
+    /// Symbolic Cholesky analyses (fill-reducing ordering and elimination tree).
     pub symbolic_cholesky: u64,
     /// Symbolic LU analyses (made only if a Newton matrix is unsymmetric or indefinite).
     pub symbolic_lu: u64,
@@ -64,10 +63,8 @@ pub(crate) struct SparseSolver {
     transpose: Vec<usize>,
     /// The right-hand side [`SparseSolver::substitute`] solves in place.
     pub(crate) rhs: Vec<f64>,
-    /// The sparse Cholesky: its symbolic analysis (AMD ordering; shared by clones), made the
-    /// first time a direct factorization tries it, and the numeric factor's values. A run that
-    /// only ever solves by Krylov never pays for it.
-    cholesky: Option<(Arc<SymbolicCholesky<usize>>, Vec<f64>)>,
+    cholesky: Arc<SymbolicCholesky<usize>>,
+    cholesky_values: Vec<f64>,
     lu: Option<SparseLu>,
     scratch: MemBuffer,
     pub(crate) counts: Factorizations,
@@ -114,16 +111,28 @@ impl SparseSolver {
                 solver_transpose[start + k] = slot_in(&pattern, col, row);
             }
         }
+        let cholesky = factorize_symbolic_cholesky(
+            pattern.as_ref(),
+            Side::Lower,
+            SymmetricOrdering::Amd,
+            CholeskySymbolicParams::default(),
+        )
+        .expect("a symmetric pattern of checked size always has a symbolic Cholesky factor");
+        let scratch = MemBuffer::new(Self::cholesky_scratch(&cholesky));
         let jacobi = BlockJacobi::new(1, (0..n).collect(), &pattern);
         SparseSolver {
             values: vec![0.0; pattern.compute_nnz()],
-            cholesky: None,
+            cholesky_values: vec![0.0; cholesky.len_val()],
+            cholesky: Arc::new(cholesky),
             pattern,
             transpose: solver_transpose,
             rhs: vec![0.0; n],
             lu: None,
-            scratch: MemBuffer::new(StackReq::EMPTY),
-            counts: Factorizations::default(),
+            scratch,
+            counts: Factorizations {
+                symbolic_cholesky: 1,
+                ..Factorizations::default()
+            },
             factored: None,
             skip_cholesky: 0,
             krylov: None,
@@ -229,25 +238,9 @@ impl SparseSolver {
         if self.skip_cholesky > 0 {
             self.skip_cholesky -= 1;
         } else if self.is_symmetric() {
-            if self.cholesky.is_none() {
-                let symbolic = factorize_symbolic_cholesky(
-                    self.pattern.as_ref(),
-                    Side::Lower,
-                    SymmetricOrdering::Amd,
-                    CholeskySymbolicParams::default(),
-                )
-                .expect("a symmetric pattern of checked size always has a symbolic Cholesky");
-                let values = vec![0.0; symbolic.len_val()];
-                self.cholesky = Some((Arc::new(symbolic), values));
-                self.counts.symbolic_cholesky += 1;
-                self.scratch = MemBuffer::new(self.scratch_size());
-            }
-            let Some((symbolic, values)) = &mut self.cholesky else {
-                unreachable!("made above")
-            };
             let matrix = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
-            let factored = symbolic.factorize_numeric_llt(
-                values,
+            let factored = self.cholesky.factorize_numeric_llt(
+                &mut self.cholesky_values,
                 matrix,
                 Side::Lower,
                 LltRegularization::default(),
@@ -277,9 +270,13 @@ impl SparseSolver {
             let Ok(symbolic) = factorize_symbolic_lu(self.pattern.as_ref(), params) else {
                 return false;
             };
+            let need = symbolic
+                .factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default())
+                .or(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq))
+                .or(Self::cholesky_scratch(&self.cholesky));
+            self.scratch = MemBuffer::new(need);
             self.lu = Some((Arc::new(symbolic), NumericLu::new()));
             self.counts.symbolic_lu += 1;
-            self.scratch = MemBuffer::new(self.scratch_size());
         }
         let Some((symbolic, numeric)) = &mut self.lu else {
             return false;
@@ -346,16 +343,13 @@ impl SparseSolver {
                 ),
                 None => Outcome::Failed,
             },
-            (_, Some(Factored::Cholesky), _) => match &self.cholesky {
-                Some((symbolic, values)) => krylov.solve(
-                    matrix,
-                    self.symmetric,
-                    Factors::Cholesky(LltRef::new(symbolic, values)),
-                    &mut self.rhs,
-                    &mut self.counts.krylov,
-                ),
-                None => Outcome::Failed,
-            },
+            (_, Some(Factored::Cholesky), _) => krylov.solve(
+                matrix,
+                self.symmetric,
+                Factors::Cholesky(LltRef::new(&self.cholesky, &self.cholesky_values)),
+                &mut self.rhs,
+                &mut self.counts.krylov,
+            ),
             (_, Some(Factored::Lu), Some((symbolic, numeric))) => krylov.solve(
                 matrix,
                 self.symmetric,
@@ -382,16 +376,8 @@ impl SparseSolver {
         let rhs = MatMut::from_column_major_slice_mut(&mut self.rhs, n, 1);
         let stack = MemStack::new(&mut self.scratch);
         match (&self.factored, &self.lu) {
-            (Some(Factored::Cholesky), _) => {
-                if let Some((symbolic, values)) = &self.cholesky {
-                    LltRef::new(symbolic, values).solve_in_place_with_conj(
-                        Conj::No,
-                        rhs,
-                        Par::Seq,
-                        stack,
-                    )
-                }
-            }
+            (Some(Factored::Cholesky), _) => LltRef::new(&self.cholesky, &self.cholesky_values)
+                .solve_in_place_with_conj(Conj::No, rhs, Par::Seq, stack),
             (Some(Factored::Lu), Some((symbolic, numeric))) => LuRef::new_unchecked(
                 symbolic, numeric,
             )
@@ -400,12 +386,8 @@ impl SparseSolver {
         }
     }
 
-    /// Scratch for the factorizations made so far and their solves.
     fn scratch_size(&self) -> StackReq {
-        let cholesky = match &self.cholesky {
-            Some((symbolic, _)) => Self::cholesky_scratch(symbolic),
-            None => StackReq::EMPTY,
-        };
+        let cholesky = Self::cholesky_scratch(&self.cholesky);
         match &self.lu {
             None => cholesky,
             Some((lu, _)) => cholesky
@@ -431,7 +413,8 @@ impl Clone for SparseSolver {
             values: self.values.clone(),
             transpose: self.transpose.clone(),
             rhs: self.rhs.clone(),
-            cholesky: self.cholesky.clone(),
+            cholesky: Arc::clone(&self.cholesky),
+            cholesky_values: self.cholesky_values.clone(),
             lu: self.lu.clone(),
             scratch: MemBuffer::new(self.scratch_size()),
             counts: self.counts,
