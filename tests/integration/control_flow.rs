@@ -357,8 +357,8 @@ fn arrays_filled_in_place_are_differentiated() {
 
 /// Branches on the state: a contact force only while the ball is inside the wall (`if` as a
 /// value), drag that switches on above a speed in either direction (`if`/`else if` as
-/// statements changing a local), and an early `return` past a line. Each arm is differentiated
-/// on its own.
+/// statements changing a local), a kick under a compound condition (`&&`, `||`, `!`), and an
+/// early `return` past a line. Each arm is differentiated on its own.
 #[system]
 #[derive(Clone, Copy, Debug)]
 struct Wall {
@@ -383,7 +383,11 @@ impl Wall {
         if self.x >= 3.0 {
             return -self.x * self.v;
         }
-        contact + drag - 0.1 * self.x * self.x.sin()
+        let mut kick = 0.0;
+        if (self.x > 1.0 && self.v < 0.0) || !(self.x < 2.5 || self.v > 5.0) {
+            kick = 0.2 * self.v * self.x;
+        }
+        contact + drag + kick - 0.1 * self.x * self.x.sin()
     }
 }
 
@@ -395,7 +399,8 @@ fn branches_on_the_state_are_differentiated_arm_by_arm() {
         k: 1e3,
         c: 0.5,
     };
-    // Central differences straddle no switching surface: x = 0 and 3, v = ±1 are avoided.
+    // Central differences straddle no switching surface: x = 0, 1, 2.5 and 3, v = 0 and ±1 are
+    // avoided.
     let away = |r: &mut Rng, lo: f64, hi: f64, surfaces: &[f64]| loop {
         let value = r.uniform(lo, hi);
         if surfaces.iter().all(|s| (value - s).abs() > 0.05) {
@@ -403,8 +408,8 @@ fn branches_on_the_state_are_differentiated_arm_by_arm() {
         }
     };
     check(&model, 0.0, 200, |r| WallState {
-        x: away(r, -1.0, 4.0, &[0.0, 3.0]),
-        v: away(r, -2.0, 2.0, &[-1.0, 1.0]),
+        x: away(r, -1.0, 4.0, &[0.0, 1.0, 2.5, 3.0]),
+        v: away(r, -2.0, 2.0, &[-1.0, 0.0, 1.0]),
     });
     // On a switching surface the comparison chooses the arm, and the Jacobian is that arm's:
     // at x = 0, `x < 0.0` is false, so the contact's −k is not in ∂a/∂x; at x = 3, `x >= 3.0`

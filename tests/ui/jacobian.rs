@@ -3,7 +3,7 @@
 //! topic: trybuild compiles each file as a crate, and one crate per case cost a minute.)
 #![allow(dead_code)]
 
-mod compound_condition_on_state {
+mod call_as_condition_on_state {
     use odyn::prelude::*;
 
     #[system()]
@@ -18,7 +18,7 @@ mod compound_condition_on_state {
     #[system]
     impl Model {
         fn acceleration(&self) -> f64 {
-            if self.x > 0.0 && self.v > 0.0 { -self.k } else { self.k }
+            if self.x > 0.0 && self.v.is_sign_positive() { -self.k } else { self.k }
         }
     }
 

@@ -59,7 +59,7 @@ mod kernel_arity {
     fn main() {}
 }
 
-mod kernel_compound_condition_on_state {
+mod kernel_call_as_condition_on_state {
     use odyn::particles::Spring;
     use odyn::prelude::*;
 
@@ -78,7 +78,7 @@ mod kernel_compound_condition_on_state {
     impl Net {
         #[pair(springs)]
         fn spring(&self, s: &Spring, xa: Vector3<f64>, xb: Vector3<f64>) -> Vector3<f64> {
-            if (xb - xa).norm() > s.rest || xb.x < 0.0 { (xb - xa) * s.stiffness } else { Vector3::zeros() }
+            if (xb - xa).norm() > s.rest || xb.x.is_nan() { (xb - xa) * s.stiffness } else { Vector3::zeros() }
         }
     }
 

@@ -268,9 +268,11 @@ fn declare(
     values: &mut Vec<syn::Ident>,
     out: &mut Vec<TokenStream>,
 ) {
-    let selector = selector_ident(branch.selector);
-    out.push(quote!(let mut #selector: usize = usize::MAX;));
-    selectors.push(selector);
+    if !matches!(branch.kind, BranchKind::Every) {
+        let selector = selector_ident(branch.selector);
+        out.push(quote!(let mut #selector: usize = usize::MAX;));
+        selectors.push(selector);
+    }
     for item in branch.arms.iter().flatten() {
         match item {
             Prologue::Opaque(i, _) if read.contains(i) => {
@@ -329,10 +331,14 @@ fn prologue_item(item: &Prologue, read: &HashSet<usize>, top: bool) -> TokenStre
                 .enumerate()
                 .map(|(k, arm)| {
                     let items = arm.iter().map(|p| prologue_item(p, read, false));
-                    quote!({ #(#items)* #selector = #k; })
+                    match branch.kind {
+                        BranchKind::Every => quote!({ #(#items)* }),
+                        _ => quote!({ #(#items)* #selector = #k; }),
+                    }
                 })
                 .collect();
             match &branch.kind {
+                BranchKind::Every => quote!(#(#arms)*),
                 BranchKind::If(conditions) => {
                     let mut tokens = TokenStream::new();
                     for (k, (condition, arm)) in conditions.iter().zip(&arms).enumerate() {

@@ -4,9 +4,9 @@
 //!
 //! - A branch on parameters (its conditions do not read the state) is chosen by the prologue's
 //!   copy of the branch, which records the arm it took in a selector ([`crate::ir::Node::Select`]).
-//! - An `if` on the state, each condition one comparison (`<`, `<=`, `>`, `>=`) of two numbers,
-//!   is chosen in the graph by those comparisons ([`crate::ir::Node::Pick`], as `min` and `max`
-//!   are). Each arm is differentiated on its own: the Jacobian is the taken arm's, and at the
+//! - An `if` on the state, each condition comparisons (`<`, `<=`, `>`, `>=`) of two numbers
+//!   joined by `&&`, `||` and `!`, is chosen in the graph by those comparisons
+//!   ([`crate::ir::Node::Pick`], as `min` and `max` are). Each arm is differentiated on its own: the Jacobian is the taken arm's, and at the
 //!   switching surface it is the one-sided derivative of the arm the comparison chose there.
 
 use std::collections::HashMap;
@@ -30,16 +30,21 @@ struct Arms {
 enum Chooser {
     /// By the selector the prologue's copy of a branch on parameters sets.
     Selector(u32),
-    /// By comparisons of graph values, one per arm but the last (the `else`).
-    Comparisons(Vec<Comparison>),
+    /// By conditions on graph values, one per arm but the last (the `else`).
+    Conditions(Vec<Condition>),
 }
 
-/// An arm is taken when `a <= b` holds, or, `negated`, when it does not.
-#[derive(Clone, Copy)]
-struct Comparison {
-    a: ExprId,
-    b: ExprId,
-    negated: bool,
+/// A condition on the state, lowered.
+enum Condition {
+    /// `a <= b`, or, `negated`, its negation.
+    Compare {
+        a: ExprId,
+        b: ExprId,
+        negated: bool,
+    },
+    Not(Box<Condition>),
+    And(Box<Condition>, Box<Condition>),
+    Or(Box<Condition>, Box<Condition>),
 }
 
 type Scopes = Vec<HashMap<String, Binding>>;
@@ -59,12 +64,12 @@ impl Lowering<'_> {
         let (mut conditions, mut bodies) = (Vec::new(), Vec::new());
         let on_state = self.depends_any(branch);
         loop {
-            if on_state && comparison_operands(&branch.cond).is_none() {
+            if on_state && let Err(at) = check_condition(&branch.cond) {
                 return Err(self.error(
-                    &branch.cond,
-                    "this condition on the state (`if` on the state takes one comparison, \
-                     `a < b`, `a <= b`, `a > b` or `a >= b`, per condition; `min`, `max` and \
-                     `clamp` are exact too)",
+                    at,
+                    "this condition on the state (`if` on the state takes comparisons, `a < b`, \
+                     `a <= b`, `a > b` or `a >= b`, joined by `&&`, `||` and `!`; `min`, `max` \
+                     and `clamp` are exact too)",
                 ));
             }
             bodies.push((branch.then_branch.stmts.clone(), let_names(&branch.cond)));
@@ -102,40 +107,41 @@ impl Lowering<'_> {
         }
     }
 
-    /// The comparisons of an `if` on the state, lowered in the scope before its arms.
-    fn comparisons(&mut self, conditions: &[Expr]) -> syn::Result<Vec<Comparison>> {
-        conditions
-            .iter()
-            .map(|condition| {
-                let (left, op, right) =
-                    comparison_operands(condition).expect("checked by `if_arms`");
-                let (left, right) = (self.scalar(left)?, self.scalar(right)?);
+    /// The conditions of an `if` on the state, lowered in the scope before its arms.
+    fn conditions(&mut self, conditions: &[Expr]) -> syn::Result<Vec<Condition>> {
+        conditions.iter().map(|c| self.condition(c)).collect()
+    }
+
+    fn condition(&mut self, condition: &Expr) -> syn::Result<Condition> {
+        match condition {
+            Expr::Paren(p) => self.condition(&p.expr),
+            Expr::Unary(u) if matches!(u.op, syn::UnOp::Not(_)) => {
+                Ok(Condition::Not(Box::new(self.condition(&u.expr)?)))
+            }
+            Expr::Binary(b) if matches!(b.op, BinOp::And(_) | BinOp::Or(_)) => {
+                let (l, r) = (
+                    Box::new(self.condition(&b.left)?),
+                    Box::new(self.condition(&b.right)?),
+                );
+                Ok(match b.op {
+                    BinOp::And(_) => Condition::And(l, r),
+                    _ => Condition::Or(l, r),
+                })
+            }
+            Expr::Binary(b) => {
+                let (left, right) = (self.scalar(&b.left)?, self.scalar(&b.right)?);
                 // `l <= r` as is; `l < r` is `!(r <= l)`; `l >= r` is `r <= l`; `l > r` is
                 // `!(l <= r)` (the same for every number but NaN, where no branch is meaningful).
-                Ok(match op {
-                    BinOp::Le(_) => Comparison {
-                        a: left,
-                        b: right,
-                        negated: false,
-                    },
-                    BinOp::Lt(_) => Comparison {
-                        a: right,
-                        b: left,
-                        negated: true,
-                    },
-                    BinOp::Ge(_) => Comparison {
-                        a: right,
-                        b: left,
-                        negated: false,
-                    },
-                    _ => Comparison {
-                        a: left,
-                        b: right,
-                        negated: true,
-                    },
-                })
-            })
-            .collect()
+                let (a, b, negated) = match b.op {
+                    BinOp::Le(_) => (left, right, false),
+                    BinOp::Lt(_) => (right, left, true),
+                    BinOp::Ge(_) => (right, left, false),
+                    _ => (left, right, true),
+                };
+                Ok(Condition::Compare { a, b, negated })
+            }
+            other => Err(self.error(other, "this condition on the state")),
+        }
     }
 
     fn match_arms(&self, m: &ExprMatch) -> syn::Result<Arms> {
@@ -167,8 +173,9 @@ impl Lowering<'_> {
 
     /// Lowers each arm with `each`, every arm from the same scopes; returns how the arm taken
     /// is chosen and, per arm, `each`'s result and the scopes after it. The arms' prologues go
-    /// into one [`Branch`] for a branch on parameters; for one on the state, they run whatever
-    /// the arm (they compute parameter-only values), so an arm may not add statements to them.
+    /// into one [`Branch`]: for a branch on parameters, the prologue's copy of the branch runs
+    /// the taken arm's; for one on the state, every arm's runs (they compute parameter-only
+    /// values), each in its own block.
     fn lower_arms<T>(
         &mut self,
         arms: Arms,
@@ -178,40 +185,30 @@ impl Lowering<'_> {
             let BranchKind::If(conditions) = &arms.kind else {
                 unreachable!("only `if` branches on the state")
             };
-            let chooser = Chooser::Comparisons(self.comparisons(conditions)?);
+            let chooser = Chooser::Conditions(self.conditions(conditions)?);
             let before = self.scopes.clone();
             let mut results = Vec::with_capacity(arms.bodies.len());
+            let mut prologues = Vec::with_capacity(arms.bodies.len());
             for (stmts, names) in arms.bodies {
                 self.scopes = before.clone();
                 self.scopes.push(HashMap::new());
                 for name in names {
                     self.bind(name, None, false);
                 }
-                let from = self.prologue.len();
-                let result = each(self, &stmts)?;
-                if let Some(Prologue::Stmt(stmt)) = self.prologue[from..]
-                    .iter()
-                    .find(|p| !matches!(p, Prologue::Opaque(..)))
-                {
-                    return Err(self.error(
-                        stmt,
-                        "a statement that does not read the state inside an `if` on the state \
-                         (move it before the `if`)",
-                    ));
-                }
-                if self.prologue[from..]
-                    .iter()
-                    .any(|p| !matches!(p, Prologue::Opaque(..)))
-                {
-                    return Err(self.error(
-                        &stmts[0],
-                        "a branch on parameters inside an `if` on the state (move it before \
-                         the `if`)",
-                    ));
-                }
+                let outer = std::mem::take(&mut self.prologue);
+                let result = each(self, &stmts);
+                prologues.push(std::mem::replace(&mut self.prologue, outer));
+                let result = result?;
                 self.scopes.pop();
                 let after = std::mem::replace(&mut self.scopes, before.clone());
                 results.push((result, after));
+            }
+            if prologues.iter().any(|p| !p.is_empty()) {
+                self.prologue.push(Prologue::Branch(Box::new(Branch {
+                    selector: u32::MAX,
+                    kind: BranchKind::Every,
+                    arms: prologues,
+                })));
             }
             return Ok((chooser, results));
         }
@@ -330,6 +327,18 @@ impl Lowering<'_> {
                         ),
                     ));
                 }
+                // Every arm's code odyn does not follow runs, so what such code left in `name`
+                // would be the last arm's whichever arm the state takes.
+                None if matches!(chooser, Chooser::Conditions(_)) => {
+                    return Err(self.error(
+                        at,
+                        format_args!(
+                            "an `if` on the state whose arms change `{name}` by code odyn does \
+                             not follow (change it before the `if`, or give it a value in each \
+                             arm)"
+                        ),
+                    ));
+                }
                 None => None,
             };
             self.scopes[level].insert(name, Binding { value, dependent });
@@ -383,32 +392,53 @@ impl Lowering<'_> {
                 let arm = u32::try_from(arm).expect("fewer than 2³² arms");
                 self.graph.select(*selector, arm, then, otherwise)
             }
-            Chooser::Comparisons(comparisons) => {
-                let Comparison { a, b, negated } = comparisons[arm];
+            Chooser::Conditions(conditions) => self.when(&conditions[arm], then, otherwise),
+        }
+    }
+
+    /// `then` where `condition` holds, else `otherwise`: `a && b` is `a` then `b`, `a || b`
+    /// is `a` else `b` (both sides evaluated; they are values without effects).
+    fn when(&mut self, condition: &Condition, then: ExprId, otherwise: ExprId) -> ExprId {
+        match condition {
+            &Condition::Compare { a, b, negated } => {
                 if negated {
                     self.graph.pick(a, b, otherwise, then)
                 } else {
                     self.graph.pick(a, b, then, otherwise)
                 }
             }
+            Condition::Not(c) => self.when(c, otherwise, then),
+            Condition::And(l, r) => {
+                let inner = self.when(r, then, otherwise);
+                self.when(l, inner, otherwise)
+            }
+            Condition::Or(l, r) => {
+                let inner = self.when(r, then, otherwise);
+                self.when(l, then, inner)
+            }
         }
     }
 }
 
-/// The operands and operator of a condition that is one comparison, `a < b`, `a <= b`, `a > b`
-/// or `a >= b` (in parentheses or not).
-fn comparison_operands(condition: &Expr) -> Option<(&Expr, BinOp, &Expr)> {
+/// Checks that `condition` is comparisons (`<`, `<=`, `>`, `>=`) joined by `&&`, `||` and `!`,
+/// in parentheses or not; on failure, the first part that is not.
+fn check_condition(condition: &Expr) -> Result<(), &Expr> {
     match condition {
-        Expr::Paren(p) => comparison_operands(&p.expr),
+        Expr::Paren(p) => check_condition(&p.expr),
+        Expr::Unary(u) if matches!(u.op, syn::UnOp::Not(_)) => check_condition(&u.expr),
+        Expr::Binary(b) if matches!(b.op, BinOp::And(_) | BinOp::Or(_)) => {
+            check_condition(&b.left)?;
+            check_condition(&b.right)
+        }
         Expr::Binary(b)
             if matches!(
                 b.op,
                 BinOp::Lt(_) | BinOp::Le(_) | BinOp::Gt(_) | BinOp::Ge(_)
             ) =>
         {
-            Some((&b.left, b.op, &b.right))
+            Ok(())
         }
-        _ => None,
+        other => Err(other),
     }
 }
 

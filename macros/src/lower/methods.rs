@@ -29,8 +29,8 @@ pub(super) fn supported() -> String {
     let unary: Vec<&str> = Func::ALL.iter().map(|f| f.method()).collect();
     format!(
         "supported on the state: `+ - * /`, unary `-`, `let` (with tuple and slice patterns), \
-         `if`/`match` on parameters (and `return` from them), `if` on the state with one \
-         comparison per condition, the methods {}, `recip`, \
+         `if`/`match` on parameters (and `return` from them), `if` on the state on \
+         comparisons joined by `&&`, `||`, `!`, the methods {}, `recip`, \
          `sin_cos`, {}, {}, and on vectors `.x`/`[i]`, {}, `VectorN::new`",
         quoted(&unary),
         quoted(&BINARY),

@@ -84,6 +84,9 @@ pub(crate) enum BranchKind {
     If(Vec<Expr>),
     /// `match scrutinee { pattern [if guard] => … }`.
     Match(Box<Expr>, Vec<(Pat, Option<Expr>)>),
+    /// The arms of a branch on the state, chosen in the graph: every arm's prologue runs, each
+    /// in its own block (its `let`s stay its own), and no selector is set.
+    Every,
 }
 
 /// The value of a sub-expression.
