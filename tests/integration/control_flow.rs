@@ -481,3 +481,53 @@ fn a_stiff_method_runs_through_a_branch_on_the_state() {
         );
     }
 }
+
+/// A stiffness chosen by an `if` on the state, then branched on: the chosen local reads the
+/// state, so the second `if` is one on the state too, and each side of the wall gets its own
+/// Jacobian (a parameter-only copy of the first choice once decided the second branch for every
+/// state).
+#[system]
+#[derive(Clone, Copy, Debug)]
+struct Contact {
+    #[position]
+    x: f64,
+    #[velocity]
+    v: f64,
+    k_out: f64,
+    k_in: f64,
+}
+
+#[system]
+impl Contact {
+    fn acceleration(&self) -> f64 {
+        let k = if self.x < 0.0 { self.k_in } else { self.k_out };
+        if k > 0.0 {
+            -k * self.x - self.v
+        } else {
+            -self.v * self.v
+        }
+    }
+}
+
+#[test]
+fn a_local_chosen_by_the_state_branches_on_the_state() {
+    let model = Contact {
+        x: 1.0,
+        v: 2.0,
+        k_out: 0.0,
+        k_in: 1e3,
+    };
+    check(&model, 0.0, 100, |r| ContactState {
+        x: if r.uniform(0.0, 1.0) < 0.5 {
+            r.uniform(-2.0, -0.05)
+        } else {
+            r.uniform(0.05, 2.0)
+        },
+        v: r.uniform(-2.0, 2.0),
+    });
+    // Outside the wall (k = 0) a = −v², so ∂a/∂v = −2v = −4 at v = 2.
+    let y = ContactState { x: 1.0, v: 2.0 };
+    let mut jacobian = model.jacobian_matrix(&y);
+    model.jacobian(0.0, &y, &mut jacobian);
+    assert_eq!(odyn::DenseMatrix::entry(&jacobian, 1, 1), -4.0);
+}

@@ -437,4 +437,57 @@ mod while_body_reads_state {
     fn main() {}
 }
 
+mod state_arm_changes_outer_local {
+    use odyn::prelude::*;
+
+    #[system()]
+    pub struct Model {
+        #[position]
+        pub x: f64,
+        #[velocity]
+        pub v: f64,
+        pub k: f64,
+    }
+
+    #[system]
+    impl Model {
+        fn acceleration(&self) -> f64 {
+            let mut k = self.k;
+            if self.x < 0.0 {
+                k = 10.0 * self.k;
+            }
+            -k * self.x
+        }
+    }
+
+    fn main() {}
+}
+
+mod code_after_state_return_changes_outer_local {
+    use odyn::prelude::*;
+
+    #[system()]
+    pub struct Model {
+        #[position]
+        pub x: f64,
+        #[velocity]
+        pub v: f64,
+        pub g: f64,
+    }
+
+    #[system]
+    impl Model {
+        fn acceleration(&self) -> f64 {
+            let mut g = self.g;
+            if self.x > 3.0 {
+                return 0.0;
+            }
+            g *= 2.0;
+            -g * self.x
+        }
+    }
+
+    fn main() {}
+}
+
 fn main() {}

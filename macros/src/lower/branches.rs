@@ -197,8 +197,23 @@ impl Lowering<'_> {
                 }
                 let outer = std::mem::take(&mut self.prologue);
                 let result = each(self, &stmts);
-                prologues.push(std::mem::replace(&mut self.prologue, outer));
+                let prologue = std::mem::replace(&mut self.prologue, outer);
                 let result = result?;
+                // Every arm's prologue runs, so code in it that changes a local from before the
+                // branch would change it for the arms after, and for the code after the branch.
+                if let Some((stmt, name)) = changes_outer(&prologue, &before) {
+                    return Err(self.refuse(
+                        stmt,
+                        format_args!(
+                            "parameter-only code inside an `if` on the state (or after a \
+                             `return` from one) changes `{name}`, a local from before the `if`: \
+                             odyn runs such code whichever arm the state takes; give `{name}` its \
+                             value as the `if`'s value instead \
+                             (`let {name} = if … {{ a }} else {{ b }};`)"
+                        ),
+                    ));
+                }
+                prologues.push(prologue);
                 self.scopes.pop();
                 let after = std::mem::replace(&mut self.scopes, before.clone());
                 results.push((result, after));
@@ -314,7 +329,10 @@ impl Lowering<'_> {
                 self.scopes[level].insert(name, bindings[0].clone());
                 continue;
             }
-            let dependent = bindings.iter().any(|b| b.dependent);
+            // Arms chosen by the state give a local a state-dependent value, whatever each
+            // arm's own value.
+            let dependent =
+                bindings.iter().any(|b| b.dependent) || matches!(chooser, Chooser::Conditions(_));
             let values: Option<Vec<Value>> = bindings.iter().map(|b| b.value.clone()).collect();
             let value = match values {
                 Some(values) => Some(self.select(chooser, values, at)?),
@@ -418,6 +436,63 @@ impl Lowering<'_> {
             }
         }
     }
+}
+
+/// The first statement of `prologue` (its branches' arms included) that assigns, borrows
+/// mutably or calls a method on a local bound in `outer`, and that local's name.
+fn changes_outer<'p>(prologue: &'p [Prologue], outer: &Scopes) -> Option<(&'p Stmt, String)> {
+    struct Targets(Vec<String>);
+    impl Targets {
+        fn target(&mut self, e: &Expr) {
+            let base = match e {
+                Expr::Index(i) => &*i.expr,
+                Expr::Field(f) => &*f.base,
+                Expr::Paren(p) => &*p.expr,
+                other => other,
+            };
+            if let Expr::Path(p) = base
+                && let Some(ident) = p.path.get_ident()
+            {
+                self.0.push(ident.to_string());
+            }
+        }
+    }
+    impl<'ast> syn::visit::Visit<'ast> for Targets {
+        fn visit_expr(&mut self, e: &'ast Expr) {
+            match e {
+                Expr::Assign(a) => self.target(&a.left),
+                Expr::Binary(b) if super::compound(&b.op).is_some() => self.target(&b.left),
+                Expr::MethodCall(m) => self.target(&m.receiver),
+                Expr::Reference(r) if r.mutability.is_some() => self.target(&r.expr),
+                _ => {}
+            }
+            syn::visit::visit_expr(self, e);
+        }
+    }
+    for item in prologue {
+        match item {
+            Prologue::Stmt(stmt) => {
+                let mut targets = Targets(Vec::new());
+                syn::visit::Visit::visit_stmt(&mut targets, stmt);
+                if let Some(name) = targets
+                    .0
+                    .into_iter()
+                    .find(|name| outer.iter().any(|scope| scope.contains_key(name)))
+                {
+                    return Some((stmt, name));
+                }
+            }
+            Prologue::Branch(branch) => {
+                for arm in &branch.arms {
+                    if let Some(found) = changes_outer(arm, outer) {
+                        return Some(found);
+                    }
+                }
+            }
+            Prologue::Opaque(..) => {}
+        }
+    }
+    None
 }
 
 /// Checks that `condition` is comparisons (`<`, `<=`, `>`, `>=`) joined by `&&`, `||` and `!`,
