@@ -531,3 +531,55 @@ fn a_local_chosen_by_the_state_branches_on_the_state() {
     model.jacobian(0.0, &y, &mut jacobian);
     assert_eq!(odyn::DenseMatrix::entry(&jacobian, 1, 1), -4.0);
 }
+
+/// Conditions on the state that mix in a parameter-only flag: `open && x > 0 || !open && x < −1`.
+#[system]
+#[derive(Clone, Copy, Debug)]
+struct Gate {
+    #[position]
+    x: f64,
+    #[velocity]
+    v: f64,
+    open: bool,
+    k: f64,
+}
+
+#[system]
+impl Gate {
+    fn acceleration(&self) -> f64 {
+        if self.open && self.x > 0.0 || !self.open && self.x < -1.0 {
+            -self.k * self.x
+        } else {
+            -self.v
+        }
+    }
+}
+
+#[test]
+fn a_parameter_flag_joins_conditions_on_the_state() {
+    for open in [true, false] {
+        let model = Gate {
+            x: 0.0,
+            v: 0.0,
+            open,
+            k: 7.0,
+        };
+        check(&model, 0.0, 50, |r| GateState {
+            x: [-2.0, -0.5, 1.0][(r.uniform(0.0, 2.999)) as usize] + r.uniform(-0.4, 0.4),
+            v: r.uniform(-1.0, 1.0),
+        });
+        // ∂a/∂x is −k where the spring acts, else 0: at x = 0.5 only when open, at x = −1.5
+        // only when closed.
+        for (x, acts) in [(0.5, open), (-1.5, !open), (-0.5, false)] {
+            let y = GateState { x, v: 0.3 };
+            let mut jacobian = model.jacobian_matrix(&y);
+            model.jacobian(0.0, &y, &mut jacobian);
+            let expected = if acts { -7.0 } else { 0.0 };
+            assert_eq!(
+                odyn::DenseMatrix::entry(&jacobian, 1, 0),
+                expected,
+                "open {open}, x {x}"
+            );
+        }
+    }
+}

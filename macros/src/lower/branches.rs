@@ -5,7 +5,7 @@
 //! - A branch on parameters (its conditions do not read the state) is chosen by the prologue's
 //!   copy of the branch, which records the arm it took in a selector ([`crate::ir::Node::Select`]).
 //! - An `if` on the state, each condition comparisons (`<`, `<=`, `>`, `>=`) of two numbers
-//!   joined by `&&`, `||` and `!`, is chosen in the graph by those comparisons
+//!   and parameter-only conditions joined by `&&`, `||` and `!`, is chosen in the graph by those comparisons
 //!   ([`crate::ir::Node::Pick`], as `min` and `max` are). Each arm is differentiated on its own: the Jacobian is the taken arm's, and at the
 //!   switching surface it is the one-sided derivative of the arm the comparison chose there.
 
@@ -64,7 +64,7 @@ impl Lowering<'_> {
         let (mut conditions, mut bodies) = (Vec::new(), Vec::new());
         let on_state = self.depends_any(branch);
         loop {
-            if on_state && let Err(at) = check_condition(&branch.cond) {
+            if on_state && let Err(at) = self.check_condition(&branch.cond) {
                 return Err(self.error(
                     at,
                     "this condition on the state (`if` on the state takes comparisons, `a < b`, \
@@ -112,9 +112,36 @@ impl Lowering<'_> {
         conditions.iter().map(|c| self.condition(c)).collect()
     }
 
+    /// Checks that `condition` is comparisons (`<`, `<=`, `>`, `>=`) and parameter-only
+    /// conditions joined by `&&`, `||` and `!`, in parentheses or not; on failure, the first part
+    /// that is not.
+    fn check_condition<'e>(&self, condition: &'e Expr) -> Result<(), &'e Expr> {
+        match condition {
+            Expr::Paren(p) => self.check_condition(&p.expr),
+            Expr::Group(g) => self.check_condition(&g.expr),
+            Expr::Unary(u) if matches!(u.op, syn::UnOp::Not(_)) => self.check_condition(&u.expr),
+            Expr::Binary(b) if matches!(b.op, BinOp::And(_) | BinOp::Or(_)) => {
+                self.check_condition(&b.left)?;
+                self.check_condition(&b.right)
+            }
+            Expr::Binary(b)
+                if matches!(
+                    b.op,
+                    BinOp::Lt(_) | BinOp::Le(_) | BinOp::Gt(_) | BinOp::Ge(_)
+                ) =>
+            {
+                Ok(())
+            }
+            // `if let` binds names the arm reads: not a flag.
+            other if !matches!(other, Expr::Let(_)) && !self.depends(other) => Ok(()),
+            other => Err(other),
+        }
+    }
+
     fn condition(&mut self, condition: &Expr) -> syn::Result<Condition> {
         match condition {
             Expr::Paren(p) => self.condition(&p.expr),
+            Expr::Group(g) => self.condition(&g.expr),
             Expr::Unary(u) if matches!(u.op, syn::UnOp::Not(_)) => {
                 Ok(Condition::Not(Box::new(self.condition(&u.expr)?)))
             }
@@ -126,6 +153,17 @@ impl Lowering<'_> {
                 Ok(match b.op {
                     BinOp::And(_) => Condition::And(l, r),
                     _ => Condition::Or(l, r),
+                })
+            }
+            // A parameter-only condition (a flag, a call), as 1 or 0 computed with the opaque
+            // values: taken when ½ ≤ it.
+            other if !matches!(other, Expr::Let(_)) && !self.depends(other) => {
+                let flag = self.opaque(quote::quote!(if #other { 1.0 } else { 0.0 }));
+                let half = self.graph.num(0.5);
+                Ok(Condition::Compare {
+                    a: half,
+                    b: flag,
+                    negated: false,
                 })
             }
             Expr::Binary(b) => {
@@ -493,28 +531,6 @@ fn changes_outer<'p>(prologue: &'p [Prologue], outer: &Scopes) -> Option<(&'p St
         }
     }
     None
-}
-
-/// Checks that `condition` is comparisons (`<`, `<=`, `>`, `>=`) joined by `&&`, `||` and `!`,
-/// in parentheses or not; on failure, the first part that is not.
-fn check_condition(condition: &Expr) -> Result<(), &Expr> {
-    match condition {
-        Expr::Paren(p) => check_condition(&p.expr),
-        Expr::Unary(u) if matches!(u.op, syn::UnOp::Not(_)) => check_condition(&u.expr),
-        Expr::Binary(b) if matches!(b.op, BinOp::And(_) | BinOp::Or(_)) => {
-            check_condition(&b.left)?;
-            check_condition(&b.right)
-        }
-        Expr::Binary(b)
-            if matches!(
-                b.op,
-                BinOp::Lt(_) | BinOp::Le(_) | BinOp::Gt(_) | BinOp::Ge(_)
-            ) =>
-        {
-            Ok(())
-        }
-        other => Err(other),
-    }
 }
 
 /// The names `let` conditions in `cond` bind (`if let Some(x) = …`).
