@@ -282,6 +282,6 @@ fn attractor(
         .collect();
     // The same 7.5 s loop at any frame count.
     let delay = (7500 / count as u32).max(20);
-    let size = (cli.gif_width, cli.gif_width * 7 / 8);
+    let size = (cli.gif_width, cli.gif_width.saturating_mul(7) / 8);
     animation(dir.join("attractor.gif"), &frames, size, delay)
 }

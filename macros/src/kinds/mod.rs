@@ -59,7 +59,7 @@ pub(crate) fn expand_struct(args_tokens: TokenStream, item: &ItemStruct) -> Toke
     let mut errors = Errors::default();
     let args = args::parse(args_tokens.clone(), &mut errors);
     let item = &unknown_attributes(item, &mut errors);
-    if is_generic(item) {
+    let (stripped, state) = if is_generic(item) {
         // One error: the fields of a generic model (`[f64; N]`, `k: T`) would each be refused
         // only because of the generics.
         errors.at(
@@ -68,21 +68,13 @@ pub(crate) fn expand_struct(args_tokens: TokenStream, item: &ItemStruct) -> Toke
              Jacobian for one concrete struct; write array lengths as integer literals \
              (`[f64; 3]`) and parameters as `f64` fields",
         );
-        let error = errors.finish().err().map(|e| e.to_compile_error());
-        let forwarder = generate::forwarder(item, &args_tokens, false);
-        let stub = generate::rejected_struct(item);
-        let mut stripped = item.clone();
-        for field in &mut stripped.fields {
-            field
-                .attrs
-                .retain(|a| !FIELD_ATTRIBUTES.iter().any(|name| a.path().is_ident(name)));
+        (strip_field_attributes(item, &FIELD_ATTRIBUTES), None)
+    } else {
+        match Kind::of(item) {
+            Kind::Fixed => fixed::expand_struct(item, &args, &mut errors),
+            Kind::Particles => particles::expand_struct(item, &mut errors),
+            Kind::Grid => grid::expand_struct(item, &mut errors),
         }
-        return quote!(#stripped #error #forwarder #stub);
-    }
-    let (stripped, state) = match Kind::of(item) {
-        Kind::Fixed => fixed::expand_struct(item, &args, &mut errors),
-        Kind::Particles => particles::expand_struct(item, &mut errors),
-        Kind::Grid => grid::expand_struct(item, &mut errors),
     };
     match (errors.finish(), state) {
         (Ok(()), Some(state)) => {
@@ -96,6 +88,17 @@ pub(crate) fn expand_struct(args_tokens: TokenStream, item: &ItemStruct) -> Toke
             quote!(#stripped #error #forwarder #stub)
         }
     }
+}
+
+/// The struct as the user wrote it, minus the field attributes `names` (odyn's, not rustc's).
+pub(crate) fn strip_field_attributes(item: &ItemStruct, names: &[&str]) -> ItemStruct {
+    let mut item = item.clone();
+    for field in &mut item.fields {
+        field
+            .attrs
+            .retain(|a| !names.iter().any(|name| a.path().is_ident(name)));
+    }
+    item
 }
 
 /// Whether the struct has generic parameters or a `where` clause.

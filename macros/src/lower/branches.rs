@@ -13,7 +13,7 @@ use std::collections::HashMap;
 
 use syn::{BinOp, Expr, ExprIf, ExprMatch, Stmt};
 
-use super::scope::{Binding, pattern_names};
+use super::scope::{Binding, Targets, pattern_names};
 use super::statements::{Context, Ending};
 use super::{Branch, BranchKind, Lowering, Prologue, Value};
 use crate::ir::ExprId;
@@ -68,8 +68,8 @@ impl Lowering<'_> {
                 return Err(self.error(
                     at,
                     "this condition on the state (`if` on the state takes comparisons, `a < b`, \
-                     `a <= b`, `a > b` or `a >= b`, joined by `&&`, `||` and `!`; `min`, `max` \
-                     and `clamp` are exact too)",
+                     `a <= b`, `a > b` or `a >= b`, and parameter-only conditions, joined by \
+                     `&&`, `||` and `!`; `min`, `max` and `clamp` are exact too)",
                 ));
             }
             bodies.push((branch.then_branch.stmts.clone(), let_names(&branch.cond)));
@@ -219,59 +219,26 @@ impl Lowering<'_> {
         arms: Arms,
         mut each: impl FnMut(&mut Self, &[Stmt]) -> syn::Result<T>,
     ) -> syn::Result<(Chooser, Vec<(T, Scopes)>)> {
-        if arms.on_state {
-            let BranchKind::If(conditions) = &arms.kind else {
-                unreachable!("only `if` branches on the state")
-            };
-            let chooser = Chooser::Conditions(self.conditions(conditions)?);
-            let before = self.scopes.clone();
-            let mut results = Vec::with_capacity(arms.bodies.len());
-            let mut prologues = Vec::with_capacity(arms.bodies.len());
-            for (stmts, names) in arms.bodies {
-                self.scopes = before.clone();
-                self.scopes.push(HashMap::new());
-                for name in names {
-                    self.bind(name, None, false);
-                }
-                let outer = std::mem::take(&mut self.prologue);
-                let result = each(self, &stmts);
-                let prologue = std::mem::replace(&mut self.prologue, outer);
-                let result = result?;
-                // Every arm's prologue runs, so code in it that changes a local from before the
-                // branch would change it for the arms after, and for the code after the branch.
-                if let Some((stmt, name)) = changes_outer(&prologue, &before) {
-                    return Err(self.refuse(
-                        stmt,
-                        format_args!(
-                            "parameter-only code inside an `if` on the state (or after a \
-                             `return` from one) changes `{name}`, a local from before the `if`: \
-                             odyn runs such code whichever arm the state takes; give `{name}` its \
-                             value as the `if`'s value instead \
-                             (`let {name} = if … {{ a }} else {{ b }};`)"
-                        ),
-                    ));
-                }
-                prologues.push(prologue);
-                self.scopes.pop();
-                let after = std::mem::replace(&mut self.scopes, before.clone());
-                results.push((result, after));
+        let Arms {
+            kind,
+            bodies,
+            on_state,
+        } = arms;
+        let chooser = match &kind {
+            // The conditions on the state, lowered in the scope before the arms.
+            BranchKind::If(conditions) if on_state => {
+                Chooser::Conditions(self.conditions(conditions)?)
             }
-            if prologues.iter().any(|p| !p.is_empty()) {
-                self.prologue.push(Prologue::Branch(Box::new(Branch {
-                    selector: u32::MAX,
-                    kind: BranchKind::Every,
-                    arms: prologues,
-                })));
+            _ => {
+                self.selectors += 1;
+                Chooser::Selector(self.selectors - 1)
             }
-            return Ok((chooser, results));
-        }
-        let selector = self.selectors;
-        self.selectors += 1;
+        };
         let outer = std::mem::take(&mut self.prologue);
         let before = self.scopes.clone();
-        let mut results = Vec::with_capacity(arms.bodies.len());
-        let mut prologues = Vec::with_capacity(arms.bodies.len());
-        for (stmts, names) in arms.bodies {
+        let mut results = Vec::with_capacity(bodies.len());
+        let mut prologues = Vec::with_capacity(bodies.len());
+        for (stmts, names) in bodies {
             self.scopes = before.clone();
             self.scopes.push(HashMap::new());
             for name in names {
@@ -280,7 +247,11 @@ impl Lowering<'_> {
             let result = each(self, &stmts);
             self.scopes.pop();
             let after = std::mem::replace(&mut self.scopes, before.clone());
-            prologues.push(std::mem::take(&mut self.prologue));
+            let prologue = std::mem::take(&mut self.prologue);
+            let result = result.and_then(|value| match on_state {
+                true => self.runs_in_every_arm(&prologue, &before).map(|()| value),
+                false => Ok(value),
+            });
             match result {
                 Ok(value) => results.push((value, after)),
                 Err(error) => {
@@ -288,14 +259,40 @@ impl Lowering<'_> {
                     return Err(error);
                 }
             }
+            prologues.push(prologue);
         }
         self.prologue = outer;
-        self.prologue.push(Prologue::Branch(Box::new(Branch {
-            selector,
-            kind: arms.kind,
-            arms: prologues,
-        })));
-        Ok((Chooser::Selector(selector), results))
+        let (selector, kind) = match chooser {
+            Chooser::Selector(selector) => (selector, kind),
+            // No selector: every arm's prologue runs.
+            Chooser::Conditions(_) => (u32::MAX, BranchKind::Every),
+        };
+        if !matches!(kind, BranchKind::Every) || prologues.iter().any(|p| !p.is_empty()) {
+            self.prologue.push(Prologue::Branch(Box::new(Branch {
+                selector,
+                kind,
+                arms: prologues,
+            })));
+        }
+        Ok((chooser, results))
+    }
+
+    /// Refuses an arm of an `if` on the state whose prologue changes a local from `before` the
+    /// branch: every arm's prologue runs, so the change would reach the arms after it and the
+    /// code after the branch.
+    fn runs_in_every_arm(&self, prologue: &[Prologue], before: &Scopes) -> syn::Result<()> {
+        match changes_outer(prologue, before) {
+            None => Ok(()),
+            Some((stmt, name)) => Err(self.refuse(
+                stmt,
+                format_args!(
+                    "parameter-only code inside an `if` on the state (or after a `return` from \
+                     one) changes `{name}`, a local from before the `if`: odyn runs such code \
+                     whichever arm the state takes; give `{name}` its value as the `if`'s value \
+                     instead (`let {name} = if … {{ a }} else {{ b }};`)"
+                ),
+            )),
+        }
     }
 
     /// `if`/`match` as a statement: each arm's changes to locals are selected by the arm taken.
@@ -479,52 +476,23 @@ impl Lowering<'_> {
 /// The first statement of `prologue` (its branches' arms included) that assigns, borrows
 /// mutably or calls a method on a local bound in `outer`, and that local's name.
 fn changes_outer<'p>(prologue: &'p [Prologue], outer: &Scopes) -> Option<(&'p Stmt, String)> {
-    struct Targets(Vec<String>);
-    impl Targets {
-        fn target(&mut self, e: &Expr) {
-            let base = match e {
-                Expr::Index(i) => &*i.expr,
-                Expr::Field(f) => &*f.base,
-                Expr::Paren(p) => &*p.expr,
-                other => other,
-            };
-            if let Expr::Path(p) = base
-                && let Some(ident) = p.path.get_ident()
-            {
-                self.0.push(ident.to_string());
-            }
-        }
-    }
-    impl<'ast> syn::visit::Visit<'ast> for Targets {
-        fn visit_expr(&mut self, e: &'ast Expr) {
-            match e {
-                Expr::Assign(a) => self.target(&a.left),
-                Expr::Binary(b) if super::compound(&b.op).is_some() => self.target(&b.left),
-                Expr::MethodCall(m) => self.target(&m.receiver),
-                Expr::Reference(r) if r.mutability.is_some() => self.target(&r.expr),
-                _ => {}
-            }
-            syn::visit::visit_expr(self, e);
-        }
-    }
     for item in prologue {
         match item {
             Prologue::Stmt(stmt) => {
-                let mut targets = Targets(Vec::new());
+                let mut targets = Targets::default();
                 syn::visit::Visit::visit_stmt(&mut targets, stmt);
                 if let Some(name) = targets
                     .0
-                    .into_iter()
+                    .iter()
+                    .map(ToString::to_string)
                     .find(|name| outer.iter().any(|scope| scope.contains_key(name)))
                 {
                     return Some((stmt, name));
                 }
             }
             Prologue::Branch(branch) => {
-                for arm in &branch.arms {
-                    if let Some(found) = changes_outer(arm, outer) {
-                        return Some(found);
-                    }
+                if let Some(found) = branch.arms.iter().find_map(|arm| changes_outer(arm, outer)) {
+                    return Some(found);
                 }
             }
             Prologue::Opaque(..) => {}

@@ -69,7 +69,8 @@ pub(crate) enum Prologue {
 
 /// A branch of the prologue.
 pub(crate) struct Branch {
-    /// The selector variable: set to the index of the arm that ran.
+    /// The selector variable: set to the index of the arm that ran (none for
+    /// [`BranchKind::Every`], whose arms all run).
     pub(crate) selector: u32,
     /// How the arm is chosen.
     pub(crate) kind: BranchKind,

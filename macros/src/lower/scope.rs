@@ -201,44 +201,49 @@ impl<'ast> Visit<'ast> for Reads<'_, '_> {
 /// may take `&mut self`), and `&mut` borrows — each a bound local, as the user spelled it (its
 /// span resolves to the user's local in generated code).
 pub(super) fn assigned(lowering: &Lowering<'_>, e: &Expr) -> Vec<Ident> {
-    struct Finder<'l, 'm> {
-        lowering: &'l Lowering<'m>,
-        names: Vec<Ident>,
-    }
-    impl Finder<'_, '_> {
-        fn target(&mut self, e: &Expr) {
-            let base = match e {
-                Expr::Index(i) => &*i.expr,
-                Expr::Field(f) => &*f.base,
-                other => other,
-            };
-            if let Expr::Path(p) = base
-                && let Some(ident) = p.path.get_ident()
-                && self.lowering.lookup(&ident.to_string()).is_some()
-                && !self.names.contains(ident)
-            {
-                self.names.push(ident.clone());
-            }
+    let mut found = Targets::default();
+    found.visit_expr(e);
+    let mut names: Vec<Ident> = Vec::new();
+    for ident in found.0 {
+        if lowering.lookup(&ident.to_string()).is_some() && !names.contains(&ident) {
+            names.push(ident);
         }
     }
-    impl<'ast> Visit<'ast> for Finder<'_, '_> {
-        fn visit_expr(&mut self, e: &'ast Expr) {
-            match e {
-                Expr::Assign(a) => self.target(&a.left),
-                Expr::Binary(b) if super::compound(&b.op).is_some() => self.target(&b.left),
-                Expr::MethodCall(m) => self.target(&m.receiver),
-                Expr::Reference(r) if r.mutability.is_some() => self.target(&r.expr),
-                _ => {}
-            }
-            visit::visit_expr(self, e);
+    names
+}
+
+/// Every name the code it visits may change, bound or not: the plain-name targets of `=` and
+/// `op=` (through an index or a field), method-call receivers and `&mut` borrows.
+#[derive(Default)]
+pub(super) struct Targets(pub(super) Vec<Ident>);
+
+impl Targets {
+    fn target(&mut self, e: &Expr) {
+        let base = match e {
+            Expr::Index(i) => &*i.expr,
+            Expr::Field(f) => &*f.base,
+            Expr::Paren(p) => &*p.expr,
+            other => other,
+        };
+        if let Expr::Path(p) = base
+            && let Some(ident) = p.path.get_ident()
+        {
+            self.0.push(ident.clone());
         }
     }
-    let mut finder = Finder {
-        lowering,
-        names: Vec::new(),
-    };
-    finder.visit_expr(e);
-    finder.names
+}
+
+impl<'ast> Visit<'ast> for Targets {
+    fn visit_expr(&mut self, e: &'ast Expr) {
+        match e {
+            Expr::Assign(a) => self.target(&a.left),
+            Expr::Binary(b) if super::compound(&b.op).is_some() => self.target(&b.left),
+            Expr::MethodCall(m) => self.target(&m.receiver),
+            Expr::Reference(r) if r.mutability.is_some() => self.target(&r.expr),
+            _ => {}
+        }
+        visit::visit_expr(self, e);
+    }
 }
 
 /// The names a pattern binds.

@@ -115,11 +115,7 @@ pub(crate) fn parse_struct<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Opt
 
 /// The struct as the user wrote it, minus `#[field]`.
 pub(crate) fn strip(item: &ItemStruct) -> ItemStruct {
-    let mut item = item.clone();
-    for field in &mut item.fields {
-        field.attrs.retain(|a| !a.path().is_ident("field"));
-    }
-    item
+    super::strip_field_attributes(item, &["field"])
 }
 
 /// The state type of a field model: an alias of the runtime's.

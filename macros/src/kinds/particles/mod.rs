@@ -228,13 +228,7 @@ pub(crate) fn parse_struct<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Opt
 
 /// The struct as the user wrote it, minus odyn's field attributes.
 pub(crate) fn strip(item: &ItemStruct) -> ItemStruct {
-    let mut item = item.clone();
-    for field in &mut item.fields {
-        field
-            .attrs
-            .retain(|a| !FIELD_ATTRIBUTES.iter().any(|n| a.path().is_ident(n)));
-    }
-    item
+    super::strip_field_attributes(item, &FIELD_ATTRIBUTES)
 }
 
 /// The state type of a particle model: an alias of the runtime's.
