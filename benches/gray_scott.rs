@@ -28,8 +28,8 @@ use odyn::integrators::ImplicitEuler;
 use std::sync::OnceLock;
 
 use odyn::{
-    Integrator, Jacobian, Krylov, LinearSolver, Method, Model, NewtonOptions, State, Stats,
-    Stepper, system,
+    Integrator, Jacobian, Krylov, LinearSolver, Method, Model, NewtonOptions, Preconditioner,
+    State, Stats, Stepper, system,
 };
 
 fn main() {
@@ -133,6 +133,17 @@ fn step(bencher: divan::Bencher, n: usize) {
 fn step_krylov(bencher: divan::Bencher, n: usize) {
     let krylov = Krylov {
         warm_start: false,
+        ..Krylov::default()
+    };
+    linearized_step(bencher, n, LinearSolver::Krylov(krylov));
+}
+
+/// The whole step with multigrid-preconditioned BiCGSTAB (no warm start).
+#[divan::bench(args = SIZES, sample_count = 10)]
+fn step_multigrid(bencher: divan::Bencher, n: usize) {
+    let krylov = Krylov {
+        warm_start: false,
+        preconditioner: Preconditioner::Multigrid,
         ..Krylov::default()
     };
     linearized_step(bencher, n, LinearSolver::Krylov(krylov));

@@ -24,7 +24,9 @@ use clap::Parser;
 use odyn::grid::{Boundary, Grid, GridState, Stencil};
 use odyn::output::{number, write_table};
 use odyn::plot::{Field, FieldStyle, field_image};
-use odyn::{Krylov, LinearSolver, Method, Model, NewtonOptions, State, Trajectory, system};
+use odyn::{
+    Krylov, LinearSolver, Method, Model, NewtonOptions, Preconditioner, State, Trajectory, system,
+};
 
 /// The Brusselator: concentrations u and v on a periodic grid.
 #[system(integrator = Bdf, rtol = 1e-6, atol = 1e-6)]
@@ -130,6 +132,12 @@ fn main() -> odyn::Result<()> {
     report("Auto (the default)", &auto, seconds);
     let (krylov, seconds) = run(LinearSolver::Krylov(Krylov::default()))?;
     report("block-Jacobi BiCGSTAB", &krylov, seconds);
+    let multigrid = LinearSolver::Krylov(Krylov {
+        preconditioner: Preconditioner::Multigrid,
+        ..Krylov::default()
+    });
+    let (multigrid, seconds) = run(multigrid)?;
+    report("multigrid BiCGSTAB", &multigrid, seconds);
     if !cli.krylov_only {
         let (direct, seconds) = run(LinearSolver::Direct)?;
         report("sparse LU", &direct, seconds);

@@ -171,9 +171,12 @@ impl GridJacobian {
 }
 
 impl NewtonMatrix for GridJacobian {
-    fn configure(&mut self, newton: &crate::NewtonOptions) {
-        self.solver
-            .configure(&newton.linear, crate::linalg::krylov::Structure::Field);
+    fn configure(&mut self, newton: &crate::NewtonOptions, in_newton: bool) {
+        self.solver.configure(
+            &newton.linear,
+            crate::linalg::krylov::Structure::Field,
+            in_newton,
+        );
     }
 
     /// The factorization lives in the sparse solver inside the matrix.

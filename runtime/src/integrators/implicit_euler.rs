@@ -52,7 +52,7 @@ impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
         _: &mut Stats,
     ) -> Result<Self> {
         let mut jacobian = model.jacobian_matrix(y0);
-        jacobian.configure(newton);
+        jacobian.configure(newton, !newton.linearized);
         Ok(ImplicitEuler {
             newton: *newton,
             force: y0.try_clone()?,

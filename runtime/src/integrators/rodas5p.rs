@@ -58,7 +58,7 @@ impl<M: Jacobian> Integrator<M> for Rodas5P<M> {
         _: &mut Stats,
     ) -> Result<Self> {
         let mut linear = Linearization::new(model, y0)?;
-        crate::NewtonMatrix::configure(&mut linear.jacobian, newton);
+        crate::NewtonMatrix::configure(&mut linear.jacobian, newton, false);
         Ok(Rodas5P {
             linear,
             u: copies(y0)?,

@@ -63,7 +63,7 @@ impl<M: Jacobian> Integrator<M> for Rosenbrock23<M> {
         _: &mut Stats,
     ) -> Result<Self> {
         let mut linear = Linearization::new(model, y0)?;
-        crate::NewtonMatrix::configure(&mut linear.jacobian, newton);
+        crate::NewtonMatrix::configure(&mut linear.jacobian, newton, false);
         Ok(Rosenbrock23 {
             linear,
             f: copies(y0)?,

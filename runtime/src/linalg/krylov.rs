@@ -24,13 +24,16 @@ use faer::{MatMut, MatRef, Par};
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[non_exhaustive]
 pub enum LinearSolver {
-    /// [`Krylov::default()`] for field models of at least
+    /// [`Krylov::default()`] (block Jacobi) for field models of at least
     /// [`LinearSolver::FIELD_KRYLOV_FROM`] unknowns, [`LinearSolver::Direct`] otherwise —
     /// particle models included, for the reason above. A field model whose Krylov solve needs
-    /// more than [`LinearSolver::AUTO_DIRECT_ABOVE`] iterations switches to the direct solver
-    /// for the rest of the run (counted in [`KrylovCounts::switched_to_direct`]): a
-    /// Brusselator at α/Δx² ≈ 10⁴ under BDF, which reuses each factorization for about 15
-    /// solves, ran 4× slower with block-Jacobi BiCGSTAB than with its sparse LU. The default.
+    /// more than [`LinearSolver::AUTO_DIRECT_ABOVE`] iterations goes on with
+    /// [`Preconditioner::Multigrid`] from [`LinearSolver::MULTIGRID_FROM`] unknowns
+    /// ([`KrylovCounts::switched_to_multigrid`]), and with the direct solver below that size or
+    /// when multigrid too needs more ([`KrylovCounts::switched_to_direct`]). A Brusselator at
+    /// α/Δx² ≈ 10⁴ under BDF ran 2–4× slower with block-Jacobi BiCGSTAB than with its sparse
+    /// LU, and 2× faster with multigrid BiCGSTAB than with the LU at 64² and 128² (README,
+    /// "Big sparse systems"). The default.
     #[default]
     Auto,
     /// Sparse Cholesky when the matrix is symmetric positive definite, else LU (faer).
@@ -59,6 +62,12 @@ impl LinearSolver {
     /// 50. Gray–Scott at h = 10 needs 6–12 per full-Newton solve from 64² to 128² (and wins
     /// 24×), 29 for a linearized step at 256² to 1e-8 (and wins 19×).
     pub const AUTO_DIRECT_ABOVE: usize = 50;
+
+    /// Unknowns from which [`LinearSolver::Auto`] answers block Jacobi's slow convergence with
+    /// multigrid rather than a direct solve: 8 192. The Brusselator under BDF (rtol 1e-6): at 32²
+    /// cells (2 048 unknowns) the sparse LU took 0.40–0.61 s against multigrid's 0.52 s (a
+    /// draw); at 64² (8 192) 4.1 s against 2.1 s, at 128² 26.4 s against 13.0 s (one run each).
+    pub const MULTIGRID_FROM: usize = 8192;
 
     /// The Krylov options for a system of `n` unknowns of a model of kind `structure`, None
     /// for a direct solve.
@@ -96,8 +105,18 @@ impl LinearSolver {
 /// the default is tight: 1e-8, well below the tolerances these methods are run at.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Krylov {
-    /// Relative residual that ends a solve (default 1e-8).
+    /// Relative residual that ends a solve of a one-step method — the Rosenbrock stages, the
+    /// linearized implicit Euler — where nothing corrects the linear error (default 1e-8).
     pub rtol: f64,
+    /// Relative residual that ends a solve inside a Newton iteration — BDF, implicit Euler
+    /// with full Newton — whose next iteration corrects the linear error (default 1e-3): the
+    /// forcing term η of an inexact Newton method, constant here. Each Newton update is then
+    /// within about κ·η of the exact one, so Newton converges at a rate of about κ·η per
+    /// iteration at worst, and its own test on the update decides when to stop, as before.
+    /// (CVODE bounds the same residual by 0.05 × its Newton tolerance.) On the Brusselator
+    /// at 64² under BDF at rtol 1e-6, multigrid BiCGSTAB took 4.24 s to 1e-8 and 2.54 s to
+    /// 1e-4; at 1e-2 Newton needed more Jacobians (7 against 3).
+    pub newton_rtol: f64,
     /// Iterations allowed per solve (default 500). A solve that has not converged by then —
     /// or breaks down — is redone by the direct solver and counted
     /// ([`crate::particles::Factorizations::krylov_fallbacks`]): never a wrong answer.
@@ -115,6 +134,7 @@ impl Default for Krylov {
     fn default() -> Self {
         Krylov {
             rtol: 1e-8,
+            newton_rtol: 1e-3,
             max_iters: 500,
             preconditioner: Preconditioner::BlockJacobi,
             warm_start: true,
@@ -124,11 +144,16 @@ impl Default for Krylov {
 
 impl Krylov {
     fn check(&self) -> crate::Result<()> {
-        if !(self.rtol.is_finite() && self.rtol > 0.0 && self.rtol < 1.0) {
-            return Err(crate::Error::invalid(
-                "Krylov::rtol",
-                format!("must be in (0, 1), got {:?}", self.rtol),
-            ));
+        for (name, rtol) in [
+            ("Krylov::rtol", self.rtol),
+            ("Krylov::newton_rtol", self.newton_rtol),
+        ] {
+            if !(rtol.is_finite() && rtol > 0.0 && rtol < 1.0) {
+                return Err(crate::Error::invalid(
+                    name,
+                    format!("must be in (0, 1), got {rtol:?}"),
+                ));
+            }
         }
         if self.max_iters == 0 {
             return Err(crate::Error::invalid(
@@ -158,6 +183,13 @@ pub enum Preconditioner {
     /// Algorithm 10.4; IC(0) for a symmetric matrix), rebuilt at every factorization: each
     /// application costs about one sparse product.
     Ilu0,
+    /// Smoothed aggregation algebraic multigrid (Vaněk, Mandel & Brezina 1996), one V-cycle
+    /// per application with symmetric block Gauss–Seidel smoothing, coarsened by aggregating
+    /// neighbouring particles or cells down to at most 300 unknowns, solved there by a dense
+    /// LU. Its levels' patterns are built once per run and their values at every
+    /// factorization: a few sparse products' cost per application, and an iteration count
+    /// that grows slowly with the grid where block Jacobi's grows like its side.
+    Multigrid,
     /// The sparse Cholesky or LU factors of an earlier matrix, applied by substitution, and
     /// refactorized when a solve needs more than `refresh_above` iterations: a factorization
     /// reused over many steps while the matrix changes slowly (the reuse of CVODE's and
@@ -181,6 +213,8 @@ pub struct KrylovCounts {
     /// Solves redone by the direct solver (no convergence within `max_iters`, or a
     /// breakdown).
     pub fallbacks: u64,
+    /// 1 when [`LinearSolver::Auto`] moved from block Jacobi to multigrid for this run.
+    pub switched_to_multigrid: u64,
     /// 1 when [`LinearSolver::Auto`] gave up Krylov solves for this run.
     pub switched_to_direct: u64,
 }
@@ -203,6 +237,8 @@ pub(crate) struct KrylovSolver {
     pub(crate) direct_above: Option<usize>,
     /// Iterations of the last solve.
     pub(crate) last_iterations: usize,
+    /// The solves are a Newton iteration's updates: they stop at `newton_rtol`.
+    pub(crate) in_newton: bool,
 }
 
 /// How a Krylov solve ended.
@@ -224,6 +260,7 @@ impl KrylovSolver {
             refresh: false,
             direct_above: None,
             last_iterations: 0,
+            in_newton: false,
         }
     }
 
@@ -243,10 +280,12 @@ impl KrylovSolver {
         self.rhs.copy_from_slice(x);
         let Krylov {
             rtol,
+            newton_rtol,
             max_iters,
             warm_start,
             ..
         } = self.options;
+        let rtol = if self.in_newton { newton_rtol } else { rtol };
         // The warm start's scale, found once (one product) for whichever method runs.
         let scale = if warm_start {
             warm_scale(a, &self.guess, &mut self.product, &self.rhs)
@@ -392,6 +431,7 @@ impl Clone for KrylovSolver {
             refresh: self.refresh,
             direct_above: self.direct_above,
             last_iterations: self.last_iterations,
+            in_newton: self.in_newton,
         }
     }
 }

@@ -2,6 +2,7 @@
 //! iterations and their preconditioners.
 
 pub(crate) mod krylov;
+mod multigrid;
 mod precond;
 pub(crate) mod sparse;
 

@@ -102,7 +102,7 @@ impl BlockJacobi {
 
 /// A⁻¹ of the b × b row-major matrix `a` (overwritten) into `inverse`, by Gauss–Jordan
 /// elimination with partial pivoting; false when a pivot is zero or not finite.
-fn invert(b: usize, a: &mut [f64], inverse: &mut [f64]) -> bool {
+pub(crate) fn invert(b: usize, a: &mut [f64], inverse: &mut [f64]) -> bool {
     for (k, entry) in inverse.iter_mut().enumerate() {
         *entry = if k % (b + 1) == 0 { 1.0 } else { 0.0 };
     }
@@ -329,7 +329,7 @@ fn columns(
 }
 
 /// A preconditioner applied one column at a time; [`as_precond!`] makes it a faer operator.
-trait Column {
+pub(crate) trait Column {
     fn n(&self) -> usize;
     fn scratch(&self) -> StackReq;
     fn apply_column(&self, out: &mut [f64], r: &[f64], stack: &mut MemStack);
@@ -412,6 +412,7 @@ macro_rules! as_precond {
 as_precond!(BlockJacobiRef<'_>);
 as_precond!(Factors<'_>);
 as_precond!(Ilu0Ref<'_>);
+as_precond!(super::multigrid::MultigridRef<'_>);
 
 #[cfg(test)]
 mod tests {

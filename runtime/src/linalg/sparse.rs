@@ -24,6 +24,7 @@ use faer::sparse::{Pair, SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, MatMut, Par, Side};
 
 use super::krylov::{KrylovCounts, KrylovSolver, LinearSolver, Outcome, Preconditioner, Structure};
+use super::multigrid::{Multigrid, MultigridRef};
 use super::precond::{BlockJacobi, Factors, Ilu0, Ilu0Ref};
 
 /// How often a sparse Newton matrix has factorized: the symbolic analyses happen once per run,
@@ -77,6 +78,10 @@ pub(crate) struct SparseSolver {
     jacobi: BlockJacobi,
     /// ILU(0)'s structure and factors, made when a run first asks for them.
     ilu: Option<Ilu0>,
+    /// The multigrid hierarchy, made when a run first asks for it.
+    multigrid: Option<Multigrid>,
+    /// The groups of unknowns ([`SparseSolver::set_blocks`]): their size and the unknowns.
+    blocks: (usize, Vec<usize>),
     /// The values were symmetric at the last factorization.
     symmetric: bool,
     /// The last factorization prepared a Krylov solve (else [`SparseSolver::substitute`]
@@ -137,6 +142,8 @@ impl SparseSolver {
             skip_cholesky: 0,
             krylov: None,
             ilu: None,
+            multigrid: None,
+            blocks: (1, (0..n).collect()),
             jacobi,
             symmetric: false,
             iterative: false,
@@ -146,19 +153,35 @@ impl SparseSolver {
     /// Groups the unknowns into blocks of `size` for block Jacobi: group k is
     /// `index[k·size..(k+1)·size]` (every unknown once).
     pub(crate) fn set_blocks(&mut self, size: usize, index: Vec<usize>) {
-        self.jacobi = BlockJacobi::new(size, index, &self.pattern);
+        self.jacobi = BlockJacobi::new(size, index.clone(), &self.pattern);
+        self.blocks = (size, index);
     }
 
     /// Chooses how the systems of this run are solved: direct, or the Krylov method `linear`
     /// gives for this size (its buffers allocated here).
-    pub(crate) fn configure(&mut self, linear: &LinearSolver, structure: Structure) {
+    pub(crate) fn configure(
+        &mut self,
+        linear: &LinearSolver,
+        structure: Structure,
+        in_newton: bool,
+    ) {
         let n = self.rhs.len();
         self.krylov = linear.krylov_for(n, structure);
+        if let Some(krylov) = &mut self.krylov {
+            krylov.in_newton = in_newton;
+        }
         if let Some(krylov) = &self.krylov
             && krylov.options.preconditioner == Preconditioner::Ilu0
             && self.ilu.is_none()
         {
             self.ilu = Some(Ilu0::new(&self.pattern));
+        }
+        if let Some(krylov) = &self.krylov
+            && krylov.options.preconditioner == Preconditioner::Multigrid
+            && self.multigrid.is_none()
+        {
+            let (size, index) = &self.blocks;
+            self.multigrid = Some(Multigrid::new(*size, index.clone(), &self.pattern));
         }
     }
 
@@ -215,6 +238,16 @@ impl SparseSolver {
                     .ilu
                     .as_mut()
                     .is_some_and(|ilu| ilu.update(&self.values));
+                if !built {
+                    return self.factorize_direct();
+                }
+                self.counts.krylov.preconditioners += 1;
+            }
+            Preconditioner::Multigrid => {
+                let built = self
+                    .multigrid
+                    .as_mut()
+                    .is_some_and(|multigrid| multigrid.update(&self.values));
                 if !built {
                     return self.factorize_direct();
                 }
@@ -343,6 +376,16 @@ impl SparseSolver {
                 ),
                 None => Outcome::Failed,
             },
+            (Preconditioner::Multigrid, ..) => match &self.multigrid {
+                Some(multigrid) => krylov.solve(
+                    matrix,
+                    self.symmetric,
+                    MultigridRef(multigrid),
+                    &mut self.rhs,
+                    &mut self.counts.krylov,
+                ),
+                None => Outcome::Failed,
+            },
             (_, Some(Factored::Cholesky), _) => krylov.solve(
                 matrix,
                 self.symmetric,
@@ -363,9 +406,27 @@ impl SparseSolver {
             && matches!(outcome, Outcome::Converged)
             && krylov.last_iterations > limit
         {
-            // `Auto`: this matrix is too ill-conditioned for block Jacobi to pay.
-            self.krylov = None;
-            self.counts.krylov.switched_to_direct = 1;
+            // `Auto`: this matrix is too ill-conditioned for block Jacobi to pay. A big one goes
+            // on with multigrid, a small one (or one multigrid does not tame) factorizes.
+            if krylov.options.preconditioner == Preconditioner::BlockJacobi
+                && n >= LinearSolver::MULTIGRID_FROM
+            {
+                krylov.options.preconditioner = Preconditioner::Multigrid;
+                self.counts.krylov.switched_to_multigrid = 1;
+                let (size, index) = &self.blocks;
+                let multigrid = self
+                    .multigrid
+                    .get_or_insert_with(|| Multigrid::new(*size, index.clone(), &self.pattern));
+                if multigrid.update(&self.values) {
+                    self.counts.krylov.preconditioners += 1;
+                } else {
+                    self.krylov = None;
+                    self.counts.krylov.switched_to_direct = 1;
+                }
+            } else {
+                self.krylov = None;
+                self.counts.krylov.switched_to_direct = 1;
+            }
         }
         matches!(outcome, Outcome::Converged)
     }
@@ -422,6 +483,8 @@ impl Clone for SparseSolver {
             skip_cholesky: self.skip_cholesky,
             krylov: self.krylov.clone(),
             ilu: self.ilu.clone(),
+            multigrid: self.multigrid.clone(),
+            blocks: self.blocks.clone(),
             jacobi: self.jacobi.clone(),
             symmetric: self.symmetric,
             iterative: self.iterative,
@@ -482,7 +545,7 @@ mod tests {
                     rtol: 1e-12,
                     ..Krylov::default()
                 });
-                krylov.configure(&linear, Structure::Field);
+                krylov.configure(&linear, Structure::Field, false);
                 fill(&mut krylov);
                 for _ in 0..2 {
                     assert!(krylov.factorize());

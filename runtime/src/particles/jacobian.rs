@@ -323,10 +323,13 @@ impl<const D: usize> ParticleJacobian<D> {
 }
 
 impl<const D: usize> NewtonMatrix for ParticleJacobian<D> {
-    fn configure(&mut self, newton: &crate::NewtonOptions) {
+    fn configure(&mut self, newton: &crate::NewtonOptions, in_newton: bool) {
         self.definite = newton.definite;
-        self.solver
-            .configure(&newton.linear, crate::linalg::krylov::Structure::Particles);
+        self.solver.configure(
+            &newton.linear,
+            crate::linalg::krylov::Structure::Particles,
+            in_newton,
+        );
     }
 
     /// The factorization lives in the sparse solver inside the matrix.

@@ -130,7 +130,7 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
         stats: &mut Stats,
     ) -> Result<Self> {
         let mut jacobian = model.jacobian_matrix(y0);
-        jacobian.configure(newton);
+        jacobian.configure(newton, true);
         model.jacobian(t0, y0, &mut jacobian);
         stats.jacobian_evaluations += 1;
         let mut bdf = Bdf {
