@@ -16,6 +16,10 @@ Problems (all constants as IEEE doubles, i.e. exactly the IVP an f64 program int
 * POLLU -- air-pollution chemistry, 20 species and 25 reactions (J. G. Verwer, SIAM J. Sci. Comput.
   15 (1994) 1243-1250; problem POLLU of the Bari test set), t in [0, 60], rate constants,
   reactions, right-hand side and Jacobian transcribed from pollu.f (see `pollu` below).
+* OREGO -- the Oregonator (Field & Noyes 1974; HW II, Sec. IV.10; problem OREGO of the Bari test
+  set), t in [0, 360], y(0) = (1, 2, 3), right-hand side as in orego.f:
+      y1' = 77.27 (y2 + y1 (1 - 8.375e-6 y1 - y2))    y2' = (y3 - (1 + y1) y2) / 77.27
+      y3' = 0.161 (y1 - y3)
 * VDPOL -- van der Pol, mu = 1000: y1' = y2, y2' = mu (1 - y1^2) y2 - y1, y(0) = (2, 0),
   outputs t = 1000, 2000, 3000 (t = 2000 is problem VDPOLM, "van der Pol modified", of the Bari
   test set, exactly this system).
@@ -27,6 +31,7 @@ Fortran files rev. 1.2 of 2006/10/02, subroutine `solut`/`hiressol`):
 * hires.f  (t = 321.8122): "true double precision RADAU5 on Cray C90", uround 1.01e-19,
   rtol = atol = h0 = 1.1e-18.
 * pollu.f  (t = 60): same as hires.f.
+* orego.f  (t = 360): same as hires.f.
 * vdpolm.f (t = 2000): RADAU on an Alphaserver DS20E, uround 1.01e-19, rtol = atol = h0 = 1.1e-18.
 
 How the references here are computed
@@ -264,6 +269,18 @@ def pollu_jac(t, yy):
 MU = 1000.0
 
 
+def orego(t, y):
+    return [77.27 * (y[1] + y[0] * (1 - 8.375e-6 * y[0] - y[1])),
+            (y[2] - (1 + y[0]) * y[1]) / 77.27,
+            0.161 * (y[0] - y[2])]
+
+
+def orego_jac(t, y):
+    return [[77.27 * (1 - 2 * 8.375e-6 * y[0] - y[1]), 77.27 * (1 - y[0]), 0],
+            [-y[1] / 77.27, -(1 + y[0]) / 77.27, 1 / 77.27],
+            [0.161, 0, -0.161]]
+
+
 def vdp(t, y):
     return np.array([y[1], MU * (1.0 - y[0] ** 2) * y[1] - y[0]])
 
@@ -311,6 +328,7 @@ BARI = {
                      0.2087162882798630e-03, 0.1396921016840158e-04, 0.8964884856898295e-02,
                      0.4352846369330103e-17, 0.6899219696263405e-02, 0.1007803037365946e-03,
                      0.1772146513969984e-05, 0.5682943292316392e-04]),
+    "OREGO": (360.0, [0.1000814870318523e+01, 0.1228178521549917e+04, 0.1320554942846706e+03]),
     "VDPOL": (2000.0, [0.1706167732170469e+01, -0.8928097010248125e-03]),
 }
 
@@ -533,7 +551,8 @@ def references():
     for name, f, jac, y0, atol_ref in (
             ("HIRES", hires, hires_jac, [1, 0, 0, 0, 0, 0, 0, 0.0057], 1e-16),
             ("POLLU", pollu, pollu_jac,
-             [0, 0.2, 0, 0.04, 0, 0, 0.1, 0.3, 0.01, 0, 0, 0, 0, 0, 0, 0, 0.007, 0, 0, 0], 1e-20)):
+             [0, 0.2, 0, 0.04, 0, 0, 0.1, 0.3, 0.01, 0, 0, 0, 0, 0, 0, 0, 0.007, 0, 0, 0], 1e-20),
+            ("OREGO", orego, orego_jac, [1, 2, 3], 1e-16)):
         T, bari = BARI[name]
         print("=" * 100)
         print(f"{name} at t = {T:.10g}: reference = Bari published value. Per component: Bari, SciPy "

@@ -1,4 +1,4 @@
-//! The four problems of the Bari stiff test set (Mazzia & Magherini, *Test Set for Initial Value
+//! Five problems of the Bari stiff test set (Mazzia & Magherini, *Test Set for Initial Value
 //! Problem Solvers*, release 2.4, 2008) as `#[system]` models, shared by the `stiff_suite` example
 //! and the peer benches (`peers/benches/stiff.rs`), so both integrate the same equations.
 #![allow(
@@ -62,6 +62,14 @@ pub const POLLU_REFERENCE: [f64; 20] = [
     0.568_294_329_231_639_2e-4,
 ];
 
+/// OREGO at t = 360: the test set's `orego.f` reference (RADAU5 in quadruple precision); SciPy's
+/// Radau at rtol 1e-13 agrees to 1.3e-13 relative (`scripts/reference_stiff.py`).
+pub const OREGO_REFERENCE: [f64; 3] = [
+    0.100_081_487_031_852_3e1,
+    0.122_817_852_154_991_7e4,
+    0.132_055_494_284_670_6e3,
+];
+
 /// van der Pol, μ = 1000, at t = 2000: the test set's `vdpolm.f` reference (problem VDPOLM).
 pub const VAN_DER_POL_2000: [f64; 2] = [0.170_616_773_217_046_9e1, -0.892_809_701_024_812_5e-3];
 
@@ -89,6 +97,31 @@ impl Robertson {
             a: -slow + exchange,
             b: slow - exchange - fast,
             c: fast,
+        }
+    }
+}
+
+/// The Oregonator (Field & Noyes 1974; Hairer & Wanner, *Solving ODEs II*, §IV.10): the
+/// Belousov–Zhabotinsky reaction's three intermediates, as in the test set's `orego.f`; from
+/// (1, 2, 3) to t = 360 it goes round its limit cycle with concentrations over six orders of
+/// magnitude.
+#[system]
+pub struct Orego {
+    /// The three concentrations.
+    #[state]
+    pub y: [f64; 3],
+}
+
+#[system]
+impl Orego {
+    fn derivative(&self) -> OregoState {
+        let y = self.y;
+        OregoState {
+            y: [
+                77.27 * (y[1] + y[0] * (1.0 - 8.375e-6 * y[0] - y[1])),
+                (y[2] - (1.0 + y[0]) * y[1]) / 77.27,
+                0.161 * (y[0] - y[2]),
+            ],
         }
     }
 }

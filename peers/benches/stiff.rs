@@ -12,7 +12,9 @@
 //! - `robertson`: Robertson's kinetics to t = 1e5 (3 species; the 36-digit Radau IIA run of
 //!   `scripts/reference_stiff.py`);
 //! - `hires`: HIRES to t = 321.8122 (8 species; the test set's `hires.f` value);
-//! - `pollu`: POLLU to t = 60 (20 species; the test set's `pollu.f` value).
+//! - `pollu`: POLLU to t = 60 (20 species; the test set's `pollu.f` value);
+//! - `orego`: OREGO, the Oregonator, to t = 360 (3 species round a limit cycle; the test set's
+//!   `orego.f` value).
 //!
 //! # Method
 //!
@@ -28,13 +30,17 @@
 //!
 //! # Variants
 //!
-//! - `odyn_rodas5p`, `odyn_rosenbrock23`: the model through `simulate()` with `Method::Rodas5P` /
-//!   `Method::Rosenbrock23`, recording only the initial and final states, no dense output.
+//! - `odyn_rodas5p`, `odyn_rosenbrock23`, `odyn_bdf`: the model through `simulate()` with
+//!   `Method::Rodas5P` / `Method::Rosenbrock23` / `Method::Bdf`, recording only the initial and
+//!   final states, no dense output.
 //! - `diffsol_bdf`, `diffsol_esdirk34`: diffsol's variable-order BDF and its ESDIRK 3(4) on
 //!   nalgebra dense matrices with `NalgebraLU`, stepped with `set_stop_time(t_end)`.
 //! - `de_radau5`, `de_bdf`: `differential-equations`' `ImplicitRungeKutta::radau5()` (Hairer &
 //!   Wanner's RADAU5) and `BackwardDifferentiationFormula::adaptive()` through
 //!   `IVP::ode(..).t_eval([t_end])`.
+//! - `cvode_bdf`: SUNDIALS CVODE 6.4 (C; `cvode/mod.rs`), variable-order BDF with Newton on its
+//!   dense direct solver and the analytic Jacobian, scalar tolerances, `CVodeSetStopTime(t_end)`;
+//!   needs `libsundials-dev`.
 //!
 //! Every solver gets odyn's generated f and exact Jacobian, so all integrate the same equations
 //! with the same arithmetic and none pays for finite differences: `differential-equations` through
@@ -63,12 +69,13 @@ use odyn::nalgebra::SMatrix;
 use odyn::prelude::*;
 
 mod calibration;
+mod cvode;
 
 #[path = "../../examples/common/stiff_models.rs"]
 mod stiff_models;
 
 use calibration::{Pick, pick};
-use stiff_models::{Hires, Pollu, Robertson};
+use stiff_models::{Hires, Orego, Pollu, Robertson};
 
 /// The target final errors (max relative error against the reference).
 const TARGETS: [f64; 2] = [1e-4, 1e-7];
@@ -80,6 +87,17 @@ fn tolerances() -> impl Iterator<Item = f64> {
 
 // ---------------------------------------------------------------------------------------------
 // Problems.
+
+impl Problem<3> for Orego {
+    const GROUP: &'static str = "orego";
+    const T_END: f64 = 360.0;
+    const ATOL_SCALE: f64 = 1e-4;
+    const REFERENCE: [f64; 3] = stiff_models::OREGO_REFERENCE;
+
+    fn instance() -> Self {
+        Orego { y: [1.0, 2.0, 3.0] }
+    }
+}
 
 /// A stiff test problem: a `#[system]` model with a dense stack Jacobian, its initial state, end
 /// time, absolute-tolerance scale and reference final state.
@@ -227,20 +245,24 @@ impl<P: Problem<N>, const N: usize> ODE<f64, [f64; N]> for Plain<P, N> {
 enum Solver {
     OdynRodas5P,
     OdynRosenbrock23,
+    OdynBdf,
     DiffsolBdf,
     DiffsolEsdirk34,
     DeRadau5,
     DeBdf,
+    CvodeBdf,
 }
 
 impl Solver {
-    const ALL: [Solver; 6] = [
+    const ALL: [Solver; 8] = [
         Solver::OdynRodas5P,
         Solver::OdynRosenbrock23,
+        Solver::OdynBdf,
         Solver::DiffsolBdf,
         Solver::DiffsolEsdirk34,
         Solver::DeRadau5,
         Solver::DeBdf,
+        Solver::CvodeBdf,
     ];
 
     /// The divan bench name.
@@ -252,6 +274,8 @@ impl Solver {
             Solver::DiffsolEsdirk34 => "diffsol_esdirk34",
             Solver::DeRadau5 => "de_radau5",
             Solver::DeBdf => "de_bdf",
+            Solver::OdynBdf => "odyn_bdf",
+            Solver::CvodeBdf => "cvode_bdf",
         }
     }
 }
@@ -273,6 +297,8 @@ fn solve<P: Problem<N>, const N: usize>(solver: Solver, rtol: f64) -> Option<Run
     match solver {
         Solver::OdynRodas5P => odyn_run::<P, N>(Method::Rodas5P, rtol, atol),
         Solver::OdynRosenbrock23 => odyn_run::<P, N>(Method::Rosenbrock23, rtol, atol),
+        Solver::OdynBdf => odyn_run::<P, N>(Method::Bdf, rtol, atol),
+        Solver::CvodeBdf => cvode_run::<P, N>(rtol, atol),
         Solver::DiffsolBdf | Solver::DiffsolEsdirk34 => diffsol_run::<P, N>(solver, rtol, atol),
         Solver::DeRadau5 => de_run::<P, _, N>(
             // Vector tolerances: with scalar ones, 0.7.0's Radau5 applies its tolerance
@@ -312,6 +338,31 @@ fn odyn_run<P: Problem<N>, const N: usize>(method: Method, rtol: f64, atol: f64)
     })
 }
 
+fn cvode_run<P: Problem<N>, const N: usize>(rtol: f64, atol: f64) -> Option<Run<N>> {
+    let plain = Plain::<P, N>::new();
+    let y0: [f64; N] = flat(&plain.model.state());
+    let rhs = |t: f64, y: &[f64], dy: &mut [f64]| plain.rhs(t, y, dy);
+    let jacobian = |t: f64, y: &[f64], j: &mut [f64]| {
+        let cache = Plain::jacobian(&plain, t, y);
+        // nalgebra's matrices are column-major, as CVODE's dense ones.
+        j.copy_from_slice(cache.2.as_slice());
+    };
+    let equations = cvode::Equations {
+        n: N,
+        rhs: &rhs,
+        jacobian: &jacobian,
+    };
+    let run = cvode::solve(&equations, &y0, P::T_END, rtol, atol)?;
+    Some(Run {
+        y: run.y.try_into().ok()?,
+        steps: run.steps,
+        rejected: run.rejected,
+        evaluations: run.evaluations,
+        jacobians: run.jacobians,
+        factorizations: run.factorizations,
+    })
+}
+
 fn de_run<P, S, const N: usize>(method: S) -> Option<Run<N>>
 where
     P: Problem<N>,
@@ -319,7 +370,7 @@ where
         + differential_equations::interpolate::Interpolation<f64, [f64; N]>,
 {
     let plain = Plain::<P, N>::new();
-    let y0 = flat(&plain.model.state());
+    let y0: [f64; N] = flat(&plain.model.state());
     let solution = IVP::ode(&plain, 0.0, P::T_END, y0)
         .t_eval([P::T_END])
         .method(method)
@@ -502,12 +553,14 @@ fn main() {
     calibrate::<Robertson, 3>(&mut chosen);
     calibrate::<Hires, 8>(&mut chosen);
     calibrate::<Pollu, 20>(&mut chosen);
+    calibrate::<Orego, 3>(&mut chosen);
     println!();
     let mut divan = divan::Divan::from_args();
     for name in [
         <Robertson as Problem<3>>::GROUP,
         <Hires as Problem<8>>::GROUP,
         <Pollu as Problem<20>>::GROUP,
+        <Orego as Problem<3>>::GROUP,
     ] {
         for (t, target) in TARGETS.iter().enumerate() {
             for solver in Solver::ALL {
@@ -542,6 +595,16 @@ macro_rules! group {
             }
 
             #[divan::bench]
+            fn odyn_bdf() -> [f64; $n] {
+                timed::<$problem, $n>(Solver::OdynBdf, $t)
+            }
+
+            #[divan::bench]
+            fn cvode_bdf() -> [f64; $n] {
+                timed::<$problem, $n>(Solver::CvodeBdf, $t)
+            }
+
+            #[divan::bench]
             fn diffsol_bdf() -> [f64; $n] {
                 timed::<$problem, $n>(Solver::DiffsolBdf, $t)
             }
@@ -570,3 +633,5 @@ group!(hires_1e4, Hires, 8, 0);
 group!(hires_1e7, Hires, 8, 1);
 group!(pollu_1e4, Pollu, 20, 0);
 group!(pollu_1e7, Pollu, 20, 1);
+group!(orego_1e4, Orego, 3, 0);
+group!(orego_1e7, Orego, 3, 1);

@@ -37,6 +37,11 @@ pub struct NewtonOptions {
     /// [`crate::LinearSolver::Auto`]: preconditioned Krylov iterations for field models from
     /// 1 024 unknowns, sparse direct otherwise).
     pub linear: crate::LinearSolver,
+    /// BDF only: the factorization of I − c·J (c = h/αₖ) is kept while c stays within this
+    /// fraction of the c it was made with (default 0.3, CVODE's `DGMAX_LSETUP`), each Newton
+    /// update then scaled by 2/(1 + c/c_old) as CVODE does; 0 refactorizes whenever h or the
+    /// order changes, except for the retry after an error-test failure (SciPy's `BDF`).
+    pub refactor_ratio: f64,
 }
 
 impl NewtonOptions {
@@ -56,6 +61,12 @@ impl NewtonOptions {
             return Err(Error::invalid(
                 "NewtonOptions::max_iters",
                 "must be at least 1",
+            ));
+        }
+        if !(self.refactor_ratio.is_finite() && (0.0..1.0).contains(&self.refactor_ratio)) {
+            return Err(Error::invalid(
+                "NewtonOptions::refactor_ratio",
+                format!("must be in [0, 1), got {:?}", self.refactor_ratio),
             ));
         }
         if self.max_halvings > 52 {
@@ -88,6 +99,7 @@ impl Default for NewtonOptions {
             linearized: false,
             definite: false,
             linear: crate::LinearSolver::default(),
+            refactor_ratio: 0.3,
         }
     }
 }

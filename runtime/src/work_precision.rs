@@ -13,9 +13,7 @@ use std::path::Path;
 use std::time::Instant;
 
 use crate::output::{number, write_table};
-use crate::{
-    Atol, Error, Method, Model, NewtonOptions, Result, State, Stats, Tolerances, Trajectory,
-};
+use crate::{Error, Method, Model, NewtonOptions, Result, State, Stats, Tolerances, Trajectory};
 
 /// What a run's final state is compared with.
 pub enum Reference<S> {
@@ -595,10 +593,10 @@ impl WorkPrecisionSet {
                         let setting = match &m.setting {
                             Setting::Dt(dt) => format!("dt = {dt:e}"),
                             Setting::Tolerances(t) => match &t.atol {
-                                Atol::Scalar(atol) => {
+                                crate::Atol::Scalar(atol) => {
                                     format!("rtol = {:e}, atol = {atol:e}", t.rtol)
                                 }
-                                Atol::PerComponent(_) => format!("rtol = {:e}", t.rtol),
+                                crate::Atol::PerComponent(_) => format!("rtol = {:e}", t.rtol),
                             },
                         };
                         let note = format!("{setting}: error {error:.2e}, {spent}");

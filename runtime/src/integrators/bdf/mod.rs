@@ -37,8 +37,11 @@ use crate::{
 /// - **Newton**: at most 4 iterations; converged when rate/(1 − rate)·‖Δ‖ < tol (rate the ratio of
 ///   successive ‖Δ‖), abandoned when the rate reaches 1 or cannot reach tol in the iterations
 ///   left; tol = max(10ε/rtol, min(0.03, √rtol)), norms weighted by atol + rtol·|yₙ₊₁⁽⁰⁾|.
-/// - **Reuse**: the LU of I − c·J is kept while c = h/αₖ is unchanged — across every step that
-///   neither changes h nor the order — and also after a step rejected by its error estimate
+/// - **Reuse**: the LU of I − c·J is kept while c = h/αₖ stays within
+///   [`NewtonOptions::refactor_ratio`] (default 0.3) of the c it was made with, each Newton
+///   update then scaled by 2/(1 + c/c_old) (CVODE's rule: Hindmarsh et al., "SUNDIALS", ACM
+///   TOMS 31 (2005), §2.1, and `cvode_ls.c`); with a ratio of 0, SciPy's rule: kept across every
+///   step that neither changes h nor the order, and after a step rejected by its error estimate
 ///   (the fixed point d does not depend on the iteration matrix, only the rate does). J is
 ///   re-evaluated only when Newton fails with a J older than the current step; if it fails
 ///   with a fresh one, the step is halved ([`Error::NewtonDidNotConverge`], its residual the
@@ -78,6 +81,8 @@ pub struct Bdf<M: Jacobian> {
     factors: <M::Matrix as NewtonMatrix>::Factors,
     /// Whether `factors` hold a factorization to solve with.
     factored: bool,
+    /// The c = h/αₖ `factors` were made with.
+    factored_c: f64,
     /// Whether J was evaluated during the current step (SciPy's `current_jac`): a Newton
     /// failure then halves the step instead of re-evaluating J.
     fresh: bool,
@@ -137,6 +142,7 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
             factors: jacobian.factors(),
             jacobian,
             factored: false,
+            factored_c: f64::NAN,
             fresh: false,
             differences: copies(y0)?,
             spacing: 1.0,
@@ -176,7 +182,8 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
             change_d(&mut self.differences, k, h / self.spacing);
             self.spacing = h;
             self.equal_steps = 0;
-            self.factored &= keep_lu;
+            // SciPy's rule; with a refactor ratio, c decides below.
+            self.factored &= keep_lu || self.newton.refactor_ratio > 0.0;
         }
         // Predictor Σⱼ₌₀ᵏ ∇ʲyₙ and ψ = Σⱼ₌₁ᵏ γⱼ∇ʲyₙ/αₖ.
         let (predict, psi) = (self.predict.as_mut_slice(), self.psi.as_mut_slice());
@@ -216,6 +223,10 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
             }
         };
         let c = h / ALPHA[k];
+        let ratio = self.newton.refactor_ratio;
+        if ratio > 0.0 && !keep_lu && (c / self.factored_c - 1.0).abs() > ratio {
+            self.factored = false;
+        }
         let iters = loop {
             if !self.factored {
                 s.stats.factorizations += 1;
@@ -223,10 +234,22 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
                     return Err(Error::SingularMatrix { t, dt: h });
                 }
                 self.factored = true;
+                self.factored_c = c;
             }
-            match self.solve(model, (t_new, h, c), (max_iters, tol), y_new, s.stats) {
+            // CVODE's correction for a matrix made with another c: between the factor 1 a
+            // non-stiff component needs and c_old/c a stiff one does.
+            let scale = if ratio > 0.0 {
+                2.0 / (1.0 + c / self.factored_c)
+            } else {
+                1.0
+            };
+            match self.solve(model, (t_new, h, c, scale), (max_iters, tol), y_new, s.stats) {
                 Ok(iters) => break iters,
                 Err(failure) if self.fresh => return Err(failure),
+                Err(_) if ratio > 0.0 && self.factored_c != c => {
+                    // A matrix made with another c: refactorize with this one, same J, first.
+                    self.factored = false;
+                }
                 Err(_) => {
                     // An old J: evaluate it at the predictor and try again.
                     model.jacobian(t_new, &self.predict, &mut self.jacobian);
@@ -315,10 +338,11 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
         self.rejected = false;
         match self.change.take() {
             Some(order) => {
-                // A new h (`next`) and order: re-sampled at the next attempt, refactorized.
+                // A new h (`next`) and order: re-sampled at the next attempt, refactorized (with
+                // a refactor ratio, if c changed by more).
                 self.order = order;
                 self.equal_steps = 0;
-                self.factored = false;
+                self.factored &= self.newton.refactor_ratio > 0.0;
             }
             None => {
                 // A fixed-step run raises the order as the history allows.
@@ -326,7 +350,7 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
                 if !self.adaptive && self.equal_steps > k && k < cap {
                     self.order = k + 1;
                     self.equal_steps = 0;
-                    self.factored = false;
+                    self.factored &= self.newton.refactor_ratio > 0.0;
                 }
             }
         }

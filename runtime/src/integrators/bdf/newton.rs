@@ -7,13 +7,14 @@ use crate::{Error, Jacobian, NewtonFailure, NewtonMatrix, Result, State, Stats};
 impl<M: Jacobian> Bdf<M> {
     /// The simplified Newton iteration for d = c·f(tₙ₊₁, y⁽⁰⁾ + d) − ψ from d = 0 (SciPy's
     /// `solve_bdf_system`), leaving yₙ₊₁ in `y` and d in `self.correction`; returns the
-    /// iterations made.
+    /// iterations made. Each update is multiplied by `scale` (CVODE's correction for a matrix
+    /// made with another c).
     ///
     /// Errors: [`Error::NewtonDidNotConverge`] with the cause.
     pub(super) fn solve(
         &mut self,
         model: &M,
-        (t_new, h, c): (f64, f64, f64),
+        (t_new, h, c, scale): (f64, f64, f64, f64),
         (max_iters, tol): (usize, f64),
         y: &mut M::State,
         stats: &mut Stats,
@@ -54,6 +55,11 @@ impl<M: Jacobian> Bdf<M> {
             stats.linear_solves += 1;
             if !self.jacobian.solve(&mut self.factors, update) {
                 return Err(fail(iter + 1, residual, NewtonFailure::NotFinite));
+            }
+            if scale != 1.0 {
+                for u in update.iter_mut() {
+                    *u *= scale;
+                }
             }
             let mut sum = 0.0;
             for (u, w) in update.iter().zip(self.scale.as_slice()) {
