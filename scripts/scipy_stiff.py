@@ -1,14 +1,15 @@
 """SciPy's Radau, BDF and LSODA at equal final error on the stiff peer benchmark (not run by CI).
 
-The SciPy side of `peers/benches/stiff.rs`: the same three problems (right-hand sides and
+The SciPy side of `peers/benches/stiff.rs`: the same four problems (right-hand sides and
 analytic Jacobians from scripts/reference_stiff.py), the same reference final states, the same
 calibration:
 
 * ROBER to t = 1e5, reference: the 36-digit Radau IIA run (s = 7) of scripts/reference_stiff.py;
-* HIRES to t = 321.8122 and POLLU to t = 60, reference: the published Bari test-set values.
+* HIRES to t = 321.8122, POLLU to t = 60 and OREGO to t = 360, reference: the published Bari
+  test-set values.
 
 For each method, rtol is swept over 1e-2 ... 1e-11 in quarter decades with atol = rtol * scale
-(ROBER 1e-6, HIRES and POLLU 1e-4), and the error of the final state is the largest relative
+(ROBER 1e-6, HIRES, POLLU and OREGO 1e-4), and the error of the final state is the largest relative
 error over the components whose reference is at least 1e-10. For each target error (1e-4, 1e-7)
 the method's configuration is the loosest tolerance whose error is at or below the target. That
 configuration is then timed (a method's sweep stops at the first tolerance that meets every
@@ -25,7 +26,8 @@ import numpy as np
 import scipy
 from scipy.integrate import solve_ivp
 
-from reference_stiff import BARI, hires, hires_jac, maxrel, pollu, pollu_jac, robertson, robertson_jac
+from reference_stiff import (BARI, hires, hires_jac, maxrel, orego, orego_jac, pollu, pollu_jac,
+                             robertson, robertson_jac)
 
 TARGETS = [1e-4, 1e-7]
 TOLERANCES = [10.0 ** (-2 - k / 4) for k in range(37)]
@@ -41,6 +43,7 @@ PROBLEMS = [
     ("pollu", pollu, pollu_jac,
      [0, 0.2, 0, 0.04, 0, 0, 0.1, 0.3, 0.01, 0, 0, 0, 0, 0, 0, 0, 0.007, 0, 0, 0],
      BARI["POLLU"][0], 1e-4, BARI["POLLU"][1]),
+    ("orego", orego, orego_jac, [1.0, 2.0, 3.0], BARI["OREGO"][0], 1e-4, BARI["OREGO"][1]),
 ]
 
 
