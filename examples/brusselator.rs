@@ -4,14 +4,16 @@
 //!   u_t = 1 + u²v − 4.4u + α∇²u,   v_t = 3.4u − u²v + α∇²v,   α = 10,
 //!
 //! from u = 22·(y(1 − y))^{3/2}, v = 27·(x(1 − x))^{3/2} (x, y on N points from 0 to 1,
-//! Δx = 1/(N − 1)), to t = 11.5. The benchmark's source term (a disc switched on at t = 1.1) is
-//! left out: odyn's cell methods cannot read the position or the time yet.
+//! Δx = 1/(N − 1)), to t = 11.5. The benchmark's source term — 5 added to u_t inside the disc
+//! (x − 0.3)² + (y − 0.6)² ≤ 0.1² from t = 1.1 — is on with `--forcing`: the `#[cell]` method
+//! reads the cell's position and the time (`x`, `y`, `t` arguments; the grids carry the spacing).
+//! It is off by default, as in the references `--reference` compares against.
 //!
 //! Stiff: diffusion's eigenvalues reach −8α/Δx² (−77 000 at N = 32), while the chemistry moves on
-//! a time scale of 1. The run uses BDF at rtol = atol = 1e-6 three times — with the default
-//! `LinearSolver::Auto`, with block-Jacobi BiCGSTAB (`LinearSolver::Krylov`) and with the
-//! sparse LU (`LinearSolver::Direct`) — and prints the time, steps, Jacobians and linear-solver
-//! work of each and how far apart the Krylov and LU runs end.
+//! a time scale of 1. The run uses BDF at rtol = atol = 1e-6 four times — with the default
+//! `LinearSolver::Auto`, with block-Jacobi and with multigrid BiCGSTAB (`LinearSolver::Krylov`)
+//! and with the sparse LU (`LinearSolver::Direct`) — and prints the time, steps, Jacobians and
+//! linear-solver work of each and how far apart the block-Jacobi and LU runs end.
 //!
 //! `cargo run --release --example brusselator [-- --n 64]` writes under `out/brusselator/`:
 //! `u_<k>.png` (u at t = 0, 2.875, 5.75, 8.625, 11.5, colour bar 0 to 5) and `brusselator.csv`
@@ -41,30 +43,42 @@ pub struct Brusselator {
     pub alpha: f64,
     /// Cell size Δx.
     pub dx: f64,
+    /// Whether the benchmark's source is on: 5 inside the disc (x − 0.3)² + (y − 0.6)² ≤ 0.1²
+    /// from t = 1.1.
+    pub forcing: bool,
 }
 
 #[system]
 impl Brusselator {
     #[cell]
-    fn reaction(&self, u: Stencil, v: Stencil) -> [f64; 2] {
+    fn reaction(&self, u: Stencil, v: Stencil, x: f64, y: f64, t: f64) -> [f64; 2] {
         let uuv = u.c * u.c * v.c;
         let diffusion = self.alpha / (self.dx * self.dx);
+        let disc = (x - 0.3) * (x - 0.3) + (y - 0.6) * (y - 0.6) <= 0.01;
+        let source = if self.forcing && disc && t >= 1.1 {
+            5.0
+        } else {
+            0.0
+        };
         [
-            1.0 + uuv - 4.4 * u.c + diffusion * u.laplacian(),
+            1.0 + uuv - 4.4 * u.c + diffusion * u.laplacian() + source,
             3.4 * u.c - uuv + diffusion * v.laplacian(),
         ]
     }
 }
 
 /// The BRUSS initial state on an n × n grid.
-fn brusselator(n: usize) -> odyn::Result<Brusselator> {
+fn brusselator(n: usize, forcing: bool) -> odyn::Result<Brusselator> {
     let dx = 1.0 / (n - 1) as f64;
     let bump = |s: f64, scale: f64| scale * (s * (1.0 - s)).powf(1.5);
     Ok(Brusselator {
-        u: Grid::from_fn(n, n, Boundary::Periodic, |_, j| bump(j as f64 * dx, 22.0))?,
-        v: Grid::from_fn(n, n, Boundary::Periodic, |i, _| bump(i as f64 * dx, 27.0))?,
+        u: Grid::from_fn(n, n, Boundary::Periodic, |_, j| bump(j as f64 * dx, 22.0))?
+            .with_spacing(dx, dx)?,
+        v: Grid::from_fn(n, n, Boundary::Periodic, |i, _| bump(i as f64 * dx, 27.0))?
+            .with_spacing(dx, dx)?,
         alpha: 10.0,
         dx,
+        forcing,
     })
 }
 
@@ -77,6 +91,10 @@ struct Cli {
     /// Skip the sparse-LU run.
     #[arg(long)]
     krylov_only: bool,
+    /// Switch on the benchmark's source (5 inside the disc of radius 0.1 about (0.3, 0.6) from
+    /// t = 1.1); the references of `--reference` are of the problem without it.
+    #[arg(long)]
+    forcing: bool,
     /// A reference final state (2·N² numbers, u then v, cell i + N·j, one per line, as
     /// `scripts/bruss_reference.py` writes them): calibrate BDF and Rodas5P to a final error of
     /// 1e-6 (max |y − ref| / max |ref|) by a half-decade tolerance sweep, and time the loosest
@@ -96,7 +114,7 @@ fn main() -> odyn::Result<()> {
         });
     }
     let dir = Path::new("out/brusselator");
-    let model = brusselator(cli.n)?;
+    let model = brusselator(cli.n, cli.forcing)?;
     if let Some(path) = &cli.reference {
         return calibrate(&model, cli.n, path);
     }
@@ -175,9 +193,23 @@ fn main() -> odyn::Result<()> {
                 .collect::<Vec<_>>(),
         );
         let field = Field::new(cli.n, cli.n, state.field(0))
-            .titled("Brusselator")
+            .titled(if cli.forcing {
+                "Brusselator, forced (colours span the frame's range)"
+            } else {
+                "Brusselator"
+            })
             .named("u")
             .at_time(t);
+        // Diffusion (α = 10) keeps the source's imprint to a few thousandths of u: a fixed
+        // colour range would show a uniform square.
+        let style = if cli.forcing && u[2] > u[0] {
+            FieldStyle {
+                range: (u[0], u[2]),
+                ..style
+            }
+        } else {
+            style
+        };
         field_image(dir.join(format!("u_{k}.png")), field, style)?;
     }
     write_table(

@@ -136,14 +136,17 @@ pub(crate) fn lower(model: &Model<'_>, f: &syn::ImplItemFn) -> syn::Result<Lower
 /// is `outputs` numbers (a scalar when 1, else a vector or array). `model` supplies only parameter
 /// shapes (its `states` are empty). Particle kernels take D-vectors and return a D-vector force;
 /// a grid's `#[cell]` kernel takes its stencil reads as scalars and returns one value per field.
+/// `time` names the kernel's time argument, if any: the variable after the inputs', so ∂f/∂t
+/// comes from the same graph.
 pub(crate) fn lower_kernel(
     model: &Model<'_>,
     f: &syn::ImplItemFn,
     inputs: &[Ident],
     width: usize,
     outputs: usize,
+    time: Option<Ident>,
 ) -> syn::Result<Lowered> {
-    let mut l = Lowering::new(model, f, None);
+    let mut l = Lowering::new(model, f, time.map(|t| (t, inputs.len() * width)));
     for (k, name) in inputs.iter().enumerate() {
         let value = if width == 1 {
             Value::Scalar(l.graph.var(k))

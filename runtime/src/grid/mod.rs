@@ -24,6 +24,13 @@
 //! (diffusion), else sparse LU.
 //!
 //! Cells are indexed k = j·nx + i, with i along x (east is i + 1) and j along y (north is j + 1).
+//!
+//! The `#[cell]` method may also take the cell's position and the time, as `f64` arguments named
+//! `x`, `y` and `t`: cell (i, j) is at (x₀ + i·Δx, y₀ + j·Δy), from the first field's
+//! [`Grid::with_origin`] and [`Grid::with_spacing`] (origin (0, 0) and spacing 1 unless set).
+//! A spatial source, a coefficient that varies in space or a forcing switched on at a time are
+//! written that way; the position is a parameter of the cell (not differentiated), and a kernel
+//! that reads `t` gets its ∂f/∂t generated for the Rosenbrock methods.
 
 mod jacobian;
 
@@ -47,13 +54,28 @@ pub enum Boundary {
     Dirichlet(f64),
 }
 
-/// One field of a field model: an nx × ny grid of values and its boundary.
+/// One field of a field model: an nx × ny grid of values, its boundary, and where its cells
+/// are (an origin and a spacing, read by `#[cell]` methods that take `x` and `y`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Grid {
     nx: usize,
     ny: usize,
     boundary: Boundary,
     values: Vec<f64>,
+    origin: (f64, f64),
+    spacing: (f64, f64),
+}
+
+/// Where and when a field model's cell rate is evaluated: the cell's position and the time
+/// (what a `#[cell]` method's `x`, `y` and `t` arguments receive).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Place {
+    /// x₀ + i·Δx.
+    pub x: f64,
+    /// y₀ + j·Δy.
+    pub y: f64,
+    /// The time.
+    pub t: f64,
 }
 
 impl Grid {
@@ -77,7 +99,56 @@ impl Grid {
             ny,
             boundary,
             values,
+            origin: (0.0, 0.0),
+            spacing: (1.0, 1.0),
         })
+    }
+
+    /// The same grid with cell (0, 0) at (x₀, y₀) (default (0, 0)).
+    ///
+    /// Errors: [`Error::InvalidInput`] when a coordinate is not finite.
+    pub fn with_origin(mut self, x0: f64, y0: f64) -> Result<Self> {
+        if !(x0.is_finite() && y0.is_finite()) {
+            return Err(Error::invalid(
+                "grid origin",
+                format!("must be finite, got ({x0}, {y0})"),
+            ));
+        }
+        self.origin = (x0, y0);
+        Ok(self)
+    }
+
+    /// The same grid with cells Δx apart along x and Δy along y (default 1, 1): cell (i, j) is
+    /// at (x₀ + i·Δx, y₀ + j·Δy).
+    ///
+    /// Errors: [`Error::InvalidInput`] when a spacing is not finite and positive.
+    pub fn with_spacing(mut self, dx: f64, dy: f64) -> Result<Self> {
+        if !(dx.is_finite() && dx > 0.0 && dy.is_finite() && dy > 0.0) {
+            return Err(Error::invalid(
+                "grid spacing",
+                format!("must be finite and positive, got ({dx}, {dy})"),
+            ));
+        }
+        self.spacing = (dx, dy);
+        Ok(self)
+    }
+
+    /// The position of cell (0, 0).
+    pub fn origin(&self) -> (f64, f64) {
+        self.origin
+    }
+
+    /// The distance between neighbouring cells along x and along y.
+    pub fn spacing(&self) -> (f64, f64) {
+        self.spacing
+    }
+
+    /// The position of cell (i, j): (x₀ + i·Δx, y₀ + j·Δy).
+    pub fn position(&self, i: usize, j: usize) -> (f64, f64) {
+        (
+            self.origin.0 + i as f64 * self.spacing.0,
+            self.origin.1 + j as f64 * self.spacing.1,
+        )
     }
 
     /// A grid whose cell (i, j) holds `value(i, j)`.
@@ -355,11 +426,14 @@ pub trait GridSystem<const F: usize>: Model<State = GridState> {
     /// The model's grids, in declaration order.
     fn grids(&self) -> [&Grid; F];
 
-    /// The time derivative of every field at a cell whose stencils are `stencils`.
-    fn cell(&self, stencils: &[Stencil; F]) -> [f64; F];
+    /// The time derivative of every field at a cell whose stencils are `stencils`, at `at`.
+    fn cell(&self, stencils: &[Stencil; F], at: Place) -> [f64; F];
 
     /// The values of [`GridSystem::BLOCKS`] at a cell, into `blocks` (as long as `BLOCKS`).
-    fn cell_jacobian(&self, stencils: &[Stencil; F], blocks: &mut [f64]);
+    fn cell_jacobian(&self, stencils: &[Stencil; F], at: Place, blocks: &mut [f64]);
+
+    /// ∂/∂t of every field's rate at a cell (zero unless the `#[cell]` method reads `t`).
+    fn cell_time_derivative(&self, stencils: &[Stencil; F], at: Place) -> [f64; F];
 }
 
 /// The index of cell (i + di, j + dj) of an nx × ny grid with `boundary` (|di|, |dj| ≤ 1),
@@ -454,13 +528,13 @@ unsafe fn interior(values: &[f64], nx: usize, k: usize) -> Stencil {
     }
 }
 
-/// Calls `visit(k, stencils)` for every cell k of `y`, interior cells by direct reads and edge
-/// cells through their fields' boundaries.
+/// Calls `visit(k, i, j, stencils)` for every cell k = j·nx + i of `y`, interior cells by direct
+/// reads and edge cells through their fields' boundaries.
 #[inline]
 fn for_each_cell<const F: usize>(
     y: &GridState,
     boundaries: [Boundary; F],
-    mut visit: impl FnMut(usize, &[Stencil; F]),
+    mut visit: impl FnMut(usize, usize, usize, &[Stencil; F]),
 ) {
     let (nx, ny) = (y.nx, y.ny);
     let fields: [&[f64]; F] = std::array::from_fn(|f| y.field(f));
@@ -471,18 +545,19 @@ fn for_each_cell<const F: usize>(
     for j in 0..ny {
         if !(whole && j > 0 && j + 1 < ny && nx > 2) {
             for i in 0..nx {
-                visit(j * nx + i, &edge(i, j));
+                visit(j * nx + i, i, j, &edge(i, j));
             }
             continue;
         }
-        visit(j * nx, &edge(0, j));
-        for k in j * nx + 1..(j + 1) * nx - 1 {
+        visit(j * nx, 0, j, &edge(0, j));
+        for i in 1..nx - 1 {
+            let k = j * nx + i;
             // SAFETY: row j is interior (0 < j < ny − 1) and so is every k here (0 < i < nx − 1);
             // every field holds nx·ny values (`whole`).
             let stencils = std::array::from_fn(|f| unsafe { interior(fields[f], nx, k) });
-            visit(k, &stencils);
+            visit(k, i, j, &stencils);
         }
-        visit((j + 1) * nx - 1, &edge(nx - 1, j));
+        visit((j + 1) * nx - 1, nx - 1, j, &edge(nx - 1, j));
     }
 }
 
@@ -491,19 +566,45 @@ fn boundaries<M: GridSystem<F>, const F: usize>(model: &M) -> [Boundary; F] {
     model.grids().map(Grid::boundary)
 }
 
-/// [`Model::derivative`] of a field model: the `#[cell]` method at every cell.
-#[doc(hidden)]
-#[inline]
-pub fn derivative<M: GridSystem<F>, const F: usize>(
+/// Where cell (i, j) of `model` is at time t: (x₀ + i·Δx, y₀ + j·Δy) of its first grid.
+#[inline(always)]
+fn place<M: GridSystem<F>, const F: usize>(
+    (origin, spacing): ((f64, f64), (f64, f64)),
+    t: f64,
+    i: usize,
+    j: usize,
+) -> Place {
+    Place {
+        x: origin.0 + i as f64 * spacing.0,
+        y: origin.1 + j as f64 * spacing.1,
+        t,
+    }
+}
+
+/// The origin and spacing of `model`'s first grid (every grid shares them: [`check`]).
+#[inline(always)]
+fn geometry<M: GridSystem<F>, const F: usize>(model: &M) -> ((f64, f64), (f64, f64)) {
+    model
+        .grids()
+        .first()
+        .map_or(((0.0, 0.0), (1.0, 1.0)), |g| (g.origin, g.spacing))
+}
+
+/// Writes `rate(stencils, place)` of every cell into `out`, field by field.
+#[inline(always)]
+fn each_cell_into<M: GridSystem<F>, const F: usize>(
     model: &M,
+    t: f64,
     y: &GridState,
-    dydt: &mut GridState,
+    out: &mut GridState,
+    rate: impl Fn(&[Stencil; F], Place) -> [f64; F],
 ) {
     let n = y.nx * y.ny;
-    let mut chunks = dydt.values.chunks_exact_mut(n.max(1));
+    let geometry = geometry(model);
+    let mut chunks = out.values.chunks_exact_mut(n.max(1));
     let mut out: [&mut [f64]; F] = std::array::from_fn(|_| chunks.next().unwrap_or_default());
-    for_each_cell(y, boundaries(model), |k, stencils| {
-        let values = model.cell(stencils);
+    for_each_cell(y, boundaries(model), |k, i, j, stencils| {
+        let values = rate(stencils, place::<M, F>(geometry, t, i, j));
         for (out, value) in out.iter_mut().zip(values) {
             if let Some(slot) = out.get_mut(k) {
                 *slot = value;
@@ -512,18 +613,47 @@ pub fn derivative<M: GridSystem<F>, const F: usize>(
     });
 }
 
+/// [`Model::derivative`] of a field model: the `#[cell]` method at every cell.
+#[doc(hidden)]
+#[inline]
+pub fn derivative<M: GridSystem<F>, const F: usize>(
+    model: &M,
+    t: f64,
+    y: &GridState,
+    dydt: &mut GridState,
+) {
+    each_cell_into(model, t, y, dydt, |stencils, at| model.cell(stencils, at));
+}
+
+/// [`crate::Jacobian::time_derivative`] of a field model that reads the time: ∂f/∂t at every
+/// cell.
+#[doc(hidden)]
+#[inline]
+pub fn time_derivative<M: GridSystem<F>, const F: usize>(
+    model: &M,
+    t: f64,
+    y: &GridState,
+    dfdt: &mut GridState,
+) {
+    each_cell_into(model, t, y, dfdt, |stencils, at| {
+        model.cell_time_derivative(stencils, at)
+    });
+}
+
 /// [`crate::Jacobian::jacobian`] of a field model: every cell's blocks, placed.
 #[doc(hidden)]
 #[inline]
 pub fn jacobian<M: GridSystem<F>, const F: usize>(
     model: &M,
+    t: f64,
     y: &GridState,
     jacobian: &mut GridJacobian,
 ) {
     jacobian.begin();
-    for_each_cell(y, boundaries(model), |k, stencils| {
+    let geometry = geometry(model);
+    for_each_cell(y, boundaries(model), |k, i, j, stencils| {
         let blocks = jacobian.cell_blocks();
-        model.cell_jacobian(stencils, blocks);
+        model.cell_jacobian(stencils, place::<M, F>(geometry, t, i, j), blocks);
         jacobian.place(k);
     });
 }
@@ -550,6 +680,20 @@ pub fn check<M: GridSystem<F>, const F: usize>(model: &M, state: &GridState) -> 
         return Err(bad("the model".into(), "has no `#[field]` grids".into()));
     };
     for (name, grid) in M::FIELDS.iter().zip(&grids) {
+        if (grid.origin, grid.spacing) != (first.origin, first.spacing) {
+            return Err(bad(
+                format!("`{name}`"),
+                format!(
+                    "has origin {:?} and spacing {:?} but `{}` has {:?} and {:?}; every field \
+                     of a model shares one grid",
+                    grid.origin,
+                    grid.spacing,
+                    M::FIELDS[0],
+                    first.origin,
+                    first.spacing
+                ),
+            ));
+        }
         if (grid.nx, grid.ny) != (first.nx, first.ny) {
             return Err(bad(
                 format!("`{name}`"),

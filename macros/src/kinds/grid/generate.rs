@@ -5,7 +5,7 @@ use proc_macro2::{Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 use syn::{ImplItem, ItemImpl};
 
-use super::{Cell, Fields, NEIGHBOURS};
+use super::{Argument, Cell, Fields, NEIGHBOURS};
 use crate::args::Args;
 use crate::derivative::Differentiator;
 use crate::generate::{attribute_defaults, opaques_read, operand, prologue_tokens, straight_line};
@@ -47,11 +47,16 @@ pub(super) fn impls(
     let defaults = attribute_defaults(args);
     let kernel = &cell.f.sig.ident;
     let arguments: Vec<TokenStream> = cell
-        .stencils
+        .arguments
         .iter()
-        .map(|(_, index)| {
-            let index = Literal::usize_unsuffixed(*index);
-            quote!(stencils[#index])
+        .map(|argument| match *argument {
+            Argument::Stencil(index) => {
+                let index = Literal::usize_unsuffixed(index);
+                quote!(stencils[#index])
+            }
+            Argument::X => quote!(at.x),
+            Argument::Y => quote!(at.y),
+            Argument::T => quote!(at.t),
         })
         .collect();
     let rate = if cell.scalar {
@@ -59,58 +64,97 @@ pub(super) fn impls(
     } else {
         quote!(self.#kernel(#(#arguments),*))
     };
-    let (blocks, jacobian_fn, jacobian_call, jacobian_assoc, jacobian_impl) = match lowered {
-        Some(lowered) => {
-            let (blocks, function) = blocks(cell, lowered);
-            let hidden = hidden_name(cell);
-            (
-                blocks,
-                function,
-                quote!(blocks.copy_from_slice(&self.#hidden(#(#arguments),*));),
+    let zeros = quote!([0.0; #count]);
+    let (blocks, jacobian_fn, jacobian_call, time_call, jacobian_assoc, jacobian_impl) =
+        match lowered {
+            Some(lowered) => {
+                let Generated {
+                    blocks,
+                    function,
+                    time,
+                } = blocks(cell, lowered, fields.fields.len());
+                let hidden = hidden_name(cell);
+                let (time_call, time_items) = match time {
+                    Time::Exact => {
+                        let hidden = time_name(cell);
+                        (
+                            quote!(self.#hidden(#(#arguments),*)),
+                            quote! {
+                                /// The `#[cell]` method reads the time: ∂f/∂t of every cell,
+                                /// generated.
+                                const TIME_DEPENDENT: bool = true;
+                                #[inline]
+                                fn time_derivative(&self, t: f64, y: &#state, dfdt: &mut #state) {
+                                    ::odyn::grid::time_derivative(self, t, y, dfdt)
+                                }
+                            },
+                        )
+                    }
+                    // The time reaches the rate through code odyn cannot differentiate: the
+                    // runtime's central difference.
+                    Time::Opaque => (
+                        zeros.clone(),
+                        quote!(
+                            const TIME_DEPENDENT: bool = true;
+                        ),
+                    ),
+                    Time::Unread => (
+                        zeros.clone(),
+                        quote! {
+                            /// A cell's rate does not read the time: ∂f/∂t = 0.
+                            const TIME_DEPENDENT: bool = false;
+                            #[inline]
+                            fn time_derivative(&self, _: f64, _: &#state, dfdt: &mut #state) {
+                                ::odyn::State::as_mut_slice(dfdt).fill(0.0);
+                            }
+                        },
+                    ),
+                };
+                (
+                    blocks,
+                    function,
+                    quote!(blocks.copy_from_slice(&self.#hidden(#(#arguments),*));),
+                    time_call,
+                    quote! {
+                        type Jacobian = Self;
+                        #[inline(always)]
+                        fn as_jacobian(&self) -> ::core::option::Option<&Self> {
+                            ::core::option::Option::Some(self)
+                        }
+                    },
+                    quote! {
+                        #[automatically_derived]
+                        impl ::odyn::Jacobian for #self_ty {
+                            type Matrix = ::odyn::grid::GridJacobian;
+                            /// Empty: a field model's pattern comes from its grid at run time.
+                            const NONZEROS: &'static [(usize, usize)] = &[];
+                            fn jacobian_matrix(&self, state: &#state) -> Self::Matrix {
+                                ::odyn::grid::jacobian_matrix(self, state)
+                            }
+                            #[inline]
+                            fn jacobian(&self, t: f64, y: &#state, jacobian: &mut Self::Matrix) {
+                                ::odyn::grid::jacobian(self, t, y, jacobian)
+                            }
+                            #time_items
+                        }
+                    },
+                )
+            }
+            None => (
+                Vec::new(),
+                TokenStream::new(),
+                TokenStream::new(),
+                zeros,
                 quote! {
-                    type Jacobian = Self;
+                    type Jacobian = ::odyn::Unavailable<Self>;
                     #[inline(always)]
-                    fn as_jacobian(&self) -> ::core::option::Option<&Self> {
-                        ::core::option::Option::Some(self)
+                    fn as_jacobian(&self) -> ::core::option::Option<&Self::Jacobian> {
+                        ::core::option::Option::None
                     }
                 },
-                quote! {
-                    #[automatically_derived]
-                    impl ::odyn::Jacobian for #self_ty {
-                        type Matrix = ::odyn::grid::GridJacobian;
-                        /// Empty: a field model's pattern comes from its grid at run time.
-                        const NONZEROS: &'static [(usize, usize)] = &[];
-                        fn jacobian_matrix(&self, state: &#state) -> Self::Matrix {
-                            ::odyn::grid::jacobian_matrix(self, state)
-                        }
-                        #[inline]
-                        fn jacobian(&self, _: f64, y: &#state, jacobian: &mut Self::Matrix) {
-                            ::odyn::grid::jacobian(self, y, jacobian)
-                        }
-                        /// A cell's rate does not read the time: ∂f/∂t = 0.
-                        const TIME_DEPENDENT: bool = false;
-                        #[inline]
-                        fn time_derivative(&self, _: f64, _: &#state, dfdt: &mut #state) {
-                            ::odyn::State::as_mut_slice(dfdt).fill(0.0);
-                        }
-                    }
-                },
-            )
-        }
-        None => (
-            Vec::new(),
-            TokenStream::new(),
-            TokenStream::new(),
-            quote! {
-                type Jacobian = ::odyn::Unavailable<Self>;
-                #[inline(always)]
-                fn as_jacobian(&self) -> ::core::option::Option<&Self::Jacobian> {
-                    ::core::option::Option::None
-                }
-            },
-            TokenStream::new(),
-        ),
-    };
+                TokenStream::new(),
+            ),
+        };
     let imp = strip_cell_attribute(imp, None);
     quote! {
         #imp
@@ -127,13 +171,32 @@ pub(super) fn impls(
                 [#(&self.#grids),*]
             }
             #[inline(always)]
-            fn cell(&self, stencils: &[::odyn::grid::Stencil; #count]) -> [f64; #count] {
+            #[allow(unused_variables)]
+            fn cell(
+                &self,
+                stencils: &[::odyn::grid::Stencil; #count],
+                at: ::odyn::grid::Place,
+            ) -> [f64; #count] {
                 #rate
             }
             #[inline(always)]
             #[allow(unused_variables)]
-            fn cell_jacobian(&self, stencils: &[::odyn::grid::Stencil; #count], blocks: &mut [f64]) {
+            fn cell_jacobian(
+                &self,
+                stencils: &[::odyn::grid::Stencil; #count],
+                at: ::odyn::grid::Place,
+                blocks: &mut [f64],
+            ) {
                 #jacobian_call
+            }
+            #[inline(always)]
+            #[allow(unused_variables)]
+            fn cell_time_derivative(
+                &self,
+                stencils: &[::odyn::grid::Stencil; #count],
+                at: ::odyn::grid::Place,
+            ) -> [f64; #count] {
+                #time_call
             }
         }
         #jacobian_impl
@@ -147,8 +210,8 @@ pub(super) fn impls(
                 ::odyn::grid::GridState::from_grids(&[#(&self.#grids),*], &[#(#names),*])
             }
             #[inline]
-            fn derivative(&self, _: f64, y: &#state, dydt: &mut #state) {
-                ::odyn::grid::derivative(self, y, dydt)
+            fn derivative(&self, t: f64, y: &#state, dydt: &mut #state) {
+                ::odyn::grid::derivative(self, t, y, dydt)
             }
             fn energy(&self, _: &#state) -> ::core::option::Option<f64> {
                 ::core::option::Option::None
@@ -173,14 +236,43 @@ fn hidden_name(cell: &Cell) -> syn::Ident {
     )
 }
 
-/// The structural non-zeros of the kernel's derivative as `odyn::grid::Block`s, and a hidden
-/// method returning their values at a cell, in the same order.
-fn blocks(cell: &Cell, lowered: Lowered) -> (Vec<TokenStream>, TokenStream) {
+fn time_name(cell: &Cell) -> syn::Ident {
+    format_ident!(
+        "__odyn_{}_time_derivative",
+        cell.f.sig.ident,
+        span = Span::mixed_site()
+    )
+}
+
+/// How a kernel's ∂f/∂t is had.
+enum Time {
+    /// It does not read the time.
+    Unread,
+    /// Generated: the hidden method of [`time_name`].
+    Exact,
+    /// The time reaches the rate through code odyn cannot see into.
+    Opaque,
+}
+
+/// What [`blocks`] generates.
+struct Generated {
+    /// The structural non-zeros as `odyn::grid::Block`s.
+    blocks: Vec<TokenStream>,
+    /// The hidden methods: the blocks' values, and ∂f/∂t when [`Time::Exact`].
+    function: TokenStream,
+    time: Time,
+}
+
+/// The structural non-zeros of the kernel's derivative as `odyn::grid::Block`s, a hidden
+/// method returning their values at a cell in the same order, and one returning ∂f/∂t of its
+/// `fields` outputs when it reads the time.
+fn blocks(cell: &Cell, lowered: Lowered, fields: usize) -> Generated {
     let Lowered {
         mut graph,
         outputs,
         prologue,
-        ..
+        time,
+        exact_time,
     } = lowered;
     let inputs = cell.stencils.len() * NEIGHBOURS.len();
     let pattern = crate::sparsity::pattern(&graph, &outputs, inputs);
@@ -201,7 +293,7 @@ fn blocks(cell: &Cell, lowered: Lowered) -> (Vec<TokenStream>, TokenStream) {
             roots.push(differentiator.derivative(&mut graph, output, variable));
         }
     }
-    let components: Vec<TokenStream> = cell
+    let mut components: Vec<TokenStream> = cell
         .stencils
         .iter()
         .flat_map(|(s, _)| {
@@ -211,21 +303,60 @@ fn blocks(cell: &Cell, lowered: Lowered) -> (Vec<TokenStream>, TokenStream) {
             })
         })
         .collect();
+    if let Some(t) = &cell.time {
+        components.push(quote!(#t));
+    }
+    // ∂f/∂t, row by row (0 where a row does not read the time).
+    let time_roots: Vec<_> = match time {
+        Some(var) if exact_time => outputs
+            .iter()
+            .map(|&f| differentiator.derivative(&mut graph, f, var))
+            .collect(),
+        _ => Vec::new(),
+    };
     let lets = straight_line(&graph, &roots, &components);
     let values = roots.iter().map(|&id| operand(&graph, id, &components));
-    let prologue = prologue_tokens(&prologue, &opaques_read(&graph, &roots));
+    let prologue_lets = prologue_tokens(&prologue, &opaques_read(&graph, &roots));
     let count = Literal::usize_unsuffixed(roots.len());
     let hidden = hidden_name(cell);
     let inputs = &cell.f.sig.inputs;
-    let function = quote! {
+    let mut function = quote! {
         #[doc(hidden)]
         #[inline(always)]
         #[allow(unused_variables, unused_parens, non_snake_case, clippy::all)]
         fn #hidden(#inputs) -> [f64; #count] {
-            #(#prologue)*
+            #(#prologue_lets)*
             #(#lets)*
             [#(#values),*]
         }
     };
-    (blocks, function)
+    let time = match time {
+        None => Time::Unread,
+        Some(_) if !exact_time => Time::Opaque,
+        Some(_) => {
+            let lets = straight_line(&graph, &time_roots, &components);
+            let values = time_roots
+                .iter()
+                .map(|&id| operand(&graph, id, &components));
+            let prologue = prologue_tokens(&prologue, &opaques_read(&graph, &time_roots));
+            let count = Literal::usize_unsuffixed(fields);
+            let name = time_name(cell);
+            function.extend(quote! {
+                #[doc(hidden)]
+                #[inline(always)]
+                #[allow(unused_variables, unused_parens, non_snake_case, clippy::all)]
+                fn #name(#inputs) -> [f64; #count] {
+                    #(#prologue)*
+                    #(#lets)*
+                    [#(#values),*]
+                }
+            });
+            Time::Exact
+        }
+    };
+    Generated {
+        blocks,
+        function,
+        time,
+    }
 }

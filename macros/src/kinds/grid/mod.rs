@@ -147,8 +147,35 @@ pub(crate) struct Cell {
     pub(crate) f: ImplItemFn,
     /// Its stencil arguments, each the index of the field it is named after.
     pub(crate) stencils: Vec<(Ident, usize)>,
+    /// Every argument after `&self`, in order.
+    pub(crate) arguments: Vec<Argument>,
+    /// Its time argument, if it takes one.
+    pub(crate) time: Option<Ident>,
     /// Whether it returns `f64` (one field) rather than `[f64; F]`.
     pub(crate) scalar: bool,
+}
+
+/// An argument of the `#[cell]` kernel.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Argument {
+    /// The stencil of field k.
+    Stencil(usize),
+    /// The cell's position along x, along y; the time.
+    X,
+    Y,
+    T,
+}
+
+impl Argument {
+    /// The argument taking the place value `name` (`x`, `y`, `t`), if it is one.
+    fn place(name: &str) -> Option<Self> {
+        match name {
+            "x" => Some(Argument::X),
+            "y" => Some(Argument::Y),
+            "t" => Some(Argument::T),
+            _ => None,
+        }
+    }
 }
 
 fn is_cell(f: &ImplItemFn) -> bool {
@@ -209,18 +236,43 @@ fn parse_cell(imp: &ItemImpl, fields: &Fields<'_>, errors: &mut Errors) -> Optio
         _ => errors.at(&f.sig, format_args!("`{name}` must take `&self` first")),
     }
     let mut stencils: Vec<(Ident, usize)> = Vec::new();
+    let mut arguments = Vec::new();
+    let mut time = None;
     for input in inputs {
         let FnArg::Typed(t) = input else { continue };
         let Pat::Ident(p) = &*t.pat else {
             errors.at(&t.pat, "a stencil argument is a plain name, the field's");
             continue;
         };
+        if last_segment_is(&t.ty, "f64") {
+            match Argument::place(&p.ident.to_string()) {
+                Some(place) if arguments.contains(&place) => {
+                    errors.at(&p.ident, format_args!("`{}` is taken twice", p.ident))
+                }
+                Some(place) => {
+                    if place == Argument::T {
+                        time = Some(p.ident.clone());
+                    }
+                    arguments.push(place);
+                }
+                None => errors.at(
+                    &p.ident,
+                    format_args!(
+                        "`{name}` takes a number only as the cell's position or the time, named \
+                         `x`, `y` or `t`; a field's values come through a `Stencil` named like \
+                         the field"
+                    ),
+                ),
+            }
+            continue;
+        }
         if !last_segment_is(&t.ty, "Stencil") {
             errors.at(
                 &t.ty,
                 format_args!(
                     "`{name}` takes one `odyn::grid::Stencil` per field it reads, named like the \
-                     field"
+                     field, and may take the cell's position and the time as `x: f64`, \
+                     `y: f64`, `t: f64`"
                 ),
             );
             continue;
@@ -230,7 +282,10 @@ fn parse_cell(imp: &ItemImpl, fields: &Fields<'_>, errors: &mut Errors) -> Optio
                 &p.ident,
                 format_args!("the stencil of `{}` is taken twice", p.ident),
             ),
-            Some(index) => stencils.push((p.ident.clone(), index)),
+            Some(index) => {
+                stencils.push((p.ident.clone(), index));
+                arguments.push(Argument::Stencil(index));
+            }
             None => errors.at(
                 &p.ident,
                 format_args!(
@@ -271,6 +326,8 @@ fn parse_cell(imp: &ItemImpl, fields: &Fields<'_>, errors: &mut Errors) -> Optio
     (errors.len() == before).then(|| Cell {
         f: f.clone(),
         stencils,
+        arguments,
+        time,
         scalar,
     })
 }
@@ -338,7 +395,7 @@ pub(crate) fn expand_impl(args: &Args, item: &ItemStruct, imp: &ItemImpl) -> Tok
         if args.no_jacobian.is_none() && errors.is_empty() {
             let model = fields.parameter_model();
             let outputs = fields.fields.len();
-            match lower::lower_kernel(&model, &renamed, &inputs, 1, outputs) {
+            match lower::lower_kernel(&model, &renamed, &inputs, 1, outputs, cell.time.clone()) {
                 Ok(l) => lowered = Some(l),
                 Err(error) => errors.push(error),
             }

@@ -288,6 +288,7 @@ pub(crate) fn expand_impl(args: &Args, item: &ItemStruct, imp: &ItemImpl) -> Tok
                 &kernel.vectors,
                 particles.dim,
                 particles.dim,
+                None,
             ) {
                 Ok(l) => lowered.push(l),
                 Err(error) => errors.push(error),
