@@ -335,26 +335,4 @@ mod place_argument_misnamed {
     fn main() {}
 }
 
-mod time_taken_twice {
-    use odyn::grid::{Grid, Stencil};
-    use odyn::system;
-
-    #[system]
-    struct Heat {
-        #[field]
-        u: Grid,
-        d: f64,
-    }
-
-    #[system]
-    impl Heat {
-        #[cell]
-        fn rate(&self, u: Stencil, t: f64, t: f64) -> f64 {
-            self.d * u.laplacian() * t
-        }
-    }
-
-    fn main() {}
-}
-
 fn main() {}
