@@ -54,13 +54,32 @@ impl ::odyn::grid::GridSystem<1> for Heat {
         [&self.u]
     }
     #[inline(always)]
-    fn cell(&self, stencils: &[::odyn::grid::Stencil; 1]) -> [f64; 1] {
+    #[allow(unused_variables)]
+    fn cell(
+        &self,
+        stencils: &[::odyn::grid::Stencil; 1],
+        at: ::odyn::grid::Place,
+    ) -> [f64; 1] {
         [self.conduction(stencils[0])]
     }
     #[inline(always)]
     #[allow(unused_variables)]
-    fn cell_jacobian(&self, stencils: &[::odyn::grid::Stencil; 1], blocks: &mut [f64]) {
+    fn cell_jacobian(
+        &self,
+        stencils: &[::odyn::grid::Stencil; 1],
+        at: ::odyn::grid::Place,
+        blocks: &mut [f64],
+    ) {
         blocks.copy_from_slice(&self.__odyn_conduction_jacobian(stencils[0]));
+    }
+    #[inline(always)]
+    #[allow(unused_variables)]
+    fn cell_time_derivative(
+        &self,
+        stencils: &[::odyn::grid::Stencil; 1],
+        at: ::odyn::grid::Place,
+    ) -> [f64; 1] {
+        [0.0; 1]
     }
 }
 #[automatically_derived]
@@ -72,8 +91,8 @@ impl ::odyn::Jacobian for Heat {
         ::odyn::grid::jacobian_matrix(self, state)
     }
     #[inline]
-    fn jacobian(&self, _: f64, y: &HeatState, jacobian: &mut Self::Matrix) {
-        ::odyn::grid::jacobian(self, y, jacobian)
+    fn jacobian(&self, t: f64, y: &HeatState, jacobian: &mut Self::Matrix) {
+        ::odyn::grid::jacobian(self, t, y, jacobian)
     }
     /// A cell's rate does not read the time: ∂f/∂t = 0.
     const TIME_DEPENDENT: bool = false;
@@ -102,8 +121,8 @@ impl ::odyn::Model for Heat {
         ::odyn::grid::GridState::from_grids(&[&self.u], &["u"])
     }
     #[inline]
-    fn derivative(&self, _: f64, y: &HeatState, dydt: &mut HeatState) {
-        ::odyn::grid::derivative(self, y, dydt)
+    fn derivative(&self, t: f64, y: &HeatState, dydt: &mut HeatState) {
+        ::odyn::grid::derivative(self, t, y, dydt)
     }
     fn energy(&self, _: &HeatState) -> ::core::option::Option<f64> {
         ::core::option::Option::None
