@@ -838,7 +838,7 @@ fn a_cell_reads_its_position_and_the_time() {
         }
     }
     // ∂f/∂t generated: −(x + 2y)·sin t and −w·u·x·cos(x·t), against the closed form.
-    assert!(<Placed as Jacobian>::TIME_DEPENDENT);
+    const { assert!(<Placed as Jacobian>::TIME_DEPENDENT) };
     let mut dfdt = state.clone();
     model.time_derivative(t, &state, &mut dfdt);
     for j in 0..6 {

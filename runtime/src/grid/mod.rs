@@ -566,14 +566,9 @@ fn boundaries<M: GridSystem<F>, const F: usize>(model: &M) -> [Boundary; F] {
     model.grids().map(Grid::boundary)
 }
 
-/// Where cell (i, j) of `model` is at time t: (x₀ + i·Δx, y₀ + j·Δy) of its first grid.
+/// Where cell (i, j) is at time t, for a first grid of this origin and spacing.
 #[inline(always)]
-fn place<M: GridSystem<F>, const F: usize>(
-    (origin, spacing): ((f64, f64), (f64, f64)),
-    t: f64,
-    i: usize,
-    j: usize,
-) -> Place {
+fn place((origin, spacing): ((f64, f64), (f64, f64)), t: f64, i: usize, j: usize) -> Place {
     Place {
         x: origin.0 + i as f64 * spacing.0,
         y: origin.1 + j as f64 * spacing.1,
@@ -604,7 +599,7 @@ fn each_cell_into<M: GridSystem<F>, const F: usize>(
     let mut chunks = out.values.chunks_exact_mut(n.max(1));
     let mut out: [&mut [f64]; F] = std::array::from_fn(|_| chunks.next().unwrap_or_default());
     for_each_cell(y, boundaries(model), |k, i, j, stencils| {
-        let values = rate(stencils, place::<M, F>(geometry, t, i, j));
+        let values = rate(stencils, place(geometry, t, i, j));
         for (out, value) in out.iter_mut().zip(values) {
             if let Some(slot) = out.get_mut(k) {
                 *slot = value;
@@ -653,7 +648,7 @@ pub fn jacobian<M: GridSystem<F>, const F: usize>(
     let geometry = geometry(model);
     for_each_cell(y, boundaries(model), |k, i, j, stencils| {
         let blocks = jacobian.cell_blocks();
-        model.cell_jacobian(stencils, place::<M, F>(geometry, t, i, j), blocks);
+        model.cell_jacobian(stencils, place(geometry, t, i, j), blocks);
         jacobian.place(k);
     });
 }
