@@ -953,3 +953,74 @@ fn a_source_switched_on_in_time_has_the_time_derivative_of_its_arms() {
         }
     }
 }
+
+/// u_t = ∇·(κ∇u) in the five-point flux form with a coefficient grid κ (a parameter, not
+/// differentiated), plus a source read from a second coefficient grid.
+#[system(integrator = ImplicitEuler, dt = 0.01)]
+pub struct Varying {
+    /// The diffusing field.
+    #[field]
+    pub u: Grid,
+    /// κ at each cell: a parameter grid.
+    pub kappa: Grid,
+    /// A source at each cell.
+    pub source: Grid,
+}
+
+#[system]
+impl Varying {
+    #[cell]
+    fn rate(&self, u: Stencil, kappa: Stencil, source: Stencil) -> f64 {
+        // Face conductivities by the arithmetic mean of the two cells.
+        let east = 0.5 * (kappa.c + kappa.e) * (u.e - u.c);
+        let west = 0.5 * (kappa.c + kappa.w) * (u.w - u.c);
+        let north = 0.5 * (kappa.c + kappa.n) * (u.n - u.c);
+        let south = 0.5 * (kappa.c + kappa.s) * (u.s - u.c);
+        east + west + north + south + source.c * u.c.sin()
+    }
+}
+
+fn varying() -> Varying {
+    let n = 7;
+    Varying {
+        u: Grid::from_fn(n, n, Boundary::Neumann, |i, j| {
+            0.1 * (i * i) as f64 - 0.2 * j as f64
+        })
+        .unwrap(),
+        kappa: Grid::from_fn(n, n, Boundary::Neumann, |i, j| {
+            1.0 + 0.3 * i as f64 + 0.1 * j as f64
+        })
+        .unwrap(),
+        source: Grid::from_fn(n, n, Boundary::Periodic, |i, j| ((i + j) % 3) as f64).unwrap(),
+    }
+}
+
+#[test]
+fn coefficient_grids_are_parameters_read_through_stencils() {
+    let model = varying();
+    let state = model.state();
+    assert_eq!(state.fields(), 1, "coefficient grids are not state");
+    let mut rate = state.clone();
+    model.derivative(0.0, &state, &mut rate);
+    // An interior cell by hand.
+    let (n, i, j) = (7, 3, 2);
+    let at = |g: &Grid, i: usize, j: usize| g.values()[j * n + i];
+    let (u, k) = (&model.u, &model.kappa);
+    let flux = |(i2, j2): (usize, usize)| {
+        0.5 * (at(k, i, j) + at(k, i2, j2)) * (at(u, i2, j2) - at(u, i, j))
+    };
+    let expected = flux((i + 1, j))
+        + flux((i - 1, j))
+        + flux((i, j + 1))
+        + flux((i, j - 1))
+        + at(&model.source, i, j) * at(u, i, j).sin();
+    assert!((rate.field(0)[j * n + i] - expected).abs() < 1e-14);
+    // J (κ and the source as parameters) against central differences: at every boundary cell
+    // too, the Neumann folds of u and κ.
+    check_jacobian(&model);
+    // A coefficient grid of another size is a typed error.
+    let mut wrong = varying();
+    wrong.kappa = Grid::from_fn(6, 7, Boundary::Neumann, |_, _| 1.0).unwrap();
+    let error = wrong.simulate().steps(1).run().unwrap_err();
+    assert!(error.to_string().contains("kappa"), "{error}");
+}

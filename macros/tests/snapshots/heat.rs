@@ -137,6 +137,7 @@ impl ::odyn::Model for Heat {
         ::core::option::Option::Some(self)
     }
     fn check(&self, state: &HeatState) -> ::odyn::Result<()> {
-        ::odyn::grid::check(self, state)
+        ::odyn::grid::check(self, state)?;
+        ::core::result::Result::Ok(())
     }
 }

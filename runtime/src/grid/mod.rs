@@ -30,7 +30,10 @@
 //! [`Grid::with_origin`] and [`Grid::with_spacing`] (origin (0, 0) and spacing 1 unless set).
 //! A spatial source, a coefficient that varies in space or a forcing switched on at a time are
 //! written that way; the position is a parameter of the cell (not differentiated), and a kernel
-//! that reads `t` gets its ∂f/∂t generated for the Rosenbrock methods.
+//! that reads `t` gets its ∂f/∂t generated for the Rosenbrock methods. A coefficient that varies
+//! in space may also be a `Grid` field of the model without `#[field]` (a parameter grid of the
+//! fields' size, with its own boundary), read through a `Stencil` argument named like it: its
+//! values enter the rate but are not differentiated.
 
 mod jacobian;
 
@@ -76,6 +79,36 @@ pub struct Place {
     pub y: f64,
     /// The time.
     pub t: f64,
+    /// The cell's column (k = j·nx + i).
+    pub i: usize,
+    /// The cell's row.
+    pub j: usize,
+}
+
+/// The stencil of a coefficient grid (a parameter `Grid` a `#[cell]` method reads through a
+/// `Stencil`) at the cell of `at`, through the grid's own boundary. Generated code calls it;
+/// `Model::check` has made sure the grid has the fields' size.
+#[doc(hidden)]
+#[inline(always)]
+pub fn coefficient(grid: &Grid, at: Place) -> Stencil {
+    stencil_at(&grid.values, grid.nx, grid.ny, grid.boundary, at.i, at.j)
+}
+
+/// [`Model::check`] of a coefficient grid: the size of the state's grids.
+#[doc(hidden)]
+pub fn check_coefficient<M: Model>(name: &str, grid: &Grid, state: &GridState) -> Result<()> {
+    if (grid.nx, grid.ny) == (state.nx, state.ny) {
+        return Ok(());
+    }
+    Err(Error::BadModel {
+        model: M::NAME,
+        what: format!("coefficient grid `{name}`"),
+        reason: format!(
+            "is {}×{} but the model's fields are {}×{}; a coefficient grid is read cell by \
+             cell beside them",
+            grid.nx, grid.ny, state.nx, state.ny
+        ),
+    })
 }
 
 impl Grid {
@@ -573,6 +606,8 @@ fn place((origin, spacing): ((f64, f64), (f64, f64)), t: f64, i: usize, j: usize
         x: origin.0 + i as f64 * spacing.0,
         y: origin.1 + j as f64 * spacing.1,
         t,
+        i,
+        j,
     }
 }
 

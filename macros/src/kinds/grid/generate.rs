@@ -44,6 +44,8 @@ pub(super) fn impls(
     let count = Literal::usize_unsuffixed(fields.fields.len());
     let grids = &fields.fields;
     let names: Vec<String> = grids.iter().map(ToString::to_string).collect();
+    let coefficients = &fields.coefficients;
+    let coefficient_names: Vec<String> = coefficients.iter().map(ToString::to_string).collect();
     let defaults = attribute_defaults(args);
     let kernel = &cell.f.sig.ident;
     let arguments: Vec<TokenStream> = cell
@@ -53,6 +55,10 @@ pub(super) fn impls(
             Argument::Stencil(index) => {
                 let index = Literal::usize_unsuffixed(index);
                 quote!(stencils[#index])
+            }
+            Argument::Coefficient(k) => {
+                let grid = fields.coefficients[k];
+                quote!(::odyn::grid::coefficient(&self.#grid, at))
             }
             Argument::X => quote!(at.x),
             Argument::Y => quote!(at.y),
@@ -222,7 +228,9 @@ pub(super) fn impls(
             }
             #jacobian_assoc
             fn check(&self, state: &#state) -> ::odyn::Result<()> {
-                ::odyn::grid::check(self, state)
+                ::odyn::grid::check(self, state)?;
+                #(::odyn::grid::check_coefficient::<Self>(#coefficient_names, &self.#coefficients, state)?;)*
+                ::core::result::Result::Ok(())
             }
         }
     }

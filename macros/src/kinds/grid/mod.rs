@@ -26,6 +26,8 @@ pub(crate) struct Fields<'a> {
     pub(crate) item: &'a ItemStruct,
     /// The `#[field]` grids, in declaration order.
     pub(crate) fields: Vec<&'a Ident>,
+    /// The other `Grid` fields: coefficient grids, parameters read through a stencil.
+    pub(crate) coefficients: Vec<&'a Ident>,
 }
 
 impl Fields<'_> {
@@ -76,6 +78,7 @@ fn last_segment_is(ty: &Type, name: &str) -> bool {
 /// Reads a field model's struct, reporting every problem to `errors`.
 pub(crate) fn parse_struct<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Option<Fields<'a>> {
     let mut fields = Vec::new();
+    let mut coefficients = Vec::new();
     for field in &item.fields {
         let Some(ident) = field.ident.as_ref() else {
             errors.at(field, "a model must be a struct with named fields");
@@ -92,6 +95,9 @@ pub(crate) fn parse_struct<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Opt
             }
         }
         let Some(attr) = field.attrs.iter().find(|a| a.path().is_ident("field")) else {
+            if last_segment_is(&field.ty, "Grid") {
+                coefficients.push(ident);
+            }
             continue;
         };
         if let Err(e) = attr.meta.require_path_only() {
@@ -110,7 +116,11 @@ pub(crate) fn parse_struct<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Opt
         }
         fields.push(ident);
     }
-    Some(Fields { item, fields })
+    Some(Fields {
+        item,
+        fields,
+        coefficients,
+    })
 }
 
 /// The struct as the user wrote it, minus `#[field]`.
@@ -160,6 +170,8 @@ pub(crate) struct Cell {
 pub(crate) enum Argument {
     /// The stencil of field k.
     Stencil(usize),
+    /// The stencil of coefficient grid k (a parameter).
+    Coefficient(usize),
     /// The cell's position along x, along y; the time.
     X,
     Y,
@@ -277,6 +289,16 @@ fn parse_cell(imp: &ItemImpl, fields: &Fields<'_>, errors: &mut Errors) -> Optio
             );
             continue;
         }
+        if let Some(k) = fields.coefficients.iter().position(|c| **c == p.ident) {
+            if arguments.contains(&Argument::Coefficient(k)) {
+                errors.at(
+                    &p.ident,
+                    format_args!("the stencil of `{}` is taken twice", p.ident),
+                );
+            }
+            arguments.push(Argument::Coefficient(k));
+            continue;
+        }
         match fields.fields.iter().position(|f| **f == p.ident) {
             Some(_) if stencils.iter().any(|(s, _)| *s == p.ident) => errors.at(
                 &p.ident,
@@ -290,7 +312,7 @@ fn parse_cell(imp: &ItemImpl, fields: &Fields<'_>, errors: &mut Errors) -> Optio
                 &p.ident,
                 format_args!(
                     "`{model}` has no `#[field]` called `{}`; a stencil argument is named like \
-                     the field it reads ({})",
+                     the field it reads ({}), or like a coefficient `Grid` of the model",
                     p.ident,
                     fields
                         .fields
