@@ -352,9 +352,17 @@ fn check_jacobian<M>(model: &M)
 where
     M: Jacobian<Matrix = odyn::grid::GridJacobian, State = GridState>,
 {
+    check_jacobian_at(model, 0.0);
+}
+
+/// [`check_jacobian`] at time t.
+fn check_jacobian_at<M>(model: &M, t: f64)
+where
+    M: Jacobian<Matrix = odyn::grid::GridJacobian, State = GridState>,
+{
     let state = model.state();
     let mut jacobian = model.jacobian_matrix(&state);
-    model.jacobian(0.0, &state, &mut jacobian);
+    model.jacobian(t, &state, &mut jacobian);
     let dense = jacobian.to_dense();
     let n = state.as_slice().len();
     let (mut plus, mut minus, mut fp, mut fm) =
@@ -366,8 +374,8 @@ where
         minus.clone_from(&state);
         plus.as_mut_slice()[c] += h;
         minus.as_mut_slice()[c] -= h;
-        model.derivative(0.0, &plus, &mut fp);
-        model.derivative(0.0, &minus, &mut fm);
+        model.derivative(t, &plus, &mut fp);
+        model.derivative(t, &minus, &mut fm);
         for r in 0..n {
             let fd = (fp.as_slice()[r] - fm.as_slice()[r]) / (2.0 * h);
             assert!(
@@ -814,29 +822,7 @@ fn a_cell_reads_its_position_and_the_time() {
         }
     }
     // J against central differences, at t = 0.7 (the position and time are parameters of J).
-    let mut jacobian = model.jacobian_matrix(&state);
-    model.jacobian(t, &state, &mut jacobian);
-    let dense = jacobian.to_dense();
-    let n = state.as_slice().len();
-    let (mut plus, mut minus, mut fp, mut fm) =
-        (state.clone(), state.clone(), state.clone(), state.clone());
-    let h = 1e-6;
-    for c in 0..n {
-        plus.clone_from(&state);
-        minus.clone_from(&state);
-        plus.as_mut_slice()[c] += h;
-        minus.as_mut_slice()[c] -= h;
-        model.derivative(t, &plus, &mut fp);
-        model.derivative(t, &minus, &mut fm);
-        for r in 0..n {
-            let fd = (fp.as_slice()[r] - fm.as_slice()[r]) / (2.0 * h);
-            assert!(
-                (dense[(r, c)] - fd).abs() <= 1e-8 * dense.norm_max(),
-                "J[{r}][{c}] = {} but finite differences give {fd}",
-                dense[(r, c)]
-            );
-        }
-    }
+    check_jacobian_at(&model, t);
     // ∂f/∂t generated: −(x + 2y)·sin t and −w·u·x·cos(x·t), against the closed form.
     const { assert!(<Placed as Jacobian>::TIME_DEPENDENT) };
     let mut dfdt = state.clone();
