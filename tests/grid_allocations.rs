@@ -125,8 +125,8 @@ fn stepping_a_field_model_allocates_nothing() {
         assert_eq!(count, 0, "{method} allocated {count} times in 20 steps");
     }
     // Multigrid on a grid big enough for coarse levels (24² cells, 1 152 unknowns, above the
-    // 300 a dense LU takes): its hierarchy is built at the first factorization, its values
-    // refilled in place and its V-cycles run in faer's work stack.
+    // 300 a dense LU takes): its hierarchy is built when the run is set up, its values refilled
+    // in place and its V-cycles run in faer's work stack.
     let m = 24;
     let big = GrayScott {
         u: Grid::from_fn(m, m, Boundary::Periodic, |i, j| 1.0 - bump(i, j)).unwrap(),

@@ -310,6 +310,50 @@ fn the_time_derivative_is_exact_where_it_can_be() {
     const { assert!(!<common::Lorenz as odyn::Jacobian>::TIME_DEPENDENT) };
 }
 
+/// The time shadowed by a shifted copy, and an alias of it passed to a function odyn cannot see
+/// into: ẏ = −y + sin(t − t₀)·y + pulse(s), s = t.
+#[system]
+#[derive(Clone, Copy, Debug)]
+struct Shifted {
+    #[state]
+    y: f64,
+    t0: f64,
+}
+
+#[system]
+impl Shifted {
+    fn derivative(&self, t: f64) -> ShiftedState {
+        let s = t;
+        let kick = pulse(s);
+        let t = t - self.t0;
+        ShiftedState {
+            y: -self.y + t.sin() * self.y + kick,
+        }
+    }
+}
+
+#[test]
+fn a_shadowed_or_aliased_time_keeps_the_jacobian_and_time_derivative_right() {
+    // The derivative code copies the time before the user's state-free lets run, so J reads
+    // sin(t − t₀), not sin(t − 2t₀); and `pulse(s)` with s = t makes ∂f/∂t the runtime's
+    // central difference (exact ∂f/∂t would have dropped pulse's part).
+    let model = Shifted { y: 0.8, t0: 0.5 };
+    let (t, y) = (1.3, model.state());
+    let mut jacobian = model.jacobian_matrix(&y);
+    model.jacobian(t, &y, &mut jacobian);
+    let expected = -1.0 + (t - 0.5f64).sin();
+    assert!(
+        (jacobian[(0, 0)] - expected).abs() < 1e-15,
+        "{}",
+        jacobian[(0, 0)]
+    );
+    let mut dfdt = y;
+    model.time_derivative(t, &y, &mut dfdt);
+    // ∂f/∂t = cos(t − t₀)·y − 2t·e^(−t²).
+    let exact = (t - 0.5f64).cos() * 0.8 - 2.0 * t * (-t * t).exp();
+    assert!((dfdt.y - exact).abs() < 1e-8, "{} vs {exact}", dfdt.y);
+}
+
 const LEN: usize = 2;
 
 /// An array filled component by component, and state-free locals odyn reads by name: a `usize`,

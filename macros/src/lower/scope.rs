@@ -142,6 +142,38 @@ impl Lowering<'_> {
     fn is_time(&self, name: &str) -> bool {
         self.time.as_ref().is_some_and(|(t, _)| t == name) && self.lookup(name).is_none()
     }
+
+    /// Whether `name` is the time, or a local whose value was computed from it (`let s = t;`):
+    /// either way, code odyn cannot see into that reads it makes ∂f/∂t inexact.
+    fn reads_time_name(&self, name: &str) -> bool {
+        if self.is_time(name) {
+            return true;
+        }
+        let (
+            Some((_, time)),
+            Some(Binding {
+                value: Some(value), ..
+            }),
+        ) = (&self.time, self.lookup(name))
+        else {
+            return false;
+        };
+        let mut ids = Vec::new();
+        flatten(value, &mut ids);
+        self.graph
+            .reachable(ids)
+            .into_iter()
+            .any(|id| matches!(self.graph.node(id), crate::ir::Node::Var(k) if k == *time))
+    }
+}
+
+/// The graph nodes of a value.
+fn flatten(value: &Value, out: &mut Vec<crate::ir::ExprId>) {
+    match value {
+        Value::Scalar(id) => out.push(*id),
+        Value::Vector(ids) => out.extend_from_slice(ids),
+        Value::Tuple(parts) => parts.iter().for_each(|part| flatten(part, out)),
+    }
 }
 
 /// Finds reads of the state (or, with `time`, of the time).
@@ -171,7 +203,7 @@ impl<'ast> Visit<'ast> for Reads<'_, '_> {
             Expr::Path(_) => {
                 if let Some(name) = path_name(e) {
                     self.found |= if self.time {
-                        self.lowering.is_time(&name)
+                        self.lowering.reads_time_name(&name)
                     } else {
                         self.lowering.lookup(&name).is_some_and(|b| b.dependent)
                     };
@@ -188,7 +220,7 @@ impl<'ast> Visit<'ast> for Reads<'_, '_> {
     fn visit_macro(&mut self, m: &'ast syn::Macro) {
         if self.time {
             self.found |= m.tokens.clone().into_iter().any(|t| match t {
-                proc_macro2::TokenTree::Ident(i) => self.lowering.is_time(&i.to_string()),
+                proc_macro2::TokenTree::Ident(i) => self.lowering.reads_time_name(&i.to_string()),
                 _ => false,
             });
         } else {

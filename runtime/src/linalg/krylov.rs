@@ -58,8 +58,9 @@ impl LinearSolver {
     /// measure 64² and up, where the ratio is 19–24×).
     pub const FIELD_KRYLOV_FROM: usize = 1024;
 
-    /// Iterations of one solve above which [`LinearSolver::Auto`] gives up Krylov for the run:
-    /// 50. Gray–Scott at h = 10 needs 6–12 per full-Newton solve from 64² to 128² (and wins
+    /// Iterations of one solve above which [`LinearSolver::Auto`] gives up block Jacobi for
+    /// the run (for multigrid from [`LinearSolver::MULTIGRID_FROM`] unknowns, else for the
+    /// direct solver), and multigrid for the direct solver: 50. Gray–Scott at h = 10 needs 6–12 per full-Newton solve from 64² to 128² (and wins
     /// 24×), 29 for a linearized step at 256² to 1e-8 (and wins 19×).
     pub const AUTO_DIRECT_ABOVE: usize = 50;
 
@@ -96,13 +97,15 @@ impl LinearSolver {
 
 /// The options of a preconditioned Krylov solve.
 ///
-/// A solve stops when the relative residual ‖b − A·x‖₂ ≤ `rtol`·‖b‖₂. Inside full Newton
-/// this is an inexact Newton method (Dembo, Eisenstat & Steihaug, "Inexact Newton methods",
-/// SIAM J. Numer. Anal. 19, 1982): each iteration's update is off by at most about κ·`rtol`
-/// relatively, so Newton still converges, linearly at that rate once it is below its own,
-/// and stops by its own test on the update (`NewtonOptions::tol`). In one-step methods (the
-/// linearized implicit Euler, the Rosenbrock stages) nothing corrects the linear error, so
-/// the default is tight: 1e-8, well below the tolerances these methods are run at.
+/// A solve stops when the relative residual ‖b − A·x‖₂ ≤ η·‖b‖₂, with η = `newton_rtol` for
+/// the updates of a Newton iteration (BDF, full-Newton implicit Euler) and η = `rtol` for the
+/// one-step methods (the linearized implicit Euler, the Rosenbrock stages). Inside Newton this
+/// is an inexact Newton method (Dembo, Eisenstat & Steihaug, "Inexact Newton methods", SIAM J.
+/// Numer. Anal. 19, 1982): each update is off by at most about κ·η relatively, so Newton still
+/// converges, linearly at that rate once it is below its own, and stops by its own test on the
+/// update. In one-step methods nothing corrects the linear error, so `rtol`'s default is tight:
+/// 1e-8, well below the tolerances these methods are run at. (To make BDF's solves as tight,
+/// set `newton_rtol` too: `rtol` alone no longer reaches them.)
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Krylov {
     /// Relative residual that ends a solve of a one-step method — the Rosenbrock stages, the
@@ -188,12 +191,14 @@ pub enum Preconditioner {
     /// neighbouring particles or cells down to at most 300 unknowns, solved there by a dense
     /// LU. Its levels' patterns are built once per run and their values at every
     /// factorization: a few sparse products' cost per application, and an iteration count
-    /// that grows slowly with the grid where block Jacobi's grows like its side.
+    /// that grows slowly with the grid where block Jacobi's grows like its side. Groups coupled
+    /// to nothing (unlinked or pinned particles) are lumped eight to an aggregate; a matrix that
+    /// still does not coarsen to 1 000 unknowns is preconditioned by block Jacobi instead.
     Multigrid,
     /// The sparse Cholesky or LU factors of an earlier matrix, applied by substitution, and
     /// refactorized when a solve needs more than `refresh_above` iterations: a factorization
     /// reused over many steps while the matrix changes slowly (the reuse of CVODE's and
-    /// Julia's BDF codes, inside a Krylov iteration that keeps each solve exact to `rtol`).
+    /// Julia's BDF codes, inside a Krylov iteration that keeps each solve exact to its tolerance).
     Factorization {
         /// Iterations of one solve above which the next factorization is a real one.
         refresh_above: usize,
@@ -207,8 +212,8 @@ pub struct KrylovCounts {
     pub solves: u64,
     /// Their iterations, together.
     pub iterations: u64,
-    /// Block-Jacobi and ILU(0) preconditioners built (a reused factorization counts as a
-    /// Cholesky or LU instead).
+    /// Block-Jacobi, ILU(0) and multigrid preconditioners built (a reused factorization counts
+    /// as a Cholesky or LU instead).
     pub preconditioners: u64,
     /// Solves redone by the direct solver (no convergence within `max_iters`, or a
     /// breakdown).
@@ -362,7 +367,8 @@ impl KrylovSolver {
     }
 
     /// Makes the stack big enough for both methods with `precond` (allocates only when a
-    /// bigger preconditioner appears: the first LU of a run).
+    /// bigger preconditioner appears: the first LU of a run, or multigrid taking over from block
+    /// Jacobi under `Auto`, once).
     fn reserve<P: Precond<f64> + Copy>(&mut self, a: SparseColMatRef<'_, usize, f64>, precond: P) {
         let need = conjugate_gradient_scratch(precond, a, 1, Par::Seq).or(bicgstab_scratch(
             IdentityPrecond { dim: a.nrows() },

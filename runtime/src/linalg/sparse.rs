@@ -176,12 +176,16 @@ impl SparseSolver {
         {
             self.ilu = Some(Ilu0::new(&self.pattern));
         }
-        if let Some(krylov) = &self.krylov
+        if let Some(krylov) = &mut self.krylov
             && krylov.options.preconditioner == Preconditioner::Multigrid
             && self.multigrid.is_none()
         {
             let (size, index) = &self.blocks;
-            self.multigrid = Some(Multigrid::new(*size, index.clone(), &self.pattern));
+            self.multigrid = Multigrid::new(*size, index.clone(), &self.pattern);
+            if self.multigrid.is_none() {
+                // A matrix that does not coarsen: block Jacobi instead (see `Multigrid`).
+                krylov.options.preconditioner = Preconditioner::BlockJacobi;
+            }
         }
     }
 
@@ -411,13 +415,17 @@ impl SparseSolver {
             if krylov.options.preconditioner == Preconditioner::BlockJacobi
                 && n >= LinearSolver::MULTIGRID_FROM
             {
-                krylov.options.preconditioner = Preconditioner::Multigrid;
-                self.counts.krylov.switched_to_multigrid = 1;
                 let (size, index) = &self.blocks;
-                let multigrid = self
+                if self.multigrid.is_none() {
+                    self.multigrid = Multigrid::new(*size, index.clone(), &self.pattern);
+                }
+                let built = self
                     .multigrid
-                    .get_or_insert_with(|| Multigrid::new(*size, index.clone(), &self.pattern));
-                if multigrid.update(&self.values) {
+                    .as_mut()
+                    .is_some_and(|multigrid| multigrid.update(&self.values));
+                if built {
+                    krylov.options.preconditioner = Preconditioner::Multigrid;
+                    self.counts.krylov.switched_to_multigrid = 1;
                     self.counts.krylov.preconditioners += 1;
                 } else {
                     self.krylov = None;

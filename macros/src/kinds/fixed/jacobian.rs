@@ -37,12 +37,8 @@ pub(crate) fn jacobian(
     } = lowered;
     let mut differentiator = crate::derivative::Differentiator::default();
     let mut components = component_tokens(model);
-    if let Some(t) = force.time.as_ref().and_then(|t| match &*t.pat {
-        syn::Pat::Ident(p) => Some(&p.ident),
-        _ => None,
-    }) {
-        components.push(t.to_token_stream());
-    }
+    let (time_component, time_copy) = time_copy(force);
+    components.extend(time_component);
     let jac = format_ident!("__odyn_jac", span = Span::mixed_site());
     let n_usize = model.len();
     let (matrix, body) = if n_usize <= SMALL {
@@ -121,6 +117,7 @@ pub(crate) fn jacobian(
                 clippy::all
             )]
             fn __odyn_jacobian(#receiver, #time, #(#params,)* #jac: &mut #matrix) {
+                #time_copy
                 #(#prologue)*
                 #body
             }
@@ -222,6 +219,20 @@ fn listed_store(
     }
 }
 
+/// The time as the derivative code reads it — a hygienic copy made before the prologue, which
+/// may shadow the user's name (`let t = t - self.t0;`) — and the `let` making it; nothing when
+/// the function takes no named time.
+fn time_copy(force: &Function) -> (Option<TokenStream>, TokenStream) {
+    let Some(t) = force.time.as_ref().and_then(|t| match &*t.pat {
+        syn::Pat::Ident(p) => Some(&p.ident),
+        _ => None,
+    }) else {
+        return (None, TokenStream::new());
+    };
+    let copy = format_ident!("__odyn_time", span = Span::mixed_site());
+    (Some(copy.to_token_stream()), quote!(let #copy: f64 = #t;))
+}
+
 /// The hidden ∂f/∂t function and the `Jacobian` items that use it: exact straight-line code when
 /// every path from the time to f went through supported operations; a compile-time zero (and
 /// `TIME_DEPENDENT = false`) when f does not read the time; otherwise the runtime's default, a
@@ -235,6 +246,7 @@ fn time_derivative(
     prologue: &[Prologue],
     force: &Function,
 ) -> (Option<TokenStream>, TokenStream) {
+    let (_, time_copy) = time_copy(force);
     let state = model.state_ident();
     let fields: Vec<_> = model.states.iter().map(|f| f.ident).collect();
     if !exact {
@@ -281,6 +293,7 @@ fn time_derivative(
             clippy::all
         )]
         fn __odyn_time_derivative(#receiver, #time, #(#params,)* #out: &mut #state) {
+            #time_copy
             #(#prologue)*
             #(#lets)*
             let out = ::odyn::State::as_mut_slice(#out);

@@ -44,7 +44,15 @@ pub(super) fn impls(
     let count = Literal::usize_unsuffixed(fields.fields.len());
     let grids = &fields.fields;
     let names: Vec<String> = grids.iter().map(ToString::to_string).collect();
-    let coefficients = &fields.coefficients;
+    // The coefficient grids the cell reads (others are plain parameters, never checked).
+    let coefficients: Vec<_> = cell
+        .arguments
+        .iter()
+        .filter_map(|argument| match *argument {
+            Argument::Coefficient(k) => Some(fields.coefficients[k]),
+            _ => None,
+        })
+        .collect();
     let coefficient_names: Vec<String> = coefficients.iter().map(ToString::to_string).collect();
     let defaults = attribute_defaults(args);
     let kernel = &cell.f.sig.ident;
@@ -311,9 +319,16 @@ fn blocks(cell: &Cell, lowered: Lowered, fields: usize) -> Generated {
             })
         })
         .collect();
-    if let Some(t) = &cell.time {
-        components.push(quote!(#t));
-    }
+    // The time as the derivative code reads it: a hygienic copy made before the prologue, which
+    // may shadow the user's name (`let t = t - self.t0;`).
+    let time_copy = match &cell.time {
+        Some(t) => {
+            let copy = format_ident!("__odyn_time", span = Span::mixed_site());
+            components.push(quote!(#copy));
+            quote!(let #copy: f64 = #t;)
+        }
+        None => TokenStream::new(),
+    };
     // ∂f/∂t, row by row (0 where a row does not read the time).
     let time_roots: Vec<_> = match time {
         Some(var) if exact_time => outputs
@@ -333,6 +348,7 @@ fn blocks(cell: &Cell, lowered: Lowered, fields: usize) -> Generated {
         #[inline(always)]
         #[allow(unused_variables, unused_parens, non_snake_case, clippy::all)]
         fn #hidden(#inputs) -> [f64; #count] {
+            #time_copy
             #(#prologue_lets)*
             #(#lets)*
             [#(#values),*]
@@ -354,6 +370,7 @@ fn blocks(cell: &Cell, lowered: Lowered, fields: usize) -> Generated {
                 #[inline(always)]
                 #[allow(unused_variables, unused_parens, non_snake_case, clippy::all)]
                 fn #name(#inputs) -> [f64; #count] {
+                    #time_copy
                     #(#prologue)*
                     #(#lets)*
                     [#(#values),*]

@@ -224,7 +224,8 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
         };
         let c = h / ALPHA[k];
         let ratio = self.newton.refactor_ratio;
-        if ratio > 0.0 && !keep_lu && (c / self.factored_c - 1.0).abs() > ratio {
+        // CVODE's rule holds after a rejection too (SciPy's keeps the LU however far c moved).
+        if ratio > 0.0 && (c / self.factored_c - 1.0).abs() > ratio {
             self.factored = false;
         }
         let iters = loop {
@@ -237,19 +238,21 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
                 self.factored_c = c;
             }
             // CVODE's correction for a matrix made with another c: between the factor 1 a
-            // non-stiff component needs and c_old/c a stiff one does.
-            let scale = if ratio > 0.0 {
+            // non-stiff component needs and c_old/c a stiff one does. A c equal but for the
+            // rounding of t (fixed-step runs) counts as the same.
+            let stale = ratio > 0.0 && (c / self.factored_c - 1.0).abs() > 1e-12;
+            let scale = if stale {
                 2.0 / (1.0 + c / self.factored_c)
             } else {
                 1.0
             };
             match self.solve(model, (t_new, h, c, scale), (max_iters, tol), y_new, s.stats) {
                 Ok(iters) => break iters,
-                Err(failure) if self.fresh => return Err(failure),
-                Err(_) if ratio > 0.0 && self.factored_c != c => {
+                Err(_) if stale => {
                     // A matrix made with another c: refactorize with this one, same J, first.
                     self.factored = false;
                 }
+                Err(failure) if self.fresh => return Err(failure),
                 Err(_) => {
                     // An old J: evaluate it at the predictor and try again.
                     model.jacobian(t_new, &self.predict, &mut self.jacobian);
