@@ -1010,3 +1010,42 @@ fn coefficient_grids_are_parameters_read_through_stencils() {
     let error = wrong.simulate().steps(1).run().unwrap_err();
     assert!(error.to_string().contains("kappa"), "{error}");
 }
+
+/// A cell whose state-free code shadows the time: u_t = −u + sin(t − t₀)·u.
+#[system]
+pub struct Delayed {
+    /// The field.
+    #[field]
+    pub u: Grid,
+    /// t₀.
+    pub t0: f64,
+}
+
+#[system]
+impl Delayed {
+    #[cell]
+    fn rate(&self, u: Stencil, t: f64) -> f64 {
+        let t = t - self.t0;
+        -u.c + t.sin() * u.c
+    }
+}
+
+#[test]
+fn a_shadowed_time_keeps_a_cells_jacobian_and_time_derivative_right() {
+    // The derivative code reads its own copy of the time, taken before the user's `let t`.
+    let model = Delayed {
+        u: Grid::from_fn(4, 4, Boundary::Periodic, |i, j| 0.1 * (i + j) as f64 + 0.2).unwrap(),
+        t0: 0.5,
+    };
+    let (t, state) = (1.3, model.state());
+    let mut jacobian = model.jacobian_matrix(&state);
+    model.jacobian(t, &state, &mut jacobian);
+    let dense = jacobian.to_dense();
+    let mut dfdt = state.clone();
+    model.time_derivative(t, &state, &mut dfdt);
+    for k in 0..16 {
+        let u = state.field(0)[k];
+        assert!((dense[(k, k)] - (-1.0 + (t - 0.5f64).sin())).abs() < 1e-15);
+        assert!((dfdt.field(0)[k] - (t - 0.5f64).cos() * u).abs() < 1e-15);
+    }
+}

@@ -308,20 +308,30 @@ fn parse_cell(imp: &ItemImpl, fields: &Fields<'_>, errors: &mut Errors) -> Optio
                 stencils.push((p.ident.clone(), index));
                 arguments.push(Argument::Stencil(index));
             }
-            None => errors.at(
-                &p.ident,
-                format_args!(
-                    "`{model}` has no `#[field]` called `{}`; a stencil argument is named like \
-                     the field it reads ({}), or like a coefficient `Grid` of the model",
-                    p.ident,
-                    fields
-                        .fields
+            None => {
+                let listed = |names: &[&Ident]| {
+                    names
                         .iter()
                         .map(|f| format!("`{f}`"))
                         .collect::<Vec<_>>()
                         .join(", ")
-                ),
-            ),
+                };
+                let coefficients = if fields.coefficients.is_empty() {
+                    String::new()
+                } else {
+                    format!(" ({})", listed(&fields.coefficients))
+                };
+                errors.at(
+                    &p.ident,
+                    format_args!(
+                        "`{model}` has no `#[field]` called `{}`; a stencil argument is named \
+                         like the field it reads ({}), or like a coefficient `Grid` of the \
+                         model{coefficients}",
+                        p.ident,
+                        listed(&fields.fields)
+                    ),
+                )
+            }
         }
     }
     let count = fields.fields.len();
