@@ -909,6 +909,7 @@ fn a_source_switched_on_in_time_has_the_time_derivative_of_its_arms() {
             .and_then(|g| g.with_spacing(0.1, 0.1))
             .unwrap(),
     };
+    const { assert!(<Switched as Jacobian>::TIME_DEPENDENT) };
     let state = model.state();
     let mut rate = state.clone();
     let mut dfdt = state.clone();

@@ -230,34 +230,21 @@ impl SparseSolver {
         let refresh = std::mem::take(&mut krylov.refresh);
         let preconditioner = krylov.options.preconditioner;
         self.symmetric = self.is_symmetric();
-        match preconditioner {
-            Preconditioner::BlockJacobi => {
-                if !self.jacobi.update(&self.values) {
-                    return self.factorize_direct();
-                }
-                self.counts.krylov.preconditioners += 1;
-            }
-            Preconditioner::Ilu0 => {
-                let built = self
-                    .ilu
-                    .as_mut()
-                    .is_some_and(|ilu| ilu.update(&self.values));
-                if !built {
-                    return self.factorize_direct();
-                }
-                self.counts.krylov.preconditioners += 1;
-            }
+        let values = &self.values;
+        // The preconditioners built from the values: false when one cannot be (a singular
+        // block or pivot), which the direct factorization then decides.
+        let built = match preconditioner {
+            Preconditioner::BlockJacobi => Some(self.jacobi.update(values)),
+            Preconditioner::Ilu0 => Some(self.ilu.as_mut().is_some_and(|p| p.update(values))),
             Preconditioner::Multigrid => {
-                let built = self
-                    .multigrid
-                    .as_mut()
-                    .is_some_and(|multigrid| multigrid.update(&self.values));
-                if !built {
-                    return self.factorize_direct();
-                }
-                self.counts.krylov.preconditioners += 1;
+                Some(self.multigrid.as_mut().is_some_and(|p| p.update(values)))
             }
-            Preconditioner::Factorization { .. } => {
+            Preconditioner::Factorization { .. } => None,
+        };
+        match built {
+            Some(false) => return self.factorize_direct(),
+            Some(true) => self.counts.krylov.preconditioners += 1,
+            None => {
                 if (self.factored.is_none() || refresh) && !self.factorize_direct() {
                     return false;
                 }

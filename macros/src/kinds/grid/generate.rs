@@ -86,7 +86,7 @@ pub(super) fn impls(
                     blocks,
                     function,
                     time,
-                } = blocks(cell, lowered, fields.fields.len());
+                } = blocks(cell, lowered);
                 let hidden = hidden_name(cell);
                 let (time_call, time_items) = match time {
                     Time::Exact => {
@@ -281,8 +281,8 @@ struct Generated {
 
 /// The structural non-zeros of the kernel's derivative as `odyn::grid::Block`s, a hidden
 /// method returning their values at a cell in the same order, and one returning ∂f/∂t of its
-/// `fields` outputs when it reads the time.
-fn blocks(cell: &Cell, lowered: Lowered, fields: usize) -> Generated {
+/// outputs when it reads the time.
+fn blocks(cell: &Cell, lowered: Lowered) -> Generated {
     let Lowered {
         mut graph,
         outputs,
@@ -337,45 +337,31 @@ fn blocks(cell: &Cell, lowered: Lowered, fields: usize) -> Generated {
             .collect(),
         _ => Vec::new(),
     };
-    let lets = straight_line(&graph, &roots, &components);
-    let values = roots.iter().map(|&id| operand(&graph, id, &components));
-    let prologue_lets = prologue_tokens(&prologue, &opaques_read(&graph, &roots));
-    let count = Literal::usize_unsuffixed(roots.len());
-    let hidden = hidden_name(cell);
-    let inputs = &cell.f.sig.inputs;
-    let mut function = quote! {
-        #[doc(hidden)]
-        #[inline(always)]
-        #[allow(unused_variables, unused_parens, non_snake_case, clippy::all)]
-        fn #hidden(#inputs) -> [f64; #count] {
-            #time_copy
-            #(#prologue_lets)*
-            #(#lets)*
-            [#(#values),*]
+    // A hidden method of the kernel's arguments returning the values of `roots`.
+    let hidden_fn = |name: syn::Ident, roots: &[crate::ir::ExprId]| {
+        let lets = straight_line(&graph, roots, &components);
+        let values = roots.iter().map(|&id| operand(&graph, id, &components));
+        let prologue = prologue_tokens(&prologue, &opaques_read(&graph, roots));
+        let count = Literal::usize_unsuffixed(roots.len());
+        let inputs = &cell.f.sig.inputs;
+        quote! {
+            #[doc(hidden)]
+            #[inline(always)]
+            #[allow(unused_variables, unused_parens, non_snake_case, clippy::all)]
+            fn #name(#inputs) -> [f64; #count] {
+                #time_copy
+                #(#prologue)*
+                #(#lets)*
+                [#(#values),*]
+            }
         }
     };
+    let mut function = hidden_fn(hidden_name(cell), &roots);
     let time = match time {
         None => Time::Unread,
         Some(_) if !exact_time => Time::Opaque,
         Some(_) => {
-            let lets = straight_line(&graph, &time_roots, &components);
-            let values = time_roots
-                .iter()
-                .map(|&id| operand(&graph, id, &components));
-            let prologue = prologue_tokens(&prologue, &opaques_read(&graph, &time_roots));
-            let count = Literal::usize_unsuffixed(fields);
-            let name = time_name(cell);
-            function.extend(quote! {
-                #[doc(hidden)]
-                #[inline(always)]
-                #[allow(unused_variables, unused_parens, non_snake_case, clippy::all)]
-                fn #name(#inputs) -> [f64; #count] {
-                    #time_copy
-                    #(#prologue)*
-                    #(#lets)*
-                    [#(#values),*]
-                }
-            });
+            function.extend(hidden_fn(time_name(cell), &time_roots));
             Time::Exact
         }
     };
