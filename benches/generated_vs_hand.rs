@@ -16,9 +16,7 @@ use odyn::{NewtonOptions, Stats};
 const STEPS: u64 = 1_000_000;
 const DT: f64 = 1e-3;
 
-mod models;
-
-use models::*;
+use scenes::*;
 
 fn main() {
     divan::main();
@@ -126,8 +124,8 @@ mod spring {
     }
 
     #[divan::bench]
-    fn position_verlet_generated() -> UndampedState {
-        let u = black_box(Undamped {
+    fn position_verlet_generated() -> UndampedSpringState {
+        let u = black_box(UndampedSpring {
             x: 1.0,
             v: 0.0,
             k: 50.0,
@@ -137,13 +135,13 @@ mod spring {
     }
     #[divan::bench]
     fn position_verlet_hand() -> (f64, f64) {
-        let u = black_box(Undamped {
+        let u = black_box(UndampedSpring {
             x: 1.0,
             v: 0.0,
             k: 50.0,
             m: 1.0,
         });
-        let acc = |x: f64| -u.k * x / u.m;
+        let acc = |x: f64| -u.k / u.m * x;
         let mut a = acc(u.x);
         let (mut prev, mut x, mut v) = (u.x, u.x + DT * u.v + 0.5 * DT * DT * a, 0.0);
         a = acc(x);

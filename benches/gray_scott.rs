@@ -23,13 +23,15 @@
 //! target, as in `scripts/scipy_gray_scott.py`, which runs SciPy's BDF (with `jac_sparsity`), RK45
 //! and DOP853 the same way. The calibration is printed before the timings.
 
-use odyn::grid::{Boundary, Grid, GridJacobian, GridState, Stencil};
+use odyn::grid::{GridJacobian, GridState};
 use odyn::integrators::ImplicitEuler;
 use std::sync::OnceLock;
 
+use scenes::GrayScott;
+
 use odyn::{
     Integrator, Jacobian, Krylov, LinearSolver, Method, Model, NewtonOptions, Preconditioner,
-    State, Stats, Stepper, system,
+    State, Stats, Stepper,
 };
 
 fn main() {
@@ -39,56 +41,14 @@ fn main() {
 const SIZES: [usize; 3] = [64, 128, 256];
 const H: f64 = 10.0;
 
-/// The example's model (see `examples/gray_scott.rs`).
-#[system(integrator = ImplicitEuler, dt = 10.0)]
-struct GrayScott {
-    #[field]
-    u: Grid,
-    #[field]
-    v: Grid,
-    du: f64,
-    dv: f64,
-    feed: f64,
-    kill: f64,
-    dx: f64,
-}
-
-#[system]
-impl GrayScott {
-    #[cell]
-    fn reaction(&self, u: Stencil, v: Stencil) -> [f64; 2] {
-        let uvv = u.c * v.c * v.c;
-        let h2 = self.dx * self.dx;
-        [
-            self.du * u.laplacian() / h2 - uvv + self.feed * (1.0 - u.c),
-            self.dv * v.laplacian() / h2 + uvv - (self.feed + self.kill) * v.c,
-        ]
-    }
-}
-
-/// Pearson's initial state without noise, F = 0.0367, k = 0.0649.
+/// Pearson's initial state without noise, F = 0.0367, k = 0.0649 (`scenes/src/fields.rs`).
 fn model(n: usize) -> GrayScott {
     with_rates(n, 0.0367, 0.0649)
 }
 
 /// Pearson's initial state without noise, feed F and kill k.
 fn with_rates(n: usize, feed: f64, kill: f64) -> GrayScott {
-    let inside = |i: usize, j: usize| {
-        let r = n * 10 / 256;
-        (n / 2 - r..n / 2 + r).contains(&i) && (n / 2 - r..n / 2 + r).contains(&j)
-    };
-    let grid = |value: &dyn Fn(bool) -> f64| {
-        Grid::from_fn(n, n, Boundary::Periodic, |i, j| value(inside(i, j))).unwrap()
-    };
-    GrayScott {
-        u: grid(&|inside| if inside { 0.5 } else { 1.0 }),
-        v: grid(&|inside| if inside { 0.25 } else { 0.0 }),
-        du: 2e-5,
-        dv: 1e-5,
-        feed,
-        kill,
-        dx: 2.5 / n as f64,
-    }
+    GrayScott::pearson(n, feed, kill).expect("a grid of at least one cell")
 }
 
 /// The model, its state and a Jacobian evaluated, assembled and factorized there.

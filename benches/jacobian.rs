@@ -13,9 +13,7 @@ use odyn::integrators::{ImplicitEuler, Integrator, Rk4};
 use odyn::prelude::*;
 use odyn::{Jacobian, NewtonOptions, Stats, nalgebra};
 
-mod models;
-
-use models::*;
+use scenes::*;
 
 fn main() {
     divan::main();

@@ -13,10 +13,10 @@
 //! rest is no test of an iterative solver (the cloth's plane decouples from gravity there).
 
 use odyn::integrators::ImplicitEuler;
-use odyn::nalgebra::Vector3;
-use odyn::particles::{ParticleJacobian, ParticleState, Spring};
+use odyn::particles::{ParticleJacobian, ParticleState};
 use odyn::prelude::*;
 use odyn::{Integrator, Jacobian, Krylov, LinearSolver, NewtonOptions, Stats, Stepper};
+use scenes::{Cloth, Sheet};
 
 fn main() {
     divan::main();
@@ -25,82 +25,9 @@ fn main() {
 const SIZES: [usize; 3] = [32, 64, 128];
 const H: f64 = 1.0 / 60.0;
 
-/// The example's cloth (see `examples/cloth.rs`).
-#[system(integrator = ImplicitEuler, dt = 1.0 / 60.0)]
-struct Cloth {
-    #[position]
-    x: Vec<Vector3<f64>>,
-    #[velocity]
-    v: Vec<Vector3<f64>>,
-    #[mass]
-    mass: Vec<f64>,
-    #[pinned]
-    pinned: Vec<usize>,
-    springs: Vec<Spring>,
-    gravity: Vector3<f64>,
-    drag: f64,
-}
-
-#[system]
-impl Cloth {
-    #[pair(springs)]
-    fn spring(
-        &self,
-        s: &Spring,
-        xa: Vector3<f64>,
-        xb: Vector3<f64>,
-        va: Vector3<f64>,
-        vb: Vector3<f64>,
-    ) -> Vector3<f64> {
-        let d = xb - xa;
-        let length = d.norm();
-        let direction = d / length;
-        direction * (s.stiffness * (length - s.rest) + s.damping * (vb - va).dot(&direction))
-    }
-
-    #[particle]
-    fn weight(&self, i: usize, _x: Vector3<f64>, v: Vector3<f64>) -> Vector3<f64> {
-        self.gravity * self.mass[i] - v * self.drag
-    }
-}
-
+/// The `cloth` example's falling cloth (`scenes/src/cloth.rs`): k = 10⁴, 0.5 kg.
 fn cloth(n: usize) -> Cloth {
-    let spacing = 1.0 / (n - 1) as f64;
-    let id = |i: usize, j: usize| i * n + j;
-    let x: Vec<_> = (0..n * n)
-        .map(|p| Vector3::new((p % n) as f64 * spacing, 0.0, (p / n) as f64 * spacing))
-        .collect();
-    let mut springs = Vec::new();
-    let mut link = |a, b| springs.push(Spring::at_rest(&x, a, b, 1e4, 0.0));
-    for i in 0..n {
-        for j in 0..n {
-            if j + 1 < n {
-                link(id(i, j), id(i, j + 1));
-            }
-            if i + 1 < n {
-                link(id(i, j), id(i + 1, j));
-            }
-            if i + 1 < n && j + 1 < n {
-                link(id(i, j), id(i + 1, j + 1));
-                link(id(i, j + 1), id(i + 1, j));
-            }
-            if j + 2 < n {
-                link(id(i, j), id(i, j + 2));
-            }
-            if i + 2 < n {
-                link(id(i, j), id(i + 2, j));
-            }
-        }
-    }
-    Cloth {
-        v: vec![Vector3::zeros(); n * n],
-        mass: vec![0.5 / (n * n) as f64; n * n],
-        pinned: vec![id(0, 0), id(0, n - 1)],
-        springs,
-        gravity: Vector3::new(0.0, -9.81, 0.0),
-        drag: 0.02 / (n * n) as f64,
-        x,
-    }
+    Sheet::falling(n).build().0
 }
 
 /// The cloth, its state and a Jacobian evaluated, assembled and factorized there.

@@ -19,75 +19,13 @@ use std::time::Instant;
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressStyle};
 use odyn::output::{number, write_table};
-use odyn::particles::{ParticleState, ParticleSystem, Spring};
+use odyn::particles::{ParticleState, ParticleSystem};
 use odyn::plot::{Chart, Series, View, views};
 use odyn::prelude::*;
+// The cloth: its model and the sheet that builds it (`scenes/src/cloth.rs`).
 use odyn::xpbd::{Constraint, Xpbd, XpbdOptions};
 use odyn::{NewtonOptions, Sample};
-
-/// A cloth: damped springs between particles, weight and air drag on each.
-#[system(integrator = ImplicitEuler, dt = 1.0 / 60.0)]
-pub struct Cloth {
-    /// Particle positions (m).
-    #[position]
-    pub x: Vec<Vector3<f64>>,
-    /// Particle velocities (m/s).
-    #[velocity]
-    pub v: Vec<Vector3<f64>>,
-    /// Particle masses (kg).
-    #[mass]
-    pub mass: Vec<f64>,
-    /// The two top corners.
-    #[pinned]
-    pub pinned: Vec<usize>,
-    /// Structural, shear and bend springs.
-    pub springs: Vec<Spring>,
-    /// Gravitational acceleration (m/s²).
-    pub gravity: Vector3<f64>,
-    /// Linear air drag (N·s/m per particle).
-    pub drag: f64,
-}
-
-#[system]
-impl Cloth {
-    /// Hooke's law along the spring plus damping of the relative velocity along it.
-    #[pair(springs)]
-    fn spring(
-        &self,
-        s: &Spring,
-        xa: Vector3<f64>,
-        xb: Vector3<f64>,
-        va: Vector3<f64>,
-        vb: Vector3<f64>,
-    ) -> Vector3<f64> {
-        let d = xb - xa;
-        let length = d.norm();
-        let direction = d / length;
-        direction * (s.stiffness * (length - s.rest) + s.damping * (vb - va).dot(&direction))
-    }
-
-    /// Weight and linear air drag.
-    #[particle]
-    fn weight(&self, i: usize, _x: Vector3<f64>, v: Vector3<f64>) -> Vector3<f64> {
-        self.gravity * self.mass[i] - v * self.drag
-    }
-
-    /// Spring energy ½k(|d| − L)² plus gravitational energy −m·g·x.
-    fn potential(&self) -> f64 {
-        let springs: f64 = self
-            .springs
-            .iter()
-            .map(|s| 0.5 * s.stiffness * ((self.x[s.b] - self.x[s.a]).norm() - s.rest).powi(2))
-            .sum();
-        let gravity: f64 = self
-            .x
-            .iter()
-            .zip(&self.mass)
-            .map(|(x, m)| -m * self.gravity.dot(x))
-            .sum();
-        springs + gravity
-    }
-}
+use scenes::{Cloth, Sheet};
 
 /// Stiff cloth: explicit methods against implicit Euler at dt = 1/60.
 #[derive(Parser)]
@@ -123,52 +61,15 @@ fn main() -> ExitCode {
     }
 }
 
-/// The cloth and which of its springs are structural (drawn in the frames).
+/// The cloth and which of its springs are structural (drawn in the frames): 0.5 kg, drag 0.02
+/// N·s/m in all, starting horizontal (`scenes/src/cloth.rs` builds it).
 fn cloth(n: usize, k: f64, damping: f64) -> (Cloth, Vec<usize>) {
-    let spacing = 1.0 / (n - 1) as f64;
-    let id = |i: usize, j: usize| i * n + j;
-    // Horizontal, in the x–z plane; row i = 0 is the top edge once it hangs.
-    let x: Vec<_> = (0..n * n)
-        .map(|p| Vector3::new((p % n) as f64 * spacing, 0.0, (p / n) as f64 * spacing))
-        .collect();
-    let mut springs = Vec::new();
-    let mut structural = Vec::new();
-    let mut link = |a: usize, b: usize, drawn: bool| {
-        if drawn {
-            structural.push(springs.len());
-        }
-        springs.push(Spring::at_rest(&x, a, b, k, damping));
+    let sheet = Sheet {
+        stiffness: k,
+        damping,
+        ..Sheet::falling(n)
     };
-    for i in 0..n {
-        for j in 0..n {
-            if j + 1 < n {
-                link(id(i, j), id(i, j + 1), true);
-            }
-            if i + 1 < n {
-                link(id(i, j), id(i + 1, j), true);
-            }
-            if i + 1 < n && j + 1 < n {
-                link(id(i, j), id(i + 1, j + 1), false);
-                link(id(i, j + 1), id(i + 1, j), false);
-            }
-            if j + 2 < n {
-                link(id(i, j), id(i, j + 2), false);
-            }
-            if i + 2 < n {
-                link(id(i, j), id(i + 2, j), false);
-            }
-        }
-    }
-    let cloth = Cloth {
-        v: vec![Vector3::zeros(); n * n],
-        mass: vec![0.5 / (n * n) as f64; n * n],
-        pinned: vec![id(0, 0), id(0, n - 1)],
-        springs,
-        gravity: Vector3::new(0.0, -9.81, 0.0),
-        drag: 0.02 / (n * n) as f64,
-        x,
-    };
-    (cloth, structural)
+    sheet.build()
 }
 
 /// One run: a label, its recorded states, and the failure that ended it early, if any.

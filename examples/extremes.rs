@@ -9,30 +9,8 @@ use std::process::ExitCode;
 use odyn::Error;
 use odyn::output::{number, write_table};
 use odyn::prelude::*;
-
-/// Undamped spring, ẍ = −k·x (m = 1).
-#[system]
-pub struct Spring {
-    /// Displacement.
-    #[position]
-    pub x: f64,
-    /// Velocity.
-    #[velocity]
-    pub v: f64,
-    /// Stiffness.
-    pub k: f64,
-}
-
-#[system]
-impl Spring {
-    fn acceleration(&self) -> f64 {
-        -self.k * self.x
-    }
-
-    fn energy(&self) -> f64 {
-        0.5 * self.v * self.v + 0.5 * self.k * self.x * self.x
-    }
-}
+// The undamped spring m·ẍ = −k·x, here with m = 1 (`scenes/src/oscillators.rs`).
+use scenes::UndampedSpring as Spring;
 
 const STIFFNESS: [f64; 4] = [1.0, 1e3, 1e6, 1e9];
 const STEPS: [f64; 5] = [1e-6, 1e-3, 1.0 / 60.0, 0.1, 1.0];
@@ -66,7 +44,12 @@ fn run() -> odyn::Result<()> {
         for k in STIFFNESS {
             line.push_str(" |");
             for dt in STEPS {
-                let spring = Spring { x: 1.0, v: 0.0, k };
+                let spring = Spring {
+                    x: 1.0,
+                    v: 0.0,
+                    k,
+                    m: 1.0,
+                };
                 let result = spring
                     .simulate()
                     .integrator(method)

@@ -9,33 +9,9 @@ use std::process::ExitCode;
 use odyn::output::{number, write_table};
 use odyn::plot::{Chart, Series};
 use odyn::prelude::*;
+// The undamped spring m·ẍ = −k·x (`scenes/src/oscillators.rs`).
 use odyn::stability::{StabilityProbe, measured_limit, predicted_limit};
-
-/// Undamped spring, m·ẍ = −k·x.
-#[system]
-pub struct Spring {
-    /// Displacement.
-    #[position]
-    pub x: f64,
-    /// Velocity.
-    #[velocity]
-    pub v: f64,
-    /// Stiffness.
-    pub k: f64,
-    /// Mass.
-    pub m: f64,
-}
-
-#[system]
-impl Spring {
-    fn acceleration(&self) -> f64 {
-        -self.k / self.m * self.x
-    }
-
-    fn energy(&self) -> f64 {
-        0.5 * self.m * self.v * self.v + 0.5 * self.k * self.x * self.x
-    }
-}
+use scenes::UndampedSpring as Spring;
 
 /// Stability explorer: the largest stable dt of every method on undamped springs, predicted from
 /// the generated Jacobian's eigenvalues and measured by bisection.

@@ -12,32 +12,8 @@ use std::process::ExitCode;
 use odyn::output::write_csv;
 use odyn::plot::{EnergyPlot, energy_with};
 use odyn::prelude::*;
-
-/// Undamped spring, m·ẍ = −k·x.
-#[system(integrator = ImplicitEuler, dt = 0.016666666666666666)]
-pub struct Spring {
-    /// Displacement.
-    #[position]
-    pub x: f64,
-    /// Velocity.
-    #[velocity]
-    pub v: f64,
-    /// Stiffness.
-    pub k: f64,
-    /// Mass.
-    pub m: f64,
-}
-
-#[system]
-impl Spring {
-    fn acceleration(&self) -> f64 {
-        -self.k / self.m * self.x
-    }
-
-    fn energy(&self) -> f64 {
-        0.5 * self.m * self.v * self.v + 0.5 * self.k * self.x * self.x
-    }
-}
+// The undamped spring m·ẍ = −k·x (`scenes/src/oscillators.rs`).
+use scenes::UndampedSpring as Spring;
 
 /// A stiff spring at a frame-sized step: k = 10⁶, m = 1, dt = 1/60, 120 steps (ω·dt ≈ 16.7).
 ///
@@ -76,7 +52,7 @@ fn run() -> odyn::Result<()> {
         let sim = if method.is_adaptive() {
             sim.duration(2.0)
         } else {
-            sim.steps(120)
+            sim.dt(1.0 / 60.0).steps(120)
         };
         let (run, failure) = sim.run_partial()?;
         match &failure {

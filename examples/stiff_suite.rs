@@ -23,10 +23,9 @@ use std::path::Path;
 use odyn::prelude::*;
 use odyn::work_precision::{Accuracy, Cost, Reference, WorkPrecision, WorkPrecisionSet, measure};
 
-#[path = "common/stiff_models.rs"]
-mod stiff_models;
-
-use stiff_models::{
+// The problems and their references, written once for the examples, tests and benches
+// (`scenes/src/stiff.rs`).
+use scenes::{
     HIRES_REFERENCE, Hires, POLLU_REFERENCE, Pollu, ROBERTSON_1E5, ROBERTSON_1E11, Robertson,
     VAN_DER_POL_2000, VanDerPol,
 };
@@ -173,8 +172,8 @@ fn main() -> odyn::Result<()> {
     )?;
 
     let vdp = VanDerPol {
-        x: 2.0,
-        v: 0.0,
+        y1: 2.0,
+        y2: 0.0,
         mu: 1000.0,
     };
     // vdpolm.f of the Bari test set (problem VDPOLM, t = 2000). No implicit Euler: at every dt

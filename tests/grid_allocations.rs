@@ -11,6 +11,7 @@ mod common;
 use std::sync::atomic::Ordering;
 
 use common::ALLOCATIONS;
+use scenes::GrayScott;
 
 use odyn::grid::{Boundary, Grid, Stencil};
 use odyn::integrators::{ExplicitEuler, ImplicitEuler, Rk4};
@@ -34,30 +35,6 @@ impl Heat {
     #[cell]
     fn conduction(&self, u: Stencil) -> f64 {
         self.d * u.laplacian() / (self.dx * self.dx)
-    }
-}
-
-#[system(integrator = ImplicitEuler, dt = 1.0)]
-struct GrayScott {
-    #[field]
-    u: Grid,
-    #[field]
-    v: Grid,
-    feed: f64,
-    kill: f64,
-    dx: f64,
-}
-
-#[system]
-impl GrayScott {
-    #[cell]
-    fn reaction(&self, u: Stencil, v: Stencil) -> [f64; 2] {
-        let uvv = u.c * v.c * v.c;
-        let h2 = self.dx * self.dx;
-        [
-            2e-5 * u.laplacian() / h2 - uvv + self.feed * (1.0 - u.c),
-            1e-5 * v.laplacian() / h2 + uvv - (self.feed + self.kill) * v.c,
-        ]
     }
 }
 
@@ -103,6 +80,8 @@ fn stepping_a_field_model_allocates_nothing() {
     let gray_scott = |side: usize| GrayScott {
         u: Grid::from_fn(side, side, Boundary::Periodic, |i, j| 1.0 - bump(i, j)).unwrap(),
         v: Grid::from_fn(side, side, Boundary::Periodic, bump).unwrap(),
+        du: 2e-5,
+        dv: 1e-5,
         feed: 0.04,
         kill: 0.06,
         dx: 2.5 / 256.0,

@@ -81,10 +81,9 @@ use diffsol::{NalgebraMat, OdeBuilder, OdeSolverMethod, OdeSolverStopReason};
 use odyn::prelude::*;
 
 mod calibration;
-mod models;
 
 use calibration::{Pick, pick};
-use models::*;
+use scenes::*;
 
 /// The target final errors (max norm against the reference).
 const TARGETS: [f64; 2] = [1e-6, 1e-9];
@@ -156,24 +155,11 @@ impl Problem<3> for Lorenz {
 
 impl Problem<4> for Arenstorf {
     const GROUP: &'static str = "arenstorf";
-    /// fl(T), T = 17.0652165601579625588917206249 (HNW I, eq. (0.2)).
-    const T_END: f64 = 17.065_216_560_157_964;
-    // y(fl(T)) for the f64 data, Taylor dps=50.
-    const REFERENCE: [f64; 4] = [
-        9.939_999_999_999_088_5e-1,
-        -3.030_943_022_982_418_5e-13,
-        -4.928_536_581_055_052_6e-11,
-        -2.001_585_106_393_270_1,
-    ];
+    const T_END: f64 = Arenstorf::PERIOD;
+    const REFERENCE: [f64; 4] = Arenstorf::AT_PERIOD;
 
     fn instance() -> Self {
-        Arenstorf {
-            y1: 0.994,
-            y2: 0.0,
-            v1: 0.0,
-            v2: -2.001_585_106_379_082_4,
-            mu: 0.012_277_471,
-        }
+        Arenstorf::orbit()
     }
 
     fn rhs(&self, &[y1, y2, v1, v2]: &[f64; 4], dy: &mut [f64; 4]) {
@@ -196,46 +182,11 @@ const B: usize = 7;
 impl Problem<28> for Pleiades {
     const GROUP: &'static str = "pleiades";
     const T_END: f64 = 3.0;
-    // y(3), Taylor dps=44; layout (x1..x7, y1..y7, x1'..x7', y1'..y7').
-    const REFERENCE: [f64; 28] = [
-        3.706_139_143_970_512_7e-1,
-        3.237_284_092_057_233_2,
-        -3.222_559_032_418_323_5,
-        6.597_091_455_775_308e-1,
-        3.425_581_707_156_579_7e-1,
-        1.562_172_101_400_631_1,
-        -7.003_092_922_212_494_9e-1,
-        -3.943_437_585_517_392_2,
-        -3.271_380_973_972_549_9,
-        5.225_081_843_456_544,
-        -2.590_612_434_977_469_3,
-        1.198_213_693_392_274_7,
-        -2.429_682_344_935_823_5e-1,
-        1.091_449_240_428_979_7,
-        3.417_003_806_314_314_7,
-        1.354_584_501_625_501_1,
-        -2.590_065_597_810_775_6,
-        2.025_053_734_714_241_2,
-        -1.155_815_100_160_449_1,
-        -8.072_988_170_223_022_2e-1,
-        5.952_396_354_208_718_8e-1,
-        -3.741_244_961_234_008_4,
-        3.773_459_685_750_629_2e-1,
-        9.386_858_869_551_079_1e-1,
-        3.667_922_227_200_569_6e-1,
-        -3.474_046_353_808_494_2e-1,
-        2.344_915_448_180_937_1,
-        -1.947_020_434_263_292,
-    ];
+    // layout (x1..x7, y1..y7, x1'..x7', y1'..y7').
+    const REFERENCE: [f64; 28] = Pleiades::AT_3;
 
     fn instance() -> Self {
-        Pleiades {
-            x: [3.0, 3.0, -1.0, -3.0, 2.0, -2.0, 2.0],
-            y: [3.0, -3.0, 2.0, 0.0, 0.0, -4.0, 4.0],
-            u: [0.0, 0.0, 0.0, 0.0, 0.0, 1.75, -1.5],
-            v: [0.0, 0.0, 0.0, -1.25, 1.0, 0.0, 0.0],
-            m: [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0],
-        }
+        Pleiades::start()
     }
 
     fn rhs(&self, s: &[f64; 28], dy: &mut [f64; 28]) {

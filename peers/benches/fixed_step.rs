@@ -53,9 +53,7 @@ const RK4_STEPS: u64 = 1_000_000;
 const STIFF_DT: f64 = 1e-3;
 const STIFF_STEPS: u64 = 10_000;
 
-mod models;
-
-use models::*;
+use scenes::*;
 
 fn main() {
     check_agreement();
@@ -63,8 +61,21 @@ fn main() {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Models. Each also gets its right-hand side on plain arrays, with the arithmetic of its
-// `#[system]` function, for the hand-written loops, and implements the peers' traits through it.
+// Models (`scenes/src/`). Each also gets its right-hand side on plain arrays, with the arithmetic
+// of its `#[system]` function, for the hand-written loops, and implements the peers' traits
+// through it, on the wrapper `Peer` (the models and the traits are both other crates').
+
+/// A model's initial state and right-hand side on plain arrays.
+trait Arrays<const N: usize> {
+    /// The initial state.
+    fn y0(&self) -> [f64; N];
+    /// f(y), with the arithmetic of the model's `#[system]` function.
+    fn f(&self, y: [f64; N]) -> [f64; N];
+}
+
+/// A model seen by the peer crates.
+#[derive(Clone, Copy)]
+struct Peer<M>(M);
 
 const LORENZ: Lorenz = Lorenz {
     x: 1.0,
@@ -75,7 +86,7 @@ const LORENZ: Lorenz = Lorenz {
     beta: 8.0 / 3.0,
 };
 
-impl Lorenz {
+impl Arrays<3> for Lorenz {
     fn y0(&self) -> [f64; 3] {
         [self.x, self.y, self.z]
     }
@@ -89,15 +100,15 @@ impl Lorenz {
     }
 }
 
-impl ode_solvers::System<f64, ode_solvers::Vector3<f64>> for Lorenz {
+impl ode_solvers::System<f64, ode_solvers::Vector3<f64>> for Peer<Lorenz> {
     fn system(&self, _: f64, y: &ode_solvers::Vector3<f64>, dy: &mut ode_solvers::Vector3<f64>) {
-        *dy = self.f((*y).into()).into();
+        *dy = self.0.f((*y).into()).into();
     }
 }
 
-impl ODE<f64, [f64; 3]> for Lorenz {
+impl ODE<f64, [f64; 3]> for Peer<Lorenz> {
     fn diff(&self, _: f64, y: &[f64; 3], dydt: &mut [f64; 3]) {
-        *dydt = self.f(*y);
+        *dydt = self.0.f(*y);
     }
 }
 
@@ -109,7 +120,7 @@ const SPRING: Spring = Spring {
     m: 1.0,
 };
 
-impl Spring {
+impl Arrays<2> for Spring {
     fn y0(&self) -> [f64; 2] {
         [self.x, self.v]
     }
@@ -119,15 +130,15 @@ impl Spring {
     }
 }
 
-impl ode_solvers::System<f64, ode_solvers::Vector2<f64>> for Spring {
+impl ode_solvers::System<f64, ode_solvers::Vector2<f64>> for Peer<Spring> {
     fn system(&self, _: f64, y: &ode_solvers::Vector2<f64>, dy: &mut ode_solvers::Vector2<f64>) {
-        *dy = self.f((*y).into()).into();
+        *dy = self.0.f((*y).into()).into();
     }
 }
 
-impl ODE<f64, [f64; 2]> for Spring {
+impl ODE<f64, [f64; 2]> for Peer<Spring> {
     fn diff(&self, _: f64, y: &[f64; 2], dydt: &mut [f64; 2]) {
-        *dydt = self.f(*y);
+        *dydt = self.0.f(*y);
     }
 }
 
@@ -137,7 +148,7 @@ const VAN_DER_POL: VanDerPol = VanDerPol {
     mu: 1000.0,
 };
 
-impl VanDerPol {
+impl Arrays<2> for VanDerPol {
     fn y0(&self) -> [f64; 2] {
         [self.y1, self.y2]
     }
@@ -145,23 +156,23 @@ impl VanDerPol {
     fn f(&self, [y1, y2]: [f64; 2]) -> [f64; 2] {
         [y2, self.mu * (1.0 - y1 * y1) * y2 - y1]
     }
-
-    /// ∂f/∂y, row by row.
-    fn df(&self, [y1, y2]: [f64; 2]) -> [[f64; 2]; 2] {
-        [
-            [0.0, 1.0],
-            [-2.0 * self.mu * y1 * y2 - 1.0, self.mu * (1.0 - y1 * y1)],
-        ]
-    }
 }
 
-impl ODE<f64, [f64; 2]> for VanDerPol {
+/// van der Pol's ∂f/∂y, row by row.
+fn van_der_pol_df(model: &VanDerPol, [y1, y2]: [f64; 2]) -> [[f64; 2]; 2] {
+    [
+        [0.0, 1.0],
+        [-2.0 * model.mu * y1 * y2 - 1.0, model.mu * (1.0 - y1 * y1)],
+    ]
+}
+
+impl ODE<f64, [f64; 2]> for Peer<VanDerPol> {
     fn diff(&self, _: f64, y: &[f64; 2], dydt: &mut [f64; 2]) {
-        *dydt = self.f(*y);
+        *dydt = self.0.f(*y);
     }
 
     fn jacobian(&self, _: f64, y: &[f64; 2], j: &mut Matrix<f64>) {
-        for (r, row) in self.df(*y).into_iter().enumerate() {
+        for (r, row) in van_der_pol_df(&self.0, *y).into_iter().enumerate() {
             for (c, entry) in row.into_iter().enumerate() {
                 j[(r, c)] = entry;
             }
@@ -226,7 +237,7 @@ fn hand_implicit_euler(model: &VanDerPol, mut y: [f64; 2], h: f64, steps: u64) -
         for _ in 0..MAX_ITERS {
             // (I − h·J)·Δ = yₙ + h·f(y) − y
             let f = model.f(y);
-            let [[j11, j12], [j21, j22]] = model.df(y);
+            let [[j11, j12], [j21, j22]] = van_der_pol_df(model, y);
             let [a, b, c, d] = [1.0 - h * j11, -h * j12, -h * j21, 1.0 - h * j22];
             let [r1, r2] = [start[0] + h * f[0] - y[0], start[1] + h * f[1] - y[1]];
             let det = a * d - b * c;
@@ -307,7 +318,7 @@ mod lorenz_rk4 {
     #[divan::bench(sample_count = 20)]
     pub fn ode_solvers() -> [f64; 3] {
         let model = black_box(LORENZ);
-        ode_solvers_rk4(model, model.y0(), RK4_DT, RK4_STEPS)
+        ode_solvers_rk4(Peer(model), model.y0(), RK4_DT, RK4_STEPS)
     }
 
     #[divan::bench(sample_count = 20)]
@@ -315,7 +326,7 @@ mod lorenz_rk4 {
         let model = black_box(LORENZ);
         let rk4 = ExplicitRungeKutta::rk4(RK4_DT).max_steps(RK4_STEPS as usize);
         let tf = RK4_STEPS as f64 * RK4_DT;
-        differential_equations_run(rk4, &model, model.y0(), tf, RK4_STEPS)
+        differential_equations_run(rk4, &Peer(model), model.y0(), tf, RK4_STEPS)
     }
 }
 
@@ -336,7 +347,7 @@ mod spring_rk4 {
     #[divan::bench(sample_count = 20)]
     pub fn ode_solvers() -> [f64; 2] {
         let model = black_box(SPRING);
-        ode_solvers_rk4(model, model.y0(), RK4_DT, RK4_STEPS)
+        ode_solvers_rk4(Peer(model), model.y0(), RK4_DT, RK4_STEPS)
     }
 
     #[divan::bench(sample_count = 20)]
@@ -344,7 +355,7 @@ mod spring_rk4 {
         let model = black_box(SPRING);
         let rk4 = ExplicitRungeKutta::rk4(RK4_DT).max_steps(RK4_STEPS as usize);
         let tf = RK4_STEPS as f64 * RK4_DT;
-        differential_equations_run(rk4, &model, model.y0(), tf, RK4_STEPS)
+        differential_equations_run(rk4, &Peer(model), model.y0(), tf, RK4_STEPS)
     }
 }
 
@@ -367,7 +378,7 @@ mod stiff {
         let model = black_box(VAN_DER_POL);
         let euler = ImplicitRungeKutta::backward_euler(STIFF_DT).max_steps(STIFF_STEPS as usize);
         let tf = STIFF_STEPS as f64 * STIFF_DT;
-        differential_equations_run(euler, &model, model.y0(), tf, STIFF_STEPS)
+        differential_equations_run(euler, &Peer(model), model.y0(), tf, STIFF_STEPS)
     }
 }
 

@@ -6,7 +6,7 @@
 //! # Problems
 //!
 //! Three problems of the Bari stiff test set, the `#[system]` models of the `stiff_suite` example
-//! (`examples/common/stiff_models.rs`, included here so both integrate the same equations), with
+//! (`scenes/src/stiff.rs`, shared so both integrate the same equations), with
 //! the reference final states `stiff_suite` uses:
 //!
 //! - `robertson`: Robertson's kinetics to t = 1e5 (3 species; the 36-digit Radau IIA run of
@@ -71,11 +71,8 @@ use odyn::prelude::*;
 mod calibration;
 mod cvode;
 
-#[path = "../../examples/common/stiff_models.rs"]
-mod stiff_models;
-
 use calibration::{Pick, pick};
-use stiff_models::{Hires, Orego, Pollu, Robertson};
+use scenes::{Hires, Orego, Pollu, Robertson};
 
 /// The target final errors (max relative error against the reference).
 const TARGETS: [f64; 2] = [1e-4, 1e-7];
@@ -92,7 +89,7 @@ impl Problem<3> for Orego {
     const GROUP: &'static str = "orego";
     const T_END: f64 = 360.0;
     const ATOL_SCALE: f64 = 1e-4;
-    const REFERENCE: [f64; 3] = stiff_models::OREGO_REFERENCE;
+    const REFERENCE: [f64; 3] = scenes::OREGO_REFERENCE;
 
     fn instance() -> Self {
         Orego { y: [1.0, 2.0, 3.0] }
@@ -118,7 +115,7 @@ impl Problem<3> for Robertson {
     const GROUP: &'static str = "robertson";
     const T_END: f64 = 1e5;
     const ATOL_SCALE: f64 = 1e-6;
-    const REFERENCE: [f64; 3] = stiff_models::ROBERTSON_1E5;
+    const REFERENCE: [f64; 3] = scenes::ROBERTSON_1E5;
 
     fn instance() -> Self {
         Robertson {
@@ -133,7 +130,7 @@ impl Problem<8> for Hires {
     const GROUP: &'static str = "hires";
     const T_END: f64 = 321.8122;
     const ATOL_SCALE: f64 = 1e-4;
-    const REFERENCE: [f64; 8] = stiff_models::HIRES_REFERENCE;
+    const REFERENCE: [f64; 8] = scenes::HIRES_REFERENCE;
 
     fn instance() -> Self {
         Hires {
@@ -146,7 +143,7 @@ impl Problem<20> for Pollu {
     const GROUP: &'static str = "pollu";
     const T_END: f64 = 60.0;
     const ATOL_SCALE: f64 = 1e-4;
-    const REFERENCE: [f64; 20] = stiff_models::POLLU_REFERENCE;
+    const REFERENCE: [f64; 20] = scenes::POLLU_REFERENCE;
 
     fn instance() -> Self {
         Pollu {

@@ -1,20 +1,17 @@
 //! Models shared by the integration tests.
 #![allow(
     dead_code,
+    unused_imports,
     reason = "each test crate uses a different subset of these models"
 )]
 
 use odyn::prelude::*;
 
-/// Least-squares slope of log(error) against log(dt): the observed order of convergence.
-pub fn slope(points: &[(f64, f64)]) -> f64 {
-    let n = points.len() as f64;
-    let (lx, ly): (Vec<f64>, Vec<f64>) = points.iter().map(|(h, e)| (h.ln(), e.ln())).unzip();
-    let (mx, my) = (lx.iter().sum::<f64>() / n, ly.iter().sum::<f64>() / n);
-    let cov: f64 = lx.iter().zip(&ly).map(|(x, y)| (x - mx) * (y - my)).sum();
-    let var: f64 = lx.iter().map(|x| (x - mx) * (x - mx)).sum();
-    cov / var
-}
+/// The scenes the tests share with the examples, benches and peers, written once (`scenes/`).
+pub use scenes::{
+    Arenstorf, Kepler, KeplerState, Lorenz, LorenzState, Robertson, RobertsonState, Spring,
+    SpringState, VanDerPol, VanDerPolState, slope,
+};
 
 /// A small deterministic generator (xorshift64*), so failures reproduce.
 pub struct Rng(pub u64);
@@ -82,30 +79,6 @@ pub fn central<M: Model>(model: &M, t: f64, y: &M::State, row: usize, column: us
     (f_plus.as_slice()[row] - f_minus.as_slice()[row]) / (2.0 * h)
 }
 
-/// Damped spring, m·ẍ = −k·x − b·ẋ (the tutorial's model).
-#[system(integrator = SymplecticEuler, dt = 0.016)]
-#[derive(Clone, Copy, Debug)]
-pub struct Spring {
-    #[position]
-    pub x: f64,
-    #[velocity]
-    pub v: f64,
-    pub k: f64,
-    pub b: f64,
-    pub m: f64,
-}
-
-#[system]
-impl Spring {
-    pub fn acceleration(&self) -> f64 {
-        (-self.k * self.x - self.b * self.v) / self.m
-    }
-
-    pub fn energy(&self) -> f64 {
-        0.5 * self.m * self.v * self.v + 0.5 * self.k * self.x * self.x
-    }
-}
-
 /// Undamped oscillator ẍ = −ω²x: its force never reads the velocity, so position Verlet takes it.
 #[system(integrator = PositionVerlet)]
 #[derive(Clone, Copy, Debug)]
@@ -126,66 +99,6 @@ impl Oscillator {
     /// Energy per unit mass.
     fn energy(&self) -> f64 {
         0.5 * self.v * self.v + 0.5 * self.omega * self.omega * self.x * self.x
-    }
-}
-
-/// The Lorenz system (first-order).
-#[system(integrator = Rk4, dt = 0.01)]
-pub struct Lorenz {
-    #[state]
-    pub x: f64,
-    #[state]
-    pub y: f64,
-    #[state]
-    pub z: f64,
-    pub sigma: f64,
-    pub rho: f64,
-    pub beta: f64,
-}
-
-#[system]
-impl Lorenz {
-    fn derivative(&self) -> LorenzState {
-        LorenzState {
-            x: self.sigma * (self.y - self.x),
-            y: self.x * (self.rho - self.z) - self.y,
-            z: self.x * self.y - self.beta * self.z,
-        }
-    }
-}
-
-impl Lorenz {
-    pub fn classic() -> Self {
-        Lorenz {
-            x: 1.0,
-            y: 1.0,
-            z: 1.0,
-            sigma: 10.0,
-            rho: 28.0,
-            beta: 8.0 / 3.0,
-        }
-    }
-}
-
-/// Kepler problem in the plane, r̈ = −GM·r/|r|³, with vector state.
-#[system(integrator = Leapfrog, dt = 0.01)]
-pub struct Kepler {
-    #[position]
-    pub r: Vector2<f64>,
-    #[velocity]
-    pub v: Vector2<f64>,
-    pub gm: f64,
-}
-
-#[system]
-impl Kepler {
-    fn acceleration(&self) -> Vector2<f64> {
-        let r = self.r;
-        -self.gm * r / r.norm().powi(3)
-    }
-
-    fn energy(&self) -> f64 {
-        0.5 * self.v.norm_squared() - self.gm / self.r.norm()
     }
 }
 
@@ -234,51 +147,6 @@ impl Pendulum {
     fn energy(&self) -> f64 {
         0.5 * self.length * self.length * self.omega * self.omega
             + self.g * self.length * (1.0 - self.theta.cos())
-    }
-}
-
-/// Van der Pol, y1′ = y2, y2′ = μ(1 − y1²)y2 − y1 (stiff for large μ).
-#[system(integrator = ImplicitEuler)]
-pub struct VanDerPol {
-    #[state]
-    pub y1: f64,
-    #[state]
-    pub y2: f64,
-    pub mu: f64,
-}
-
-#[system]
-impl VanDerPol {
-    fn derivative(&self) -> VanDerPolState {
-        VanDerPolState {
-            y1: self.y2,
-            y2: self.mu * (1.0 - self.y1.powi(2)) * self.y2 - self.y1,
-        }
-    }
-}
-
-/// Robertson's chemical kinetics (Robertson 1966), the classic stiff test problem.
-#[system(integrator = ImplicitEuler)]
-pub struct Robertson {
-    #[state]
-    pub a: f64,
-    #[state]
-    pub b: f64,
-    #[state]
-    pub c: f64,
-}
-
-#[system]
-impl Robertson {
-    fn derivative(&self) -> RobertsonState {
-        let slow = 0.04 * self.a;
-        let exchange = 1e4 * self.b * self.c;
-        let fast = 3e7 * self.b * self.b;
-        RobertsonState {
-            a: -slow + exchange,
-            b: slow - exchange - fast,
-            c: fast,
-        }
     }
 }
 
@@ -376,54 +244,6 @@ impl Ball {
     fn energy(&self) -> f64 {
         0.5 * self.v * self.v + self.g * self.y
     }
-}
-
-/// The Arenstorf orbit: a satellite in the rotating frame of the Earth–Moon system, whose
-/// solution is periodic (Hairer, Nørsett & Wanner, *Solving ODEs I*, §II.0, eq. (0.1)). Written
-/// as SciPy's reference script writes it, so both evaluate f identically.
-#[system(integrator = Dop853)]
-#[derive(Clone, Copy, Debug)]
-pub struct Arenstorf {
-    #[position]
-    pub y1: f64,
-    #[position]
-    pub y2: f64,
-    #[velocity]
-    pub v1: f64,
-    #[velocity]
-    pub v2: f64,
-    /// The Moon's mass fraction μ.
-    pub mu: f64,
-}
-
-#[system]
-impl Arenstorf {
-    fn acceleration(&self) -> (f64, f64) {
-        let mu = self.mu;
-        let mup = 1.0 - self.mu;
-        let d1 = ((self.y1 + mu).powi(2) + self.y2.powi(2)).powf(1.5);
-        let d2 = ((self.y1 - mup).powi(2) + self.y2.powi(2)).powf(1.5);
-        (
-            self.y1 + 2.0 * self.v2 - mup * (self.y1 + mu) / d1 - mu * (self.y1 - mup) / d2,
-            self.y2 - 2.0 * self.v1 - mup * self.y2 / d1 - mu * self.y2 / d2,
-        )
-    }
-}
-
-impl Arenstorf {
-    /// The periodic orbit of HNW I, §II.0: μ = 0.012277471, from (0.994, 0) with
-    /// y2′(0) = −2.00158510637908252240537862224; period T = 17.0652165601579625588917206249.
-    pub fn orbit() -> Self {
-        Arenstorf {
-            y1: 0.994,
-            y2: 0.0,
-            v1: 0.0,
-            v2: -2.001_585_106_379_082_4,
-            mu: 0.012_277_471,
-        }
-    }
-
-    pub const PERIOD: f64 = 17.065_216_560_157_964;
 }
 
 /// A global allocator that counts allocations (and reallocations) and hands them to the system

@@ -4,15 +4,12 @@
 
 use crate::common;
 
-#[path = "../../examples/common/stiff_models.rs"]
-mod stiff_models;
-
 use common::{Ball, BallState, Oscillator, OscillatorState, Robertson, Spring, SpringState, slope};
 use odyn::integrators::Bdf;
 use odyn::prelude::*;
 use odyn::reference::DampedOscillator;
 use odyn::{Integrator, NewtonOptions, Stats};
-use stiff_models::{
+use scenes::{
     HIRES_REFERENCE, Hires, OREGO_REFERENCE, Orego, ROBERTSON_1E5, VAN_DER_POL_2000, VanDerPol,
 };
 
@@ -143,7 +140,7 @@ fn fixed_step_runs_are_second_order() {
 
 /// Robertson's kinetics to t = 1e5 against the 36-digit Radau IIA reference of
 /// scripts/reference_stiff.py, and van der Pol (μ = 1000) to t = 2000 against the Bari test
-/// set's VDPOLM value (both quoted in examples/common/stiff_models.rs): over rtol = 1e-4 …
+/// set's VDPOLM value (both quoted in scenes/src/stiff.rs): over rtol = 1e-4 …
 /// 1e-10 (van der Pol: … 1e-8, where SciPy's BDF stops too) the error falls with the tolerance
 /// and stays within 30× rtol (measured: Robertson 2.8× at 1e-4 rising to 26× at 1e-10, van der
 /// Pol 7–24×; BDF's error is not proportional to the tolerance, its local error control being
@@ -157,8 +154,8 @@ fn stiff_references_are_met_to_the_tolerance() {
         c: 0.0,
     };
     let vdp = VanDerPol {
-        x: 2.0,
-        v: 0.0,
+        y1: 2.0,
+        y2: 0.0,
         mu: 1000.0,
     };
     let mut previous = (f64::INFINITY, f64::INFINITY);
@@ -196,7 +193,7 @@ fn stiff_references_are_met_to_the_tolerance() {
             .run()
             .unwrap();
         let s = run.last().state;
-        let error = max_relative(&[s.x, s.v], &VAN_DER_POL_2000);
+        let error = max_relative(&[s.y1, s.y2], &VAN_DER_POL_2000);
         eprintln!(
             "van der Pol rtol {rtol:e}: {}, error {error:.2e}",
             run.stats
@@ -244,8 +241,8 @@ fn counted(refactor_ratio: f64) -> [(&'static str, Stats, f64); 3] {
     .unwrap();
     let hires_error = max_relative(&hires.last().state.y, &HIRES_REFERENCE);
     let vdp = VanDerPol {
-        x: 2.0,
-        v: 0.0,
+        y1: 2.0,
+        y2: 0.0,
         mu: 1000.0,
     }
     .simulate()
@@ -257,7 +254,7 @@ fn counted(refactor_ratio: f64) -> [(&'static str, Stats, f64); 3] {
     .run()
     .unwrap();
     let s = vdp.last().state;
-    let vdp_error = max_relative(&[s.x, s.v], &VAN_DER_POL_2000);
+    let vdp_error = max_relative(&[s.y1, s.y2], &VAN_DER_POL_2000);
     [
         ("Robertson", rober.stats, rober_error),
         ("HIRES", hires.stats, hires_error),

@@ -1,7 +1,7 @@
 //! The composition methods (Yoshida4, Yoshida6, Kahan–Li 6): measured orders, bounded energy over
 //! a million steps, angular momentum to round-off, and the stability limits the explorer predicts.
 
-use crate::common;
+use crate::common::{self, slope};
 
 use std::f64::consts::TAU;
 
@@ -48,16 +48,6 @@ fn period_error(method: Method, steps: u64) -> f64 {
         .unwrap();
     let end = &run.last().state;
     (end.r - model.r).amax().max((end.v - model.v).amax())
-}
-
-/// Least-squares slope of log(error) against log(dt).
-fn slope(points: &[(f64, f64)]) -> f64 {
-    let n = points.len() as f64;
-    let (xs, ys): (Vec<f64>, Vec<f64>) = points.iter().map(|(d, e)| (d.ln(), e.ln())).unzip();
-    let (mx, my) = (xs.iter().sum::<f64>() / n, ys.iter().sum::<f64>() / n);
-    let num: f64 = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum();
-    let den: f64 = xs.iter().map(|x| (x - mx) * (x - mx)).sum();
-    num / den
 }
 
 /// Orders 4, 6 and 6 (Yoshida 1990; Kahan & Li 1997; HLW, *Geometric Numerical Integration*,

@@ -291,40 +291,9 @@ fn implicit_euler_is_stable_far_past_the_explicit_limit() {
     assert_eq!((counts.cholesky, counts.lu, counts.symbolic_lu), (1, 0, 0));
 }
 
-/// Gray–Scott: two fields coupled through u·v², for the two-field Jacobian, Neumann and
-/// periodic boundaries, and every integrator.
-#[system(integrator = ExplicitEuler, dt = 1.0)]
-pub struct GrayScott {
-    /// U.
-    #[field]
-    pub u: Grid,
-    /// V.
-    #[field]
-    pub v: Grid,
-    /// D_u.
-    pub du: f64,
-    /// D_v.
-    pub dv: f64,
-    /// F.
-    pub feed: f64,
-    /// k.
-    pub kill: f64,
-    /// Cell size.
-    pub dx: f64,
-}
-
-#[system]
-impl GrayScott {
-    #[cell]
-    fn reaction(&self, u: Stencil, v: Stencil) -> [f64; 2] {
-        let uvv = u.c * v.c * v.c;
-        let h2 = self.dx * self.dx;
-        [
-            self.du * u.laplacian() / h2 - uvv + self.feed * (1.0 - u.c),
-            self.dv * v.laplacian() / h2 + uvv - (self.feed + self.kill) * v.c,
-        ]
-    }
-}
+// Gray–Scott (`scenes/src/fields.rs`): two fields coupled through u·v², for the two-field
+// Jacobian, Neumann and periodic boundaries, and every integrator.
+pub(crate) use scenes::GrayScott;
 
 /// A small Gray–Scott grid, `boundary` on both fields, with smooth non-uniform fields.
 pub(crate) fn gray_scott(n: usize, boundary: Boundary) -> GrayScott {

@@ -7,103 +7,22 @@ use odyn::nalgebra::{SVector, Vector2, Vector3};
 use odyn::particles::{Factorizations, ParticleJacobian, ParticleState, ParticleSystem, Spring};
 use odyn::prelude::*;
 use odyn::{Error, Jacobian, NewtonOptions, Stepper};
+use scenes::{Hang, Sheet};
 
-/// A cloth: damped springs between particles, gravity and air drag on each.
-#[system(integrator = ImplicitEuler, dt = 1.0 / 60.0)]
-pub(crate) struct Cloth {
-    #[position]
-    x: Vec<Vector3<f64>>,
-    #[velocity]
-    v: Vec<Vector3<f64>>,
-    #[mass]
-    mass: Vec<f64>,
-    #[pinned]
-    pinned: Vec<usize>,
-    springs: Vec<Spring>,
-    gravity: Vector3<f64>,
-    drag: f64,
-}
+pub(crate) use scenes::Cloth;
 
-#[system]
-impl Cloth {
-    /// Hooke's law along the spring plus damping of the relative velocity along it.
-    #[pair(springs)]
-    fn spring(
-        &self,
-        s: &Spring,
-        xa: Vector3<f64>,
-        xb: Vector3<f64>,
-        va: Vector3<f64>,
-        vb: Vector3<f64>,
-    ) -> Vector3<f64> {
-        let d = xb - xa;
-        let length = d.norm();
-        let direction = d / length;
-        direction * (s.stiffness * (length - s.rest) + s.damping * (vb - va).dot(&direction))
-    }
-
-    /// Weight and linear air drag.
-    #[particle]
-    fn weight(&self, i: usize, _x: Vector3<f64>, v: Vector3<f64>) -> Vector3<f64> {
-        self.gravity * self.mass[i] - v * self.drag
-    }
-
-    /// Spring energy ½k(|d| − L)² plus gravitational energy −m g·x.
-    fn potential(&self) -> f64 {
-        let springs: f64 = self
-            .springs
-            .iter()
-            .map(|s| 0.5 * s.stiffness * ((self.x[s.b] - self.x[s.a]).norm() - s.rest).powi(2))
-            .sum();
-        let gravity: f64 = self
-            .x
-            .iter()
-            .zip(&self.mass)
-            .map(|(x, m)| -m * self.gravity.dot(x))
-            .sum();
-        springs + gravity
-    }
-}
-
-/// An n×n cloth of side 1 m in the x–y plane, top row at y = 0, structural, shear and bend
-/// springs of stiffness `k`, the two top corners pinned.
+/// An n×n cloth of side 1 m hanging in the x–y plane, top row at y = 0, 1 kg in all, springs of
+/// stiffness `k` and `damping`, air drag `drag` on each particle (`scenes/src/cloth.rs`).
 pub(crate) fn cloth(n: usize, k: f64, damping: f64, drag: f64) -> Cloth {
-    let spacing = 1.0 / (n - 1) as f64;
-    let id = |i: usize, j: usize| i * n + j;
-    let x: Vec<_> = (0..n * n)
-        .map(|p| Vector3::new((p % n) as f64 * spacing, -((p / n) as f64) * spacing, 0.0))
-        .collect();
-    let mut springs = Vec::new();
-    for i in 0..n {
-        for j in 0..n {
-            let mut link = |a: usize, b: usize| springs.push(Spring::at_rest(&x, a, b, k, damping));
-            if j + 1 < n {
-                link(id(i, j), id(i, j + 1));
-            }
-            if i + 1 < n {
-                link(id(i, j), id(i + 1, j));
-            }
-            if i + 1 < n && j + 1 < n {
-                link(id(i, j), id(i + 1, j + 1));
-                link(id(i, j + 1), id(i + 1, j));
-            }
-            if j + 2 < n {
-                link(id(i, j), id(i, j + 2));
-            }
-            if i + 2 < n {
-                link(id(i, j), id(i + 2, j));
-            }
-        }
-    }
-    Cloth {
-        v: vec![Vector3::zeros(); n * n],
-        mass: vec![1.0 / (n * n) as f64; n * n],
-        pinned: vec![id(0, 0), id(0, n - 1)],
-        springs,
-        gravity: Vector3::new(0.0, -9.81, 0.0),
-        drag,
-        x,
-    }
+    let sheet = Sheet {
+        n,
+        stiffness: k,
+        damping,
+        particle_mass: 1.0 / (n * n) as f64,
+        particle_drag: drag,
+        hang: Hang::Vertical,
+    };
+    sheet.build().0
 }
 
 /// A deterministic pseudo-random number in [-1, 1) (SplitMix64).

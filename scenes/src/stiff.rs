@@ -1,11 +1,8 @@
-//! Five problems of the Bari stiff test set (Mazzia & Magherini, *Test Set for Initial Value
-//! Problem Solvers*, release 2.4, 2008) as `#[system]` models, shared by the `stiff_suite` example
-//! and the peer benches (`peers/benches/stiff.rs`), so both integrate the same equations.
+//! Stiff problems: van der Pol and four problems of the Bari test set (Mazzia & Magherini, *Test
+//! Set for Initial Value Problem Solvers*, release 2.4, 2008), with their references.
 #![allow(
     clippy::excessive_precision,
-    dead_code,
-    reason = "each user of this file solves a different subset of the problems; the references \
-              are quoted with the digits their sources print"
+    reason = "the references are quoted with the digits their sources print"
 )]
 
 use odyn::prelude::*;
@@ -73,8 +70,10 @@ pub const OREGO_REFERENCE: [f64; 3] = [
 /// van der Pol, μ = 1000, at t = 2000: the test set's `vdpolm.f` reference (problem VDPOLM).
 pub const VAN_DER_POL_2000: [f64; 2] = [0.170_616_773_217_046_9e1, -0.892_809_701_024_812_5e-3];
 
-/// A → B (0.04), B + C → A + C (10⁴), 2B → B + C (3·10⁷) (Robertson 1966).
-#[system]
+/// A → B (0.04), B + C → A + C (10⁴), 2B → B + C (3·10⁷) (Robertson 1966), the classic stiff
+/// test problem.
+#[system(integrator = ImplicitEuler)]
+#[derive(Clone, Copy, Debug)]
 pub struct Robertson {
     /// Concentration of A.
     #[state]
@@ -106,6 +105,7 @@ impl Robertson {
 /// (1, 2, 3) to t = 360 it goes round its limit cycle with concentrations over six orders of
 /// magnitude.
 #[system]
+#[derive(Clone, Copy, Debug)]
 pub struct Orego {
     /// The three concentrations.
     #[state]
@@ -129,6 +129,7 @@ impl Orego {
 /// HIRES (Schäfer 1975; Hairer & Wanner, *Solving ODEs II*, §IV.10), as in the test set's
 /// `hires.f`.
 #[system]
+#[derive(Clone, Copy, Debug)]
 pub struct Hires {
     /// The eight concentrations.
     #[state]
@@ -158,6 +159,7 @@ impl Hires {
 /// POLLU, the air-pollution model of Verwer (SIAM J. Sci. Comput. 15, 1994): 20 species, 25
 /// reactions, as in the test set's `pollu.f` (transcribed through `scripts/reference_stiff.py`).
 #[system]
+#[derive(Clone, Copy, Debug)]
 pub struct Pollu {
     /// The twenty concentrations.
     #[state]
@@ -220,16 +222,17 @@ impl Pollu {
     }
 }
 
-/// van der Pol's oscillator, y₁′ = y₂, y₂′ = μ(1 − y₁²)y₂ − y₁.
-#[system]
+/// van der Pol's oscillator, y₁′ = y₂, y₂′ = μ(1 − y₁²)y₂ − y₁ (stiff for large μ).
+#[system(integrator = ImplicitEuler)]
+#[derive(Clone, Copy, Debug)]
 pub struct VanDerPol {
-    /// Position.
+    /// Position-like variable y₁.
     #[state]
-    pub x: f64,
-    /// Velocity.
+    pub y1: f64,
+    /// Its rate y₂.
     #[state]
-    pub v: f64,
-    /// Stiffness μ.
+    pub y2: f64,
+    /// Stiffness parameter μ.
     pub mu: f64,
 }
 
@@ -237,8 +240,8 @@ pub struct VanDerPol {
 impl VanDerPol {
     fn derivative(&self) -> VanDerPolState {
         VanDerPolState {
-            x: self.v,
-            v: self.mu * (1.0 - self.x * self.x) * self.v - self.x,
+            y1: self.y2,
+            y2: self.mu * (1.0 - self.y1 * self.y1) * self.y2 - self.y1,
         }
     }
 }

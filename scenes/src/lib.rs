@@ -1,0 +1,34 @@
+//! The scenes odyn's examples, tests, benches and peer comparisons share, each written once.
+//!
+//! A model here is the one every user of it integrates: the tests check it against its
+//! reference, the benches time it against hand-written arithmetic and the peers, the examples
+//! chart it. Reference values sit beside the model they belong to, with their source.
+//!
+//! - [`oscillators`] — the tutorial's damped [`Spring`], the [`UndampedSpring`].
+//! - [`chaos`] — [`Lorenz`].
+//! - [`orbits`] — [`Kepler`], the [`Arenstorf`] orbit, the [`Pleiades`].
+//! - [`stiff`] — [`VanDerPol`] and four problems of the Bari test set ([`Robertson`], [`Hires`],
+//!   [`Pollu`], [`Orego`]) with their references.
+//! - [`cloth`] — the Baraff–Witkin [`Cloth`] and the [`Sheet`] that builds it.
+//! - [`fields`] — Gray–Scott reaction–diffusion, [`GrayScott`].
+//! - [`analysis`] — the fitted [`slope`] of a convergence study.
+//!
+//! Not published: the scenes serve odyn's own checks. The examples that teach one model
+//! (`spring`, `lorenz`, `van_der_pol`, `robertson`, `pendulum`, `gray_scott`) keep their model in the example,
+//! where a reader looks for it.
+
+pub mod analysis;
+pub mod chaos;
+pub mod cloth;
+pub mod fields;
+pub mod orbits;
+pub mod oscillators;
+pub mod stiff;
+
+pub use analysis::slope;
+pub use chaos::*;
+pub use cloth::{Cloth, Hang, Sheet};
+pub use fields::*;
+pub use orbits::*;
+pub use oscillators::*;
+pub use stiff::*;
