@@ -257,7 +257,7 @@ fn single(cli: &Cli, dir: &std::path::Path) -> odyn::Result<()> {
         sim = sim.dt(dt);
     }
     let run = sim.run()?;
-    let step = match run.dt {
+    let step = match run.stepping.dt() {
         Some(dt) => format!("dt{dt}"),
         None => "adaptive".to_owned(),
     };

@@ -78,9 +78,9 @@ fn study<M: Model>(
     );
     for m in &set.measurements {
         let setting = m
-            .setting
+            .stepping
             .dt()
-            .or(m.setting.rtol())
+            .or(m.stepping.rtol())
             .map_or(String::new(), |v| format!("{v:.0e}"));
         println!(
             "  {:<13} {:>9} {:>9.1e} {:>7} {:>9} {:>9} {:>8} {:>8.3} ms",

@@ -21,9 +21,7 @@ use std::process::ExitCode;
 use odyn::output::{number, write_table};
 use odyn::prelude::*;
 use odyn::reference::{DampedOscillator, KeplerOrbit};
-use odyn::work_precision::{
-    Accuracy, Cost, Reference, Setting, WorkPrecision, WorkPrecisionSet, measure,
-};
+use odyn::work_precision::{Accuracy, Cost, Reference, WorkPrecision, WorkPrecisionSet, measure};
 // The six scenes, each written once for the examples, tests and benches (`scenes/src/`).
 use scenes::{
     Arenstorf, Kepler, KeplerState, Lorenz, Pleiades, Robertson, RobertsonState, Spring,
@@ -279,9 +277,9 @@ fn report(set: &WorkPrecisionSet, dir: &Path, accuracy: Accuracy) -> odyn::Resul
         } else {
             format!("{:.2e}", m.error)
         };
-        let setting = match &m.setting {
-            Setting::Dt(dt) => format!("dt {dt:.3e}"),
-            Setting::Tolerances(t) => format!("rtol {:.0e}", t.rtol),
+        let setting = match &m.stepping {
+            Stepping::Fixed(dt) => format!("dt {dt:.3e}"),
+            Stepping::Adaptive(t) => format!("rtol {:.0e}", t.rtol),
         };
         println!(
             "  {:<17} {setting:>13} {:>9} {error:>11} {energy:>11} {:>11.3e} {:>11}",

@@ -89,7 +89,7 @@ pub mod prelude {
     pub use crate::particles::ParticleSystem;
     pub use crate::{
         Direction, Error, Event, Jacobian, Method, Model, Result, SecondOrder, Simulation, State,
-        Tolerances, Trajectory, system,
+        Stepping, Tolerances, Trajectory, system,
     };
 }
 

@@ -4,7 +4,8 @@ use crate::checks::{check_dt, divergence_limit};
 use crate::drive::{Driver, Progress, Recording, StepControl};
 use crate::integrators::Integrator;
 use crate::{
-    Error, Event, Method, Model, NewtonOptions, Result, SecondOrder, State, Tolerances, Trajectory,
+    Error, Event, Method, Model, NewtonOptions, Result, SecondOrder, State, Stepping, Tolerances,
+    Trajectory,
 };
 
 /// The run's dispatch from the one table of methods: each [`Method`] drives its integrator
@@ -45,15 +46,6 @@ pub enum Length {
     /// ⌈duration/dt⌉ steps (a ratio within 1e-9 of a whole number counts as that number), so it
     /// ends at or just past it.
     Duration(f64),
-}
-
-/// How the steps are sized.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Stepping {
-    /// Every step is dt (the methods with an error estimate run this way too, for order tests).
-    Fixed(f64),
-    /// Each step as large as the tolerances allow (methods with an error estimate only).
-    Adaptive(Tolerances),
 }
 
 /// Everything a run needs besides the model, its initial state and its events.
@@ -543,13 +535,9 @@ impl<M: Model> Plan<'_, '_, M> {
         let trajectory = Trajectory {
             model: N::NAME,
             method: I::METHOD,
-            dt: match self.span {
-                Span::Fixed { dt, .. } => Some(dt),
-                Span::Adaptive { .. } => None,
-            },
-            tolerances: match self.span {
-                Span::Fixed { .. } => None,
-                Span::Adaptive { tolerances, .. } => Some(tolerances),
+            stepping: match self.span {
+                Span::Fixed { dt, .. } => Stepping::Fixed(dt),
+                Span::Adaptive { tolerances, .. } => Stepping::Adaptive(tolerances),
             },
             stats,
             samples: record.samples,

@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use crate::drive::{DenseOutput, EventRecord};
-use crate::{Error, Method, Result, State, Stats, Tolerances, output};
+use crate::{Error, Method, Result, State, Stats, Stepping, output};
 
 /// One recorded state.
 #[derive(Clone, Debug, PartialEq)]
@@ -28,10 +28,8 @@ pub struct Trajectory<S> {
     pub model: &'static str,
     /// The method that produced it.
     pub method: Method,
-    /// The fixed step, for a fixed-step run.
-    pub dt: Option<f64>,
-    /// The tolerances, for an adaptive run.
-    pub tolerances: Option<Tolerances>,
+    /// A fixed dt or the tolerances: how the run sized its steps.
+    pub stepping: Stepping,
     /// What the run cost.
     pub stats: Stats,
     /// Recorded samples in time order; never empty as odyn returns them (the initial state is

@@ -1,6 +1,6 @@
 //! Work-precision: how much accuracy each method buys for how much work, on one model.
 //!
-//! For every method, [`measure`] runs the model over a horizon once per setting — each step
+//! For every method, [`measure`] runs the model over a horizon once per stepping — each step
 //! `dt` of [`WorkPrecision::dts`] for fixed-step methods, each tolerance of
 //! [`WorkPrecision::tolerances`] for adaptive ones — and records the final-state error against a
 //! reference, the largest energy error along the way, the wall time (the minimum of several
@@ -13,7 +13,9 @@ use std::path::Path;
 use std::time::Instant;
 
 use crate::output::{number, write_table};
-use crate::{Error, Method, Model, NewtonOptions, Result, State, Stats, Tolerances, Trajectory};
+use crate::{
+    Error, Method, Model, NewtonOptions, Result, State, Stats, Stepping, Tolerances, Trajectory,
+};
 
 /// What a run's final state is compared with.
 pub enum Reference<S> {
@@ -33,7 +35,7 @@ pub enum Reference<S> {
     },
 }
 
-/// A work-precision study: one model, one horizon, several methods and settings.
+/// A work-precision study: one model, one horizon, several methods and steppings.
 pub struct WorkPrecision<S> {
     /// Name of the scene, the first CSV column.
     pub scene: String,
@@ -98,40 +100,13 @@ impl<S: State> WorkPrecision<S> {
     }
 }
 
-/// How one run of a study was stepped.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Setting {
-    /// A fixed step.
-    Dt(f64),
-    /// Tolerances.
-    Tolerances(Tolerances),
-}
-
-impl Setting {
-    /// The fixed step, if it was one.
-    pub fn dt(&self) -> Option<f64> {
-        match self {
-            Setting::Dt(dt) => Some(*dt),
-            Setting::Tolerances(_) => None,
-        }
-    }
-
-    /// The relative tolerance, if it was adaptive.
-    pub fn rtol(&self) -> Option<f64> {
-        match self {
-            Setting::Dt(_) => None,
-            Setting::Tolerances(t) => Some(t.rtol),
-        }
-    }
-}
-
 /// One run of a study.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Measurement {
     /// The method.
     pub method: Method,
     /// Its step or tolerances.
-    pub setting: Setting,
+    pub stepping: Stepping,
     /// Max-norm of the final state's error; infinite when the run failed.
     pub error: f64,
     /// Largest |E(t) − E_ref(t)| / |E_ref(0)| over the recorded samples, where E_ref is the exact
@@ -163,7 +138,7 @@ pub struct WorkPrecisionSet {
     /// The estimated error of the reference itself: 0 for an exact one, NaN when unknown (a
     /// given final state), the max-norm difference between the dt and dt/2 runs for a computed one.
     pub reference_error: f64,
-    /// One entry per method and setting, in the order of the study.
+    /// One entry per method and stepping, in the order of the study.
     pub measurements: Vec<Measurement>,
 }
 
@@ -199,22 +174,22 @@ pub fn measure<M: Model>(model: &M, study: &WorkPrecision<M::State>) -> Result<W
     }
     let mut measurements = Vec::new();
     for &method in &study.methods {
-        let settings: Vec<Setting> = if method.is_adaptive() {
+        let steppings: Vec<Stepping> = if method.is_adaptive() {
             study
                 .tolerances
                 .iter()
                 .cloned()
-                .map(Setting::Tolerances)
+                .map(Stepping::Adaptive)
                 .collect()
         } else {
-            study.dts.iter().copied().map(Setting::Dt).collect()
+            study.dts.iter().copied().map(Stepping::Fixed).collect()
         };
-        for setting in settings {
+        for stepping in steppings {
             measurements.push(measure_one(
                 model,
                 study,
                 method,
-                setting,
+                stepping,
                 reference.as_deref(),
             )?);
         }
@@ -319,7 +294,7 @@ fn simulation<'m, M: Model>(
     model: &'m M,
     study: &WorkPrecision<M::State>,
     method: Method,
-    setting: &Setting,
+    stepping: &Stepping,
 ) -> crate::Simulation<'m, M> {
     let sim = model
         .simulate()
@@ -328,9 +303,9 @@ fn simulation<'m, M: Model>(
         .duration(study.horizon)
         .newton(study.newton)
         .dense_output(false);
-    match setting {
-        Setting::Dt(dt) => sim.dt(*dt),
-        Setting::Tolerances(t) => sim.with_tolerances(t.clone()),
+    match stepping {
+        Stepping::Fixed(dt) => sim.dt(*dt),
+        Stepping::Adaptive(t) => sim.with_tolerances(t.clone()),
     }
 }
 
@@ -346,7 +321,7 @@ fn reference_final<M: Model>(
         Reference::Computed { method, dt } => {
             let run = |dt| -> Result<Vec<f64>> {
                 let sim =
-                    simulation(model, study, *method, &Setting::Dt(dt)).record_every(u64::MAX);
+                    simulation(model, study, *method, &Stepping::Fixed(dt)).record_every(u64::MAX);
                 Ok(sim.run()?.last().state.as_slice().to_vec())
             };
             let (coarse, fine) = (run(*dt)?, run(0.5 * dt)?);
@@ -359,16 +334,16 @@ fn measure_one<M: Model>(
     model: &M,
     study: &WorkPrecision<M::State>,
     method: Method,
-    setting: Setting,
+    stepping: Stepping,
     reference: Option<&[f64]>,
 ) -> Result<Measurement> {
-    let every = match setting {
-        Setting::Dt(dt) => {
+    let every = match stepping {
+        Stepping::Fixed(dt) => {
             ((study.horizon / dt).ceil().max(1.0) as u64).div_ceil(study.samples.max(1))
         }
-        Setting::Tolerances(_) => 1,
+        Stepping::Adaptive(_) => 1,
     };
-    let (recorded, failure) = simulation(model, study, method, &setting)
+    let (recorded, failure) = simulation(model, study, method, &stepping)
         .record_every(every)
         .run_partial()?;
     let diverged = match failure {
@@ -383,7 +358,7 @@ fn measure_one<M: Model>(
     };
     let mut measurement = Measurement {
         method,
-        setting,
+        stepping,
         error: f64::INFINITY,
         energy_error: None,
         seconds: f64::NAN,
@@ -404,7 +379,7 @@ fn measure_one<M: Model>(
         (_, None) => f64::NAN,
     };
     measurement.energy_error = energy_error(model, study, &recorded)?;
-    let timed = simulation(model, study, method, &measurement.setting).record_every(u64::MAX);
+    let timed = simulation(model, study, method, &measurement.stepping).record_every(u64::MAX);
     for _ in 0..study.repeats.max(1) {
         let clock = Instant::now();
         let run = timed.run()?;
@@ -492,7 +467,7 @@ impl WorkPrecisionSet {
         let points: Vec<(f64, f64)> = self
             .of(method)
             .filter(|m| m.error.is_finite() && m.error > 0.0)
-            .filter_map(|m| Some((m.setting.dt()?.ln(), m.error.ln())))
+            .filter_map(|m| Some((m.stepping.dt()?.ln(), m.error.ln())))
             .collect();
         slope(&points)
     }
@@ -504,7 +479,7 @@ impl WorkPrecisionSet {
         let points: Vec<(f64, f64)> = self
             .of(method)
             .filter(|m| m.error.is_finite() && m.error > 0.0)
-            .filter_map(|m| Some((m.setting.rtol()?.ln(), m.error.ln())))
+            .filter_map(|m| Some((m.stepping.rtol()?.ln(), m.error.ln())))
             .collect();
         slope(&points)
     }
@@ -517,9 +492,9 @@ impl WorkPrecisionSet {
             .measurements
             .iter()
             .map(|m| {
-                let (dt, rtol, atol) = match &m.setting {
-                    Setting::Dt(dt) => (number(*dt), String::new(), String::new()),
-                    Setting::Tolerances(t) => (
+                let (dt, rtol, atol) = match &m.stepping {
+                    Stepping::Fixed(dt) => (number(*dt), String::new(), String::new()),
+                    Stepping::Adaptive(t) => (
                         String::new(),
                         number(t.rtol),
                         match &t.atol {
@@ -590,16 +565,16 @@ impl WorkPrecisionSet {
                                 (n as f64, format!("{n} evaluations"))
                             }
                         };
-                        let setting = match &m.setting {
-                            Setting::Dt(dt) => format!("dt = {dt:e}"),
-                            Setting::Tolerances(t) => match &t.atol {
+                        let stepping = match &m.stepping {
+                            Stepping::Fixed(dt) => format!("dt = {dt:e}"),
+                            Stepping::Adaptive(t) => match &t.atol {
                                 crate::Atol::Scalar(atol) => {
                                     format!("rtol = {:e}, atol = {atol:e}", t.rtol)
                                 }
                                 crate::Atol::PerComponent(_) => format!("rtol = {:e}", t.rtol),
                             },
                         };
-                        let note = format!("{setting}: error {error:.2e}, {spent}");
+                        let note = format!("{stepping}: error {error:.2e}, {spent}");
                         Some(((error, work), note))
                     })
                     .unzip();

@@ -7,7 +7,7 @@ use crate::common;
 use common::{Kepler, KeplerState, Robertson, Spring, SpringState, slope};
 use odyn::prelude::*;
 use odyn::reference::{DampedOscillator, KeplerOrbit};
-use odyn::{Error, StepControl};
+use odyn::{Error, StepControl, Stepping};
 
 fn damped() -> (Spring, DampedOscillator) {
     let spring = Spring {
@@ -141,7 +141,7 @@ fn adaptive_runs_meet_the_tolerance_and_end_on_time() {
             .run()
             .unwrap();
         assert_eq!(run.last().t, 10.0, "{method}");
-        assert_eq!(run.dt, None);
+        assert_eq!(run.stepping.dt(), None);
         let stats = run.stats;
         assert!(stats.steps > 10 && stats.steps < 2000, "{method}: {stats}");
         assert_eq!(run.samples.len() as u64, stats.steps + 1, "{method}");
@@ -479,8 +479,7 @@ fn adaptive_methods_step_to_tolerances_unless_given_a_dt() {
         .duration(1.0)
         .run()
         .unwrap();
-    assert_eq!(adaptive.dt, None);
-    assert_eq!(adaptive.tolerances, Some(Tolerances::default()));
+    assert_eq!(adaptive.stepping, Stepping::Adaptive(Tolerances::default()));
     let fixed = spring
         .simulate()
         .dt(0.1)
@@ -488,7 +487,10 @@ fn adaptive_methods_step_to_tolerances_unless_given_a_dt() {
         .duration(1.0)
         .run()
         .unwrap();
-    assert_eq!((fixed.dt, fixed.steps()), (Some(0.1), 10));
+    assert_eq!(
+        (&fixed.stepping, fixed.steps()),
+        (&Stepping::Fixed(0.1), 10)
+    );
 }
 
 /// Every action of an event: a stop's record has equal before and after states.

@@ -27,7 +27,7 @@ fn invalid_field(result: Result<impl std::fmt::Debug>) -> String {
 fn attribute_sets_the_defaults_and_the_runtime_overrides_them() {
     let run = spring().simulate().duration(10.0).run().unwrap();
     assert_eq!(
-        (run.method, run.dt, run.steps()),
+        (run.method, run.stepping.dt(), run.steps()),
         (Method::SymplecticEuler, Some(0.016), 625)
     );
     assert_eq!(run.samples.len(), 626);
@@ -39,7 +39,12 @@ fn attribute_sets_the_defaults_and_the_runtime_overrides_them() {
         .run()
         .unwrap();
     assert_eq!(
-        (rk4.method, rk4.dt, rk4.steps(), rk4.stats.evaluations),
+        (
+            rk4.method,
+            rk4.stepping.dt(),
+            rk4.steps(),
+            rk4.stats.evaluations
+        ),
         (Method::Rk4, Some(0.05), 400, 1600)
     );
     assert!((rk4.last().t - 20.0).abs() < 1e-12);

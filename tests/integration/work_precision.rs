@@ -68,7 +68,7 @@ fn slopes_are_the_theoretical_orders() {
             m.seconds > 0.0 && m.evaluations() > 0 && !m.diverged,
             "{m:?}"
         );
-        let dt = m.setting.dt().unwrap();
+        let dt = m.stepping.dt().unwrap();
         assert_eq!(m.stats.steps, (2.0 / dt).round() as u64);
     }
 }
@@ -247,7 +247,7 @@ fn adaptive_methods_sweep_tolerances_and_their_error_follows_them() {
         assert!((0.7..=1.3).contains(&slope), "{method}: {slope}");
         assert_eq!(set.observed_order(method), None);
         for m in set.of(method) {
-            let rtol = m.setting.rtol().unwrap();
+            let rtol = m.stepping.rtol().unwrap();
             // The global error stays within two orders of magnitude of the tolerance asked.
             assert!(m.error < 100.0 * rtol && !m.diverged, "{m:?}");
         }
