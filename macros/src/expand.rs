@@ -11,6 +11,7 @@ use syn::parse::{Parse, ParseStream};
 use syn::{Item, ItemImpl, ItemStruct, Type};
 
 use crate::errors::{Errors, with_error};
+use crate::syntax::METHOD_ATTRIBUTES;
 use crate::{args, generate, kinds};
 
 /// `#[system(...)]` on an item.
@@ -113,11 +114,8 @@ impl Parse for Rejected {
 fn never_run(mut imp: ItemImpl) -> ItemImpl {
     for member in &mut imp.items {
         if let syn::ImplItem::Fn(f) = member {
-            f.attrs.retain(|a| {
-                !["cell", "pair", "particle"]
-                    .iter()
-                    .any(|name| a.path().is_ident(name))
-            });
+            f.attrs
+                .retain(|a| !METHOD_ATTRIBUTES.iter().any(|name| a.path().is_ident(name)));
             // The bodies read fields the rejected struct may not have as declared (its state
             // type is a stub): never run, they would only add follow-on errors.
             f.attrs

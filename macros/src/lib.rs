@@ -22,6 +22,8 @@
 //! - `derivative`, `sparsity`: exact derivatives and structural patterns of the graph (pure: no
 //!   syn, no quote);
 //! - `generate`: the forwarding macro, stub impls, defaults, and the graph as straight-line code;
+//! - `syntax`: the names odyn gives meaning to, and the type and attribute questions every
+//!   stage asks;
 //! - `errors`, `limits`: every problem reported at its own token; inputs too deep to expand.
 //!
 //! Model kinds, under `kinds/` (see its module docs for adding one): `fixed` (fixed-size
@@ -44,6 +46,7 @@ mod lower;
 mod model;
 mod rewrite;
 mod sparsity;
+mod syntax;
 
 use proc_macro::TokenStream;
 

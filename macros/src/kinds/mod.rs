@@ -29,6 +29,7 @@ use syn::{Attribute, ItemImpl, ItemStruct};
 use crate::args::{self, Args};
 use crate::errors::Errors;
 use crate::generate;
+use crate::syntax::{FIELD_ATTRIBUTES, RUST_ATTRIBUTES, strip_field_attributes};
 
 /// The kind of a model struct.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -68,7 +69,7 @@ pub(crate) fn expand_struct(args_tokens: TokenStream, item: &ItemStruct) -> Toke
              Jacobian for one concrete struct; write array lengths as integer literals \
              (`[f64; 3]`) and parameters as `f64` fields",
         );
-        (strip_field_attributes(item, &FIELD_ATTRIBUTES), None)
+        (strip_field_attributes(item), None)
     } else {
         match Kind::of(item) {
             Kind::Fixed => fixed::expand_struct(item, &args, &mut errors),
@@ -90,17 +91,6 @@ pub(crate) fn expand_struct(args_tokens: TokenStream, item: &ItemStruct) -> Toke
     }
 }
 
-/// The struct as the user wrote it, minus the field attributes `names` (odyn's, not rustc's).
-pub(crate) fn strip_field_attributes(item: &ItemStruct, names: &[&str]) -> ItemStruct {
-    let mut item = item.clone();
-    for field in &mut item.fields {
-        field
-            .attrs
-            .retain(|a| !names.iter().any(|name| a.path().is_ident(name)));
-    }
-    item
-}
-
 /// Whether the struct has generic parameters or a `where` clause.
 fn is_generic(item: &ItemStruct) -> bool {
     !item.generics.params.is_empty() || item.generics.where_clause.is_some()
@@ -120,34 +110,6 @@ pub(crate) fn expand_impl(args: &Args, item: &ItemStruct, imp: &ItemImpl) -> Tok
     let error = errors.finish().err().map(|e| e.to_compile_error());
     quote!(#expanded #error)
 }
-
-/// odyn's attributes on a model's fields, kind by kind: fixed-size, grid, particles.
-const FIELD_ATTRIBUTES: [&str; 6] = ["state", "position", "velocity", "field", "mass", "pinned"];
-
-/// Rust's own attributes that may go on a struct, its fields, or a method.
-const RUST_ATTRIBUTES: [&str; 21] = [
-    "doc",
-    "cfg",
-    "cfg_attr",
-    "allow",
-    "expect",
-    "warn",
-    "deny",
-    "forbid",
-    "deprecated",
-    "repr",
-    "must_use",
-    "non_exhaustive",
-    "automatically_derived",
-    "inline",
-    "cold",
-    "track_caller",
-    "target_feature",
-    "no_mangle",
-    "export_name",
-    "link_section",
-    "rustfmt",
-];
 
 /// Reports each field attribute that is neither odyn's nor Rust's: a near miss of one of odyn's
 /// (`#[feild]`), or any other when nothing on the struct (a derive, an attribute macro) could

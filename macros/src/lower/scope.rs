@@ -6,6 +6,7 @@ use syn::visit::{self, Visit};
 use syn::{Expr, Ident, Member, Pat};
 
 use super::{Lowering, MAX_DEPTH, Value};
+use crate::syntax::is_self;
 
 /// A local in scope.
 #[derive(Clone, Debug, PartialEq)]
@@ -309,10 +310,6 @@ pub(super) fn returns(stmts: &[syn::Stmt]) -> bool {
         finder.visit_stmt(stmt);
     }
     finder.0
-}
-
-pub(super) fn is_self(e: &Expr) -> bool {
-    matches!(e, Expr::Path(p) if p.qself.is_none() && p.path.is_ident("self"))
 }
 
 pub(super) fn path_name(e: &Expr) -> Option<String> {

@@ -6,8 +6,9 @@ use proc_macro2::TokenStream;
 use syn::{Block, FnArg, Ident, ImplItem, ImplItemFn, ItemImpl, ReturnType, Type};
 
 use crate::errors::Errors;
-use crate::model::{Model, Order, Role, is_f64};
+use crate::model::{Model, Order, Role};
 use crate::rewrite::rewrite;
+use crate::syntax::is_f64;
 
 /// The functions the macro reads; everything else in the impl block passes through untouched.
 pub(crate) struct Functions {

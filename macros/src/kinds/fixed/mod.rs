@@ -45,7 +45,7 @@ pub(crate) fn expand_struct(
         );
     }
     (
-        fields::strip_roles(item),
+        crate::syntax::strip_field_attributes(item),
         model.map(|m| generate::state(&m)),
     )
 }

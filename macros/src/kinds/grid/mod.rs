@@ -17,6 +17,9 @@ use crate::args::Args;
 use crate::errors::{Errors, with_error};
 use crate::lower;
 use crate::model::{Model, Order, Role, Shape, StateField};
+use crate::syntax::{
+    attribute, has_attribute, int_literal, is_f64, names_type, no_arguments, strip_field_attributes,
+};
 
 /// The names of a stencil's neighbours, in the runtime's order (`odyn::grid::NEIGHBOURS`).
 pub(crate) const NEIGHBOURS: [&str; 9] = ["c", "e", "w", "n", "s", "ne", "nw", "se", "sw"];
@@ -65,14 +68,7 @@ impl Fields<'_> {
 
 /// Whether `item` is a field model: it has a `#[field]` field.
 pub(crate) fn is_grid_model(item: &ItemStruct) -> bool {
-    item.fields
-        .iter()
-        .any(|f| f.attrs.iter().any(|a| a.path().is_ident("field")))
-}
-
-fn last_segment_is(ty: &Type, name: &str) -> bool {
-    matches!(ty, Type::Path(p) if p.qself.is_none()
-        && p.path.segments.last().is_some_and(|s| s.ident == name && s.arguments.is_none()))
+    item.fields.iter().any(|f| has_attribute(&f.attrs, "field"))
 }
 
 /// Reads a field model's struct, reporting every problem to `errors`.
@@ -94,20 +90,19 @@ pub(crate) fn parse_struct<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Opt
                 );
             }
         }
-        let Some(attr) = field.attrs.iter().find(|a| a.path().is_ident("field")) else {
-            if last_segment_is(&field.ty, "Grid") {
+        let Some(attr) = attribute(&field.attrs, &["field"]) else {
+            if names_type(&field.ty, "Grid") {
                 coefficients.push(ident);
             }
             continue;
         };
-        if let Err(e) = attr.meta.require_path_only() {
-            errors.push(syn::Error::new(
-                e.span(),
-                "`#[field]` takes no arguments; the boundary is part of the grid: \
-                 `Grid::new(nx, ny, Boundary::Periodic, values)`",
-            ));
-        }
-        if !last_segment_is(&field.ty, "Grid") {
+        no_arguments(
+            attr,
+            "`#[field]` takes no arguments; the boundary is part of the grid: \
+             `Grid::new(nx, ny, Boundary::Periodic, values)`",
+            errors,
+        );
+        if !names_type(&field.ty, "Grid") {
             errors.at(
                 &field.ty,
                 "a `#[field]` must be an `odyn::grid::Grid` (values on an nx × ny grid with a \
@@ -121,11 +116,6 @@ pub(crate) fn parse_struct<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Opt
         fields,
         coefficients,
     })
-}
-
-/// The struct as the user wrote it, minus `#[field]`.
-pub(crate) fn strip(item: &ItemStruct) -> ItemStruct {
-    super::strip_field_attributes(item, &["field"])
 }
 
 /// The state type of a field model: an alias of the runtime's.
@@ -149,7 +139,7 @@ pub(crate) fn expand_struct(
     errors: &mut Errors,
 ) -> (ItemStruct, Option<TokenStream>) {
     let fields = parse_struct(item, errors);
-    (strip(item), fields.map(|f| state(&f)))
+    (strip_field_attributes(item), fields.map(|f| state(&f)))
 }
 
 /// The `#[cell]` kernel.
@@ -190,10 +180,6 @@ impl Argument {
     }
 }
 
-fn is_cell(f: &ImplItemFn) -> bool {
-    f.attrs.iter().any(|a| a.path().is_ident("cell"))
-}
-
 /// Finds and checks the one `#[cell]` method.
 fn parse_cell(imp: &ItemImpl, fields: &Fields<'_>, errors: &mut Errors) -> Option<Cell> {
     let model = &fields.item.ident;
@@ -201,7 +187,7 @@ fn parse_cell(imp: &ItemImpl, fields: &Fields<'_>, errors: &mut Errors) -> Optio
     for member in &imp.items {
         let ImplItem::Fn(f) = member else { continue };
         let name = &f.sig.ident;
-        if is_cell(f) {
+        if has_attribute(&f.attrs, "cell") {
             if found.is_some() {
                 errors.at(
                     name,
@@ -233,10 +219,8 @@ fn parse_cell(imp: &ItemImpl, fields: &Fields<'_>, errors: &mut Errors) -> Optio
         return None;
     };
     let before = errors.len();
-    if let Some(attr) = f.attrs.iter().find(|a| a.path().is_ident("cell"))
-        && let Err(e) = attr.meta.require_path_only()
-    {
-        errors.push(syn::Error::new(e.span(), "`#[cell]` takes no arguments"));
+    if let Some(attr) = attribute(&f.attrs, &["cell"]) {
+        no_arguments(attr, "`#[cell]` takes no arguments", errors);
     }
     let name = &f.sig.ident;
     if !f.sig.generics.params.is_empty() {
@@ -256,7 +240,7 @@ fn parse_cell(imp: &ItemImpl, fields: &Fields<'_>, errors: &mut Errors) -> Optio
             errors.at(&t.pat, "a stencil argument is a plain name, the field's");
             continue;
         };
-        if last_segment_is(&t.ty, "f64") {
+        if is_f64(&t.ty) {
             match Argument::place(&p.ident.to_string()) {
                 Some(place) if arguments.contains(&place) => {
                     errors.at(&p.ident, format_args!("`{}` is taken twice", p.ident))
@@ -278,7 +262,7 @@ fn parse_cell(imp: &ItemImpl, fields: &Fields<'_>, errors: &mut Errors) -> Optio
             }
             continue;
         }
-        if !last_segment_is(&t.ty, "Stencil") {
+        if !names_type(&t.ty, "Stencil") {
             errors.at(
                 &t.ty,
                 format_args!(
@@ -336,7 +320,7 @@ fn parse_cell(imp: &ItemImpl, fields: &Fields<'_>, errors: &mut Errors) -> Optio
     }
     let count = fields.fields.len();
     let scalar = match &f.sig.output {
-        ReturnType::Type(_, ty) if count == 1 && last_segment_is(ty, "f64") => true,
+        ReturnType::Type(_, ty) if count == 1 && is_f64(ty) => true,
         ReturnType::Type(_, ty) if is_array_of(ty, count) => false,
         _ => {
             let wanted = if count == 1 {
@@ -367,7 +351,7 @@ fn parse_cell(imp: &ItemImpl, fields: &Fields<'_>, errors: &mut Errors) -> Optio
 /// `ty` is `[f64; n]`.
 fn is_array_of(ty: &Type, n: usize) -> bool {
     matches!(ty, Type::Array(a)
-        if last_segment_is(&a.elem, "f64") && crate::model::int_literal(&a.len) == Some(n))
+        if is_f64(&a.elem) && int_literal(&a.len) == Some(n))
 }
 
 /// The impl block of a field model: the cell kernel → blocks → runtime trait impls.

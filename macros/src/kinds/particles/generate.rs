@@ -4,7 +4,7 @@
 
 use proc_macro2::{Span, TokenStream};
 use quote::{ToTokens, format_ident, quote};
-use syn::{FnArg, ImplItem, ItemImpl};
+use syn::{FnArg, ItemImpl};
 
 use super::Particles;
 use super::kernels::{Functions, Kernel, Over};
@@ -190,7 +190,7 @@ pub(super) fn generate(
             },
         ),
     };
-    let imp = strip_kernel_attributes(imp);
+    let imp = crate::syntax::strip_method_attributes(imp);
     quote! {
         #imp
         #[automatically_derived]
@@ -322,16 +322,4 @@ fn kernel_jacobian(
         }
     };
     (function, call)
-}
-
-/// The impl block with `#[pair]`/`#[particle]` removed from its kernels (they are odyn's).
-pub(super) fn strip_kernel_attributes(imp: &ItemImpl) -> ItemImpl {
-    let mut imp = imp.clone();
-    for member in &mut imp.items {
-        if let ImplItem::Fn(f) = member {
-            f.attrs
-                .retain(|a| !(a.path().is_ident("pair") || a.path().is_ident("particle")));
-        }
-    }
-    imp
 }

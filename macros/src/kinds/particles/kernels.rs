@@ -4,9 +4,10 @@
 use quote::ToTokens;
 use syn::{Attribute, FnArg, Ident, ImplItem, ImplItemFn, ItemImpl, Pat, ReturnType, Type};
 
-use super::{Particles, attribute, is_plain, vec_element};
+use super::Particles;
 use crate::errors::Errors;
 use crate::model::{Shape, shape_of};
+use crate::syntax::{attribute, is_plain, no_arguments, vec_element};
 
 /// Which elements a kernel runs over.
 pub(super) enum Over {
@@ -165,12 +166,7 @@ fn parse_kernel(
             }
         }
     } else {
-        if let Err(e) = attr.meta.require_path_only() {
-            errors.push(syn::Error::new(
-                e.span(),
-                "`#[particle]` takes no arguments",
-            ));
-        }
+        no_arguments(attr, "`#[particle]` takes no arguments", errors);
         Over::Particles
     };
     if !f.sig.generics.params.is_empty() {

@@ -12,12 +12,15 @@ mod kernels;
 
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
-use syn::{Attribute, GenericArgument, Ident, ItemImpl, ItemStruct, PathArguments, Type};
+use syn::{Ident, ItemImpl, ItemStruct};
 
 use crate::args::Args;
 use crate::errors::Errors;
 use crate::lower;
 use crate::model::{Model, Order, Role, Shape, StateField, shape_of};
+use crate::syntax::{
+    attribute, has_attribute, is_plain, no_arguments, strip_field_attributes, vec_element,
+};
 
 /// The attributes that mark a particle model's fields.
 const FIELD_ATTRIBUTES: [&str; 4] = ["position", "velocity", "mass", "pinned"];
@@ -74,39 +77,11 @@ impl Particles<'_> {
 /// field.
 pub(crate) fn is_particle_model(item: &ItemStruct) -> bool {
     item.fields.iter().any(|f| {
-        f.attrs.iter().any(|a| {
-            a.path().is_ident("mass")
-                || a.path().is_ident("pinned")
-                || ((a.path().is_ident("position") || a.path().is_ident("velocity"))
-                    && vec_element(&f.ty).is_some())
-        })
+        has_attribute(&f.attrs, "mass")
+            || has_attribute(&f.attrs, "pinned")
+            || (attribute(&f.attrs, &["position", "velocity"]).is_some()
+                && vec_element(&f.ty).is_some())
     })
-}
-
-/// `T` of `Vec<T>`.
-fn vec_element(ty: &Type) -> Option<&Type> {
-    let Type::Path(p) = ty else { return None };
-    let last = p.path.segments.last()?;
-    if last.ident != "Vec" {
-        return None;
-    }
-    let PathArguments::AngleBracketed(args) = &last.arguments else {
-        return None;
-    };
-    match args.args.iter().collect::<Vec<_>>().as_slice() {
-        [GenericArgument::Type(t)] => Some(t),
-        _ => None,
-    }
-}
-
-fn is_plain(ty: &Type, name: &str) -> bool {
-    matches!(ty, Type::Path(p) if p.qself.is_none() && p.path.is_ident(name))
-}
-
-fn attribute<'a>(attrs: &'a [Attribute], names: &[&str]) -> Option<&'a Attribute> {
-    attrs
-        .iter()
-        .find(|a| names.iter().any(|n| a.path().is_ident(n)))
 }
 
 /// Reads a particle model's struct, reporting every problem to `errors`.
@@ -132,12 +107,7 @@ pub(crate) fn parse_struct<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Opt
         let Some(attr) = attribute(&field.attrs, &FIELD_ATTRIBUTES) else {
             continue;
         };
-        if let Err(e) = attr.meta.require_path_only() {
-            errors.push(syn::Error::new(
-                e.span(),
-                "this attribute takes no arguments",
-            ));
-        }
+        no_arguments(attr, "this attribute takes no arguments", errors);
         let name = attr
             .path()
             .get_ident()
@@ -226,11 +196,6 @@ pub(crate) fn parse_struct<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Opt
     })
 }
 
-/// The struct as the user wrote it, minus odyn's field attributes.
-pub(crate) fn strip(item: &ItemStruct) -> ItemStruct {
-    super::strip_field_attributes(item, &FIELD_ATTRIBUTES)
-}
-
 /// The state type of a particle model: an alias of the runtime's.
 pub(crate) fn state(particles: &Particles<'_>) -> TokenStream {
     let vis = &particles.item.vis;
@@ -252,7 +217,7 @@ pub(crate) fn expand_impl(args: &Args, item: &ItemStruct, imp: &ItemImpl) -> Tok
     let mut errors = Errors::default();
     let Some(particles) = parse_struct(item, &mut errors) else {
         return crate::errors::with_error(
-            generate::strip_kernel_attributes(imp),
+            crate::syntax::strip_method_attributes(imp),
             errors.finish().expect_err("a rejected model has errors"),
         );
     };
@@ -297,7 +262,8 @@ pub(crate) fn expand_impl(args: &Args, item: &ItemStruct, imp: &ItemImpl) -> Tok
     }
     if let Err(error) = errors.finish() {
         // The kernel attributes are odyn's: left in, rustc would add "cannot find attribute".
-        let rejected = crate::errors::with_error(generate::strip_kernel_attributes(imp), error);
+        let rejected =
+            crate::errors::with_error(crate::syntax::strip_method_attributes(imp), error);
         let stub = crate::generate::stub_model(&item.ident, &particles.state_ident());
         return quote!(#rejected #stub);
     }
@@ -311,5 +277,5 @@ pub(crate) fn expand_struct(
     errors: &mut Errors,
 ) -> (ItemStruct, Option<TokenStream>) {
     let particles = parse_struct(item, errors);
-    (strip(item), particles.map(|p| state(&p)))
+    (strip_field_attributes(item), particles.map(|p| state(&p)))
 }
