@@ -117,19 +117,6 @@ pub(crate) fn parse(tokens: TokenStream, errors: &mut Errors) -> Args {
     if let Err(error) = parser.parse2(tokens) {
         errors.push(error);
     }
-    if let (Some((ident, info)), Some(tolerance)) =
-        (&args.integrator, args.rtol.as_ref().or(args.atol.as_ref()))
-        && !info.adaptive
-    {
-        errors.at(
-            tolerance,
-            format_args!(
-                "`{ident}` steps with a fixed `dt` and has no error estimate to hold to a \
-                 tolerance; `rtol`/`atol` need an adaptive integrator ({})",
-                adaptive_names()
-            ),
-        );
-    }
     args
 }
 
@@ -141,7 +128,8 @@ fn names() -> String {
         .join(", ")
 }
 
-fn adaptive_names() -> String {
+/// The adaptive integrators' names, for messages.
+pub(crate) fn adaptive_names() -> String {
     METHODS
         .iter()
         .filter(|m| m.adaptive)

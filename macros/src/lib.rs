@@ -15,6 +15,8 @@
 //! Shared stages, one file or directory each, that know nothing of the kinds:
 //!
 //! - `args`: the attribute's arguments (`integrator`, `dt`, `rtol`, `atol`, `jacobian`);
+//! - `validate`: what the attribute's integrator asks of the model (its order, velocity-free
+//!   forces, the Jacobian), checked once for every kind;
 //! - `model`: the state description a front-end builds — fields, roles, shapes;
 //! - `rewrite`: function bodies with every read of state made explicit;
 //! - `lower`: a body to the expression graph `ir` (`lower` for a whole-state function,
@@ -47,6 +49,7 @@ mod model;
 mod rewrite;
 mod sparsity;
 mod syntax;
+mod validate;
 
 use proc_macro::TokenStream;
 

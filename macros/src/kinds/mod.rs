@@ -30,6 +30,7 @@ use crate::args::{self, Args};
 use crate::errors::Errors;
 use crate::generate;
 use crate::syntax::{FIELD_ATTRIBUTES, RUST_ATTRIBUTES, strip_field_attributes};
+use crate::validate::{self, FirstOrder};
 
 /// The kind of a model struct.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -53,6 +54,14 @@ impl Kind {
     }
 }
 
+/// What a front-end makes of a struct it accepts.
+pub(crate) struct Struct {
+    /// The state type `<Model>State` and its impls.
+    pub(crate) state: TokenStream,
+    /// `Some` for a first-order model: how to say so when the integrator needs a second-order one.
+    pub(crate) first_order: Option<FirstOrder>,
+}
+
 /// The struct half of `#[system]`: the struct without odyn's attributes, its state type, and the
 /// forwarding macro to the impl block (which passes the impl block through untouched when the
 /// struct was rejected).
@@ -60,7 +69,8 @@ pub(crate) fn expand_struct(args_tokens: TokenStream, item: &ItemStruct) -> Toke
     let mut errors = Errors::default();
     let args = args::parse(args_tokens.clone(), &mut errors);
     let item = &unknown_attributes(item, &mut errors);
-    let (stripped, state) = if is_generic(item) {
+    let stripped = strip_field_attributes(item);
+    let state = if is_generic(item) {
         // One error: the fields of a generic model (`[f64; N]`, `k: T`) would each be refused
         // only because of the generics.
         errors.at(
@@ -69,13 +79,17 @@ pub(crate) fn expand_struct(args_tokens: TokenStream, item: &ItemStruct) -> Toke
              Jacobian for one concrete struct; write array lengths as integer literals \
              (`[f64; 3]`) and parameters as `f64` fields",
         );
-        (strip_field_attributes(item), None)
+        validate::structure(&args, None, &mut errors);
+        None
     } else {
-        match Kind::of(item) {
-            Kind::Fixed => fixed::expand_struct(item, &args, &mut errors),
+        let accepted = match Kind::of(item) {
+            Kind::Fixed => fixed::expand_struct(item, &mut errors),
             Kind::Particles => particles::expand_struct(item, &mut errors),
             Kind::Grid => grid::expand_struct(item, &mut errors),
-        }
+        };
+        let first_order = accepted.as_ref().and_then(|s| s.first_order.as_ref());
+        validate::structure(&args, first_order, &mut errors);
+        accepted.map(|s| s.state)
     };
     match (errors.finish(), state) {
         (Ok(()), Some(state)) => {

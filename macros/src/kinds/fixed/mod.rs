@@ -21,33 +21,23 @@ use syn::{ItemImpl, ItemStruct};
 
 use crate::args::Args;
 use crate::errors::{Errors, with_error};
+use crate::kinds::Struct;
 use crate::lower;
 use crate::model::Order;
+use crate::validate::{self, FirstOrder, VelocityRead};
 
-/// The struct half: the struct without odyn's attributes, and its state type when accepted.
-pub(crate) fn expand_struct(
-    item: &ItemStruct,
-    args: &Args,
-    errors: &mut Errors,
-) -> (ItemStruct, Option<TokenStream>) {
-    let model = fields::parse(item, errors);
-    if let (Some(model), Some((ident, info))) = (&model, &args.integrator)
-        && info.needs_second_order
-        && model.order == Order::First
-    {
-        errors.at(
-            ident,
-            format_args!(
-                "`{ident}` needs a second-order model (`#[position]`/`#[velocity]` fields), but \
-                 `{}` is first-order (`#[state]` fields); use `ExplicitEuler` or `Rk4`",
-                item.ident
-            ),
-        );
-    }
-    (
-        crate::syntax::strip_field_attributes(item),
-        model.map(|m| generate::state(&m)),
-    )
+/// The struct half: the state type, and what the model asks of an integrator, when accepted.
+pub(crate) fn expand_struct(item: &ItemStruct, errors: &mut Errors) -> Option<Struct> {
+    let model = fields::parse(item, errors)?;
+    let first_order = (model.order == Order::First).then(|| FirstOrder {
+        second_order: "`#[position]`/`#[velocity]` fields",
+        model: format!("`{}` is first-order (`#[state]` fields)", item.ident),
+        instead: "`ExplicitEuler` or `Rk4`",
+    });
+    Some(Struct {
+        state: generate::state(&model),
+        first_order,
+    })
 }
 
 /// The impl half: the functions → the force's graph → its Jacobian → the runtime trait impls.
@@ -60,21 +50,15 @@ pub(crate) fn expand_impl(args: &Args, item: &ItemStruct, imp: &ItemImpl) -> Tok
         );
     };
     let functions = functions::parse(imp, &model, &mut errors);
-    if let (Some((ident, info)), Some(force)) = (&args.integrator, &functions.force)
-        && info.needs_velocity_free_forces
-    {
+    let velocity_read = functions.force.as_ref().and_then(|force| {
         let reads = functions::velocity_reads(force, &model);
-        if let Some((field, tokens)) = reads.first() {
-            errors.at(
-                ident,
-                format_args!(
-                    "`{ident}` needs forces that do not read velocities, but `acceleration` reads \
-                     `self.{field}`; use `VelocityVerlet` or `Leapfrog`"
-                ),
-            );
-            errors.at(tokens, format_args!("`self.{field}` is read here"));
-        }
-    }
+        let &(field, tokens) = reads.first()?;
+        Some(VelocityRead {
+            reader: format!("`acceleration` reads `self.{field}`"),
+            at: Some((tokens.clone(), format!("`self.{field}` is read here"))),
+        })
+    });
+    validate::forces(args, velocity_read, &mut errors);
     let lowered = match (&functions.force, &args.no_jacobian) {
         (Some(force), None) => match lower::lower(&model, &force.original) {
             Ok(lowered) => Some(lowered),
@@ -85,14 +69,6 @@ pub(crate) fn expand_impl(args: &Args, item: &ItemStruct, imp: &ItemImpl) -> Tok
         },
         _ => None,
     };
-    if let (Some(no), Some((ident, info))) = (&args.no_jacobian, &args.integrator)
-        && info.needs_jacobian
-    {
-        errors.at(
-            no,
-            format_args!("`{ident}` needs the Jacobian that `jacobian = false` turns off"),
-        );
-    }
     match errors.finish() {
         Ok(()) => {
             let generated = generate::model_impls(&model, args, &functions, imp, lowered.is_some());

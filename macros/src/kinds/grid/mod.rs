@@ -15,11 +15,11 @@ use syn::{FnArg, Ident, ImplItem, ImplItemFn, ItemImpl, ItemStruct, Pat, ReturnT
 
 use crate::args::Args;
 use crate::errors::{Errors, with_error};
+use crate::kinds::Struct;
 use crate::lower;
 use crate::model::{Model, Order, Role, Shape, StateField};
-use crate::syntax::{
-    attribute, has_attribute, int_literal, is_f64, names_type, no_arguments, strip_field_attributes,
-};
+use crate::syntax::{attribute, has_attribute, int_literal, is_f64, names_type, no_arguments};
+use crate::validate::FirstOrder;
 
 /// The names of a stencil's neighbours, in the runtime's order (`odyn::grid::NEIGHBOURS`).
 pub(crate) const NEIGHBOURS: [&str; 9] = ["c", "e", "w", "n", "s", "ne", "nw", "se", "sw"];
@@ -133,13 +133,17 @@ pub(crate) fn state(fields: &Fields<'_>) -> TokenStream {
     }
 }
 
-/// The struct half: the struct without `#[field]`, and its state type when accepted.
-pub(crate) fn expand_struct(
-    item: &ItemStruct,
-    errors: &mut Errors,
-) -> (ItemStruct, Option<TokenStream>) {
-    let fields = parse_struct(item, errors);
-    (strip_field_attributes(item), fields.map(|f| state(&f)))
+/// The struct half: the state type, and what the model asks of an integrator, when accepted.
+pub(crate) fn expand_struct(item: &ItemStruct, errors: &mut Errors) -> Option<Struct> {
+    let fields = parse_struct(item, errors)?;
+    Some(Struct {
+        state: state(&fields),
+        first_order: Some(FirstOrder {
+            second_order: "positions and velocities",
+            model: format!("field model `{}` is first-order", item.ident),
+            instead: "`ExplicitEuler`, `Rk4`, `ImplicitEuler` or `Rodas5P`",
+        }),
+    })
 }
 
 /// The `#[cell]` kernel.
@@ -364,27 +368,6 @@ pub(crate) fn expand_impl(args: &Args, item: &ItemStruct, imp: &ItemImpl) -> Tok
         );
     };
     let cell = parse_cell(imp, &fields, &mut errors);
-    if let Some((ident, info)) = &args.integrator
-        && info.needs_second_order
-    {
-        errors.at(
-            ident,
-            format_args!(
-                "`{ident}` needs a second-order model (positions and velocities), but field \
-                 model `{}` is first-order; use `ExplicitEuler`, `Rk4`, `ImplicitEuler` or \
-                 `Rodas5P`",
-                item.ident
-            ),
-        );
-    }
-    if let (Some(no), Some((ident, info))) = (&args.no_jacobian, &args.integrator)
-        && info.needs_jacobian
-    {
-        errors.at(
-            no,
-            format_args!("`{ident}` needs the Jacobian that `jacobian = false` turns off"),
-        );
-    }
     let mut lowered = None;
     let mut misread = false;
     if let Some(cell) = &cell {

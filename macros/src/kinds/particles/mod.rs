@@ -16,11 +16,11 @@ use syn::{Ident, ItemImpl, ItemStruct};
 
 use crate::args::Args;
 use crate::errors::Errors;
+use crate::kinds::Struct;
 use crate::lower;
 use crate::model::{Model, Order, Role, Shape, StateField, shape_of};
-use crate::syntax::{
-    attribute, has_attribute, is_plain, no_arguments, strip_field_attributes, vec_element,
-};
+use crate::syntax::{attribute, has_attribute, is_plain, no_arguments, vec_element};
+use crate::validate::{self, VelocityRead};
 
 /// The attributes that mark a particle model's fields.
 const FIELD_ATTRIBUTES: [&str; 4] = ["position", "velocity", "mass", "pinned"];
@@ -222,27 +222,12 @@ pub(crate) fn expand_impl(args: &Args, item: &ItemStruct, imp: &ItemImpl) -> Tok
         );
     };
     let functions = kernels::parse_kernels(imp, &particles, &mut errors);
-    if let Some((ident, info)) = &args.integrator
-        && info.needs_velocity_free_forces
-        && let Some(kernel) = functions.kernels.iter().find(|k| k.reads_velocity())
-    {
-        errors.at(
-            ident,
-            format_args!(
-                "`{ident}` needs forces that do not read velocities, but kernel `{}` takes \
-                 velocities; use `VelocityVerlet` or `Leapfrog`",
-                kernel.f.sig.ident
-            ),
-        );
-    }
-    if let (Some(no), Some((ident, info))) = (&args.no_jacobian, &args.integrator)
-        && info.needs_jacobian
-    {
-        errors.at(
-            no,
-            format_args!("`{ident}` needs the Jacobian that `jacobian = false` turns off"),
-        );
-    }
+    let velocity_read = functions.kernels.iter().find(|k| k.reads_velocity());
+    let velocity_read = velocity_read.map(|kernel| VelocityRead {
+        reader: format!("kernel `{}` takes velocities", kernel.f.sig.ident),
+        at: None,
+    });
+    validate::forces(args, velocity_read, &mut errors);
     let mut lowered = Vec::new();
     if args.no_jacobian.is_none() {
         let model = particles.parameter_model();
@@ -271,11 +256,11 @@ pub(crate) fn expand_impl(args: &Args, item: &ItemStruct, imp: &ItemImpl) -> Tok
     generate::generate(&particles, args, &functions, imp, jacobian)
 }
 
-/// The struct half: the struct without odyn's attributes, and its state type when accepted.
-pub(crate) fn expand_struct(
-    item: &ItemStruct,
-    errors: &mut Errors,
-) -> (ItemStruct, Option<TokenStream>) {
-    let particles = parse_struct(item, errors);
-    (strip_field_attributes(item), particles.map(|p| state(&p)))
+/// The struct half: the state type when accepted (a particle model is second-order).
+pub(crate) fn expand_struct(item: &ItemStruct, errors: &mut Errors) -> Option<Struct> {
+    let particles = parse_struct(item, errors)?;
+    Some(Struct {
+        state: state(&particles),
+        first_order: None,
+    })
 }
