@@ -141,3 +141,8 @@ impl ::odyn::Model for Heat {
         ::core::result::Result::Ok(())
     }
 }
+const _: () = {
+    let _ = <Heat as ::odyn::Model>::DEFAULT_DT;
+    let _ = <Heat as ::odyn::Model>::DEFAULT_RTOL;
+    let _ = <Heat as ::odyn::Model>::DEFAULT_ATOL;
+};

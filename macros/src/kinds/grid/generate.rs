@@ -2,13 +2,13 @@
 //! and the `GridSystem`, `Model` and `Jacobian` impls, which call into `odyn::grid`.
 
 use proc_macro2::{Literal, Span, TokenStream};
-use quote::{format_ident, quote};
+use quote::{ToTokens, format_ident, quote};
 use syn::{ImplItem, ItemImpl};
 
 use super::{Argument, Cell, Fields, NEIGHBOURS};
 use crate::args::Args;
 use crate::derivative::Differentiator;
-use crate::generate::{attribute_defaults, opaques_read, operand, prologue_tokens, straight_line};
+use crate::generate::{ModelImpl, opaques_read, operand, prologue_tokens, straight_line};
 use crate::lower::Lowered;
 
 /// The impl block with `#[cell]` removed (it is odyn's), and the body of method `silenced`, if
@@ -54,7 +54,6 @@ pub(super) fn impls(
         })
         .collect();
     let coefficient_names: Vec<String> = coefficients.iter().map(ToString::to_string).collect();
-    let defaults = attribute_defaults(args);
     let kernel = &cell.f.sig.ident;
     let arguments: Vec<TokenStream> = cell
         .arguments
@@ -79,97 +78,110 @@ pub(super) fn impls(
         quote!(self.#kernel(#(#arguments),*))
     };
     let zeros = quote!([0.0; #count]);
-    let (blocks, jacobian_fn, jacobian_call, time_call, jacobian_assoc, jacobian_impl) =
-        match lowered {
-            Some(lowered) => {
-                let Generated {
-                    blocks,
-                    function,
-                    time,
-                } = blocks(cell, lowered);
-                let hidden = hidden_name(cell);
-                let (time_call, time_items) = match time {
-                    Time::Exact => {
-                        let hidden = time_name(cell);
-                        (
-                            quote!(self.#hidden(#(#arguments),*)),
-                            quote! {
-                                /// The `#[cell]` method reads the time: ∂f/∂t of every cell,
-                                /// generated.
-                                const TIME_DEPENDENT: bool = true;
-                                #[inline]
-                                fn time_derivative(&self, t: f64, y: &#state, dfdt: &mut #state) {
-                                    ::odyn::grid::time_derivative(self, t, y, dfdt)
-                                }
-                            },
-                        )
-                    }
-                    // The time reaches the rate through code odyn cannot differentiate: the
-                    // runtime's central difference.
-                    Time::Opaque => (
-                        zeros.clone(),
-                        quote!(
-                            const TIME_DEPENDENT: bool = true;
-                        ),
-                    ),
-                    Time::Unread => (
-                        zeros.clone(),
+    let has_jacobian = lowered.is_some();
+    let (blocks, jacobian_fn, jacobian_call, time_call, jacobian_impl) = match lowered {
+        Some(lowered) => {
+            let Generated {
+                blocks,
+                function,
+                time,
+            } = blocks(cell, lowered);
+            let hidden = hidden_name(cell);
+            let (time_call, time_items) = match time {
+                Time::Exact => {
+                    let hidden = time_name(cell);
+                    (
+                        quote!(self.#hidden(#(#arguments),*)),
                         quote! {
-                            /// A cell's rate does not read the time: ∂f/∂t = 0.
-                            const TIME_DEPENDENT: bool = false;
+                            /// The `#[cell]` method reads the time: ∂f/∂t of every cell,
+                            /// generated.
+                            const TIME_DEPENDENT: bool = true;
                             #[inline]
-                            fn time_derivative(&self, _: f64, _: &#state, dfdt: &mut #state) {
-                                ::odyn::State::as_mut_slice(dfdt).fill(0.0);
+                            fn time_derivative(&self, t: f64, y: &#state, dfdt: &mut #state) {
+                                ::odyn::grid::time_derivative(self, t, y, dfdt)
                             }
                         },
+                    )
+                }
+                // The time reaches the rate through code odyn cannot differentiate: the
+                // runtime's central difference.
+                Time::Opaque => (
+                    zeros.clone(),
+                    quote!(
+                        const TIME_DEPENDENT: bool = true;
                     ),
-                };
-                (
-                    blocks,
-                    function,
-                    quote!(blocks.copy_from_slice(&self.#hidden(#(#arguments),*));),
-                    time_call,
+                ),
+                Time::Unread => (
+                    zeros.clone(),
                     quote! {
-                        type Jacobian = Self;
-                        #[inline(always)]
-                        fn as_jacobian(&self) -> ::core::option::Option<&Self> {
-                            ::core::option::Option::Some(self)
+                        /// A cell's rate does not read the time: ∂f/∂t = 0.
+                        const TIME_DEPENDENT: bool = false;
+                        #[inline]
+                        fn time_derivative(&self, _: f64, _: &#state, dfdt: &mut #state) {
+                            ::odyn::State::as_mut_slice(dfdt).fill(0.0);
                         }
                     },
-                    quote! {
-                        #[automatically_derived]
-                        impl ::odyn::Jacobian for #self_ty {
-                            type Matrix = ::odyn::grid::GridJacobian;
-                            /// Empty: a field model's pattern comes from its grid at run time.
-                            const NONZEROS: &'static [(usize, usize)] = &[];
-                            fn jacobian_matrix(&self, state: &#state) -> Self::Matrix {
-                                ::odyn::grid::jacobian_matrix(self, state)
-                            }
-                            #[inline]
-                            fn jacobian(&self, t: f64, y: &#state, jacobian: &mut Self::Matrix) {
-                                ::odyn::grid::jacobian(self, t, y, jacobian)
-                            }
-                            #time_items
-                        }
-                    },
-                )
-            }
-            None => (
-                Vec::new(),
-                TokenStream::new(),
-                TokenStream::new(),
-                zeros,
+                ),
+            };
+            (
+                blocks,
+                function,
+                quote!(blocks.copy_from_slice(&self.#hidden(#(#arguments),*));),
+                time_call,
                 quote! {
-                    type Jacobian = ::odyn::Unavailable<Self>;
-                    #[inline(always)]
-                    fn as_jacobian(&self) -> ::core::option::Option<&Self::Jacobian> {
-                        ::core::option::Option::None
+                    #[automatically_derived]
+                    impl ::odyn::Jacobian for #self_ty {
+                        type Matrix = ::odyn::grid::GridJacobian;
+                        /// Empty: a field model's pattern comes from its grid at run time.
+                        const NONZEROS: &'static [(usize, usize)] = &[];
+                        fn jacobian_matrix(&self, state: &#state) -> Self::Matrix {
+                            ::odyn::grid::jacobian_matrix(self, state)
+                        }
+                        #[inline]
+                        fn jacobian(&self, t: f64, y: &#state, jacobian: &mut Self::Matrix) {
+                            ::odyn::grid::jacobian(self, t, y, jacobian)
+                        }
+                        #time_items
                     }
                 },
-                TokenStream::new(),
-            ),
-        };
+            )
+        }
+        None => (
+            Vec::new(),
+            TokenStream::new(),
+            TokenStream::new(),
+            zeros,
+            TokenStream::new(),
+        ),
+    };
     let imp = strip_cell_attribute(imp, None);
+    let model_impl = ModelImpl {
+        self_ty: self_ty.to_token_stream(),
+        generics: &imp.generics,
+        name,
+        state: &state,
+        args: Some(args),
+        methods: quote! {
+            fn state(&self) -> #state {
+                ::odyn::grid::GridState::from_grids(&[#(&self.#grids),*], &[#(#names),*])
+            }
+            #[inline]
+            fn derivative(&self, t: f64, y: &#state, dydt: &mut #state) {
+                ::odyn::grid::derivative(self, t, y, dydt)
+            }
+            fn energy(&self, _: &#state) -> ::core::option::Option<f64> {
+                ::core::option::Option::None
+            }
+        },
+        second_order: false,
+        jacobian: has_jacobian,
+        check: Some(quote! {
+            ::odyn::grid::check(self, state)?;
+            #(::odyn::grid::check_coefficient::<Self>(#coefficient_names, &self.#coefficients, state)?;)*
+            ::core::result::Result::Ok(())
+        }),
+    }
+    .build();
     quote! {
         #imp
         #[automatically_derived]
@@ -214,33 +226,7 @@ pub(super) fn impls(
             }
         }
         #jacobian_impl
-        #[automatically_derived]
-        impl ::odyn::Model for #self_ty {
-            type State = #state;
-            type SecondOrder = ::odyn::Unavailable<Self>;
-            const NAME: &'static str = #name;
-            #defaults
-            fn state(&self) -> #state {
-                ::odyn::grid::GridState::from_grids(&[#(&self.#grids),*], &[#(#names),*])
-            }
-            #[inline]
-            fn derivative(&self, t: f64, y: &#state, dydt: &mut #state) {
-                ::odyn::grid::derivative(self, t, y, dydt)
-            }
-            fn energy(&self, _: &#state) -> ::core::option::Option<f64> {
-                ::core::option::Option::None
-            }
-            #[inline(always)]
-            fn as_second_order(&self) -> ::core::option::Option<&Self::SecondOrder> {
-                ::core::option::Option::None
-            }
-            #jacobian_assoc
-            fn check(&self, state: &#state) -> ::odyn::Result<()> {
-                ::odyn::grid::check(self, state)?;
-                #(::odyn::grid::check_coefficient::<Self>(#coefficient_names, &self.#coefficients, state)?;)*
-                ::core::result::Result::Ok(())
-            }
-        }
+        #model_impl
     }
 }
 

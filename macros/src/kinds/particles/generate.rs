@@ -9,7 +9,7 @@ use syn::{FnArg, ItemImpl};
 use super::Particles;
 use super::kernels::{Functions, Kernel, Over};
 use crate::args::Args;
-use crate::generate::{opaques_read, operand, prologue_tokens, straight_line};
+use crate::generate::{ModelImpl, opaques_read, operand, prologue_tokens, straight_line};
 use crate::ir::ExprId;
 use crate::lower::Lowered;
 
@@ -31,7 +31,6 @@ pub(super) fn generate(
         Some(p) => quote!(&self.#p),
         None => quote!(&[]),
     };
-    let defaults = crate::generate::attribute_defaults(args);
     let link_lists = functions.kernels.iter().filter_map(|k| match &k.over {
         Over::Pairs(field) => {
             let name = field.to_string();
@@ -111,7 +110,8 @@ pub(super) fn generate(
             #potential
         }
     };
-    let (jacobian_fns, jacobian_impl, jacobian_assoc) = match jacobian {
+    let has_jacobian = jacobian.is_some();
+    let (jacobian_fns, jacobian_impl) = match jacobian {
         Some(lowered) => {
             let (fns, calls): (Vec<_>, Vec<_>) = functions
                 .kernels
@@ -156,13 +156,6 @@ pub(super) fn generate(
                         }
                     }
                 },
-                quote! {
-                    type Jacobian = Self;
-                    #[inline(always)]
-                    fn as_jacobian(&self) -> ::core::option::Option<&Self> {
-                        ::core::option::Option::Some(self)
-                    }
-                },
             )
         }
         None => (
@@ -181,30 +174,16 @@ pub(super) fn generate(
                     #common
                 }
             },
-            quote! {
-                type Jacobian = ::odyn::Unavailable<Self>;
-                #[inline(always)]
-                fn as_jacobian(&self) -> ::core::option::Option<&Self::Jacobian> {
-                    ::core::option::Option::None
-                }
-            },
         ),
     };
     let imp = crate::syntax::strip_method_attributes(imp);
-    quote! {
-        #imp
-        #[automatically_derived]
-        impl #self_ty {
-            #potential_fn
-            #jacobian_fns
-        }
-        #jacobian_impl
-        #[automatically_derived]
-        impl ::odyn::Model for #self_ty {
-            type State = #state;
-            type SecondOrder = Self;
-            const NAME: &'static str = #name;
-            #defaults
+    let model_impl = ModelImpl {
+        self_ty: self_ty.to_token_stream(),
+        generics: &imp.generics,
+        name,
+        state: &state,
+        args: Some(args),
+        methods: quote! {
             fn state(&self) -> #state {
                 ::odyn::particles::ParticleState::from_fields(&self.#x, &self.#v, [#x_name, #v_name])
             }
@@ -215,15 +194,21 @@ pub(super) fn generate(
             fn energy(&self, state: &#state) -> ::core::option::Option<f64> {
                 ::odyn::particles::energy(self, state)
             }
-            #[inline(always)]
-            fn as_second_order(&self) -> ::core::option::Option<&Self> {
-                ::core::option::Option::Some(self)
-            }
-            #jacobian_assoc
-            fn check(&self, state: &#state) -> ::odyn::Result<()> {
-                ::odyn::particles::check(self, state)
-            }
+        },
+        second_order: true,
+        jacobian: has_jacobian,
+        check: Some(quote!(::odyn::particles::check(self, state))),
+    }
+    .build();
+    quote! {
+        #imp
+        #[automatically_derived]
+        impl #self_ty {
+            #potential_fn
+            #jacobian_fns
         }
+        #jacobian_impl
+        #model_impl
         #[automatically_derived]
         impl ::odyn::SecondOrder for #self_ty {
             const READS_VELOCITY: bool = #reads_velocity;
