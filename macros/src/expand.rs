@@ -11,7 +11,8 @@ use syn::parse::{Parse, ParseStream};
 use syn::{Item, ItemImpl, ItemStruct, Type};
 
 use crate::errors::{Errors, with_error};
-use crate::syntax::METHOD_ATTRIBUTES;
+use crate::generate::never_run;
+use crate::syntax::{METHOD_ATTRIBUTES, strip_method_attributes};
 use crate::{args, generate, kinds};
 
 /// `#[system(...)]` on an item.
@@ -59,7 +60,8 @@ fn forward_impl(args: TokenStream, item: &ItemImpl) -> TokenStream {
                 // The impl of a generic struct, which `#[system]` on the struct has reported
                 // (rustc reports generics on the impl of a plain one): the impl block stays, its
                 // bodies never run, and nothing more is said.
-                return never_run(item.clone()).into_token_stream();
+                return never_run(strip_method_attributes(item, &METHOD_ATTRIBUTES), |_| true)
+                    .into_token_stream();
             }
             Some(&segment.ident)
         }
@@ -106,26 +108,11 @@ struct Rejected(ItemImpl);
 impl Parse for Rejected {
     fn parse(input: ParseStream<'_>) -> syn::Result<Self> {
         input.parse::<syn::Token![!]>()?;
-        Ok(Rejected(never_run(input.parse()?)))
+        Ok(Rejected(never_run(
+            strip_method_attributes(&input.parse()?, &METHOD_ATTRIBUTES),
+            |_| true,
+        )))
     }
-}
-
-/// `imp` with odyn's method attributes removed and its bodies replaced by ones that never run.
-fn never_run(mut imp: ItemImpl) -> ItemImpl {
-    for member in &mut imp.items {
-        if let syn::ImplItem::Fn(f) = member {
-            f.attrs
-                .retain(|a| !METHOD_ATTRIBUTES.iter().any(|name| a.path().is_ident(name)));
-            // The bodies read fields the rejected struct may not have as declared (its state
-            // type is a stub): never run, they would only add follow-on errors.
-            f.attrs
-                .push(syn::parse_quote!(#[allow(unused_variables, unreachable_code)]));
-            f.block = syn::parse_quote!({
-                ::core::unreachable!("odyn rejected this model at compile time")
-            });
-        }
-    }
-    imp
 }
 
 /// Struct and impl together: the runtime trait impls.

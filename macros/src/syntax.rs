@@ -124,13 +124,13 @@ pub(crate) fn strip_field_attributes(item: &ItemStruct) -> ItemStruct {
     item
 }
 
-/// The impl block minus odyn's method attributes (which rustc does not know).
-pub(crate) fn strip_method_attributes(imp: &ItemImpl) -> ItemImpl {
+/// The impl block minus the method attributes `names` (odyn's, which rustc does not know).
+pub(crate) fn strip_method_attributes(imp: &ItemImpl, names: &[&str]) -> ItemImpl {
     let mut imp = imp.clone();
     for member in &mut imp.items {
         if let ImplItem::Fn(f) = member {
             f.attrs
-                .retain(|a| !METHOD_ATTRIBUTES.iter().any(|n| a.path().is_ident(n)));
+                .retain(|a| !names.iter().any(|n| a.path().is_ident(n)));
         }
     }
     imp

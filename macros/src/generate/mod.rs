@@ -46,6 +46,27 @@ pub(crate) fn rejected_struct(item: &ItemStruct) -> TokenStream {
     }
 }
 
+/// `imp` with the bodies of the methods `which` selects replaced by ones that never run: for a
+/// rejected model, whose bodies read fields the stand-in state may not have as declared, or whose
+/// errors rustc would report a second time.
+pub(crate) fn never_run(
+    mut imp: syn::ItemImpl,
+    which: impl Fn(&syn::ImplItemFn) -> bool,
+) -> syn::ItemImpl {
+    for member in &mut imp.items {
+        if let syn::ImplItem::Fn(f) = member
+            && which(f)
+        {
+            f.attrs
+                .push(syn::parse_quote!(#[allow(unused_variables, unreachable_code)]));
+            f.block = syn::parse_quote!({
+                ::core::unreachable!("odyn rejected this model at compile time")
+            });
+        }
+    }
+    imp
+}
+
 /// The `macro_rules!` that hands the struct to the impl block's expansion. On `Err` (the struct was
 /// rejected) it hands over only the impl block, marked `!`, which comes back with odyn's method
 /// attributes (`#[cell]`, `#[pair]`, `#[particle]`) removed and nothing added, so no follow-on

@@ -3,31 +3,13 @@
 
 use proc_macro2::{Literal, Span, TokenStream};
 use quote::{ToTokens, format_ident, quote};
-use syn::{ImplItem, ItemImpl};
+use syn::ItemImpl;
 
 use super::{Argument, Cell, Fields, NEIGHBOURS};
 use crate::args::Args;
 use crate::derivative::Differentiator;
 use crate::generate::{ModelImpl, opaques_read, operand, prologue_tokens, straight_line};
 use crate::lower::Lowered;
-
-/// The impl block with `#[cell]` removed (it is odyn's), and the body of method `silenced`, if
-/// any, replaced by one that is never run (the crate does not compile).
-pub(super) fn strip_cell_attribute(imp: &ItemImpl, silenced: Option<&syn::Ident>) -> ItemImpl {
-    let mut imp = imp.clone();
-    for member in &mut imp.items {
-        if let ImplItem::Fn(f) = member {
-            f.attrs.retain(|a| !a.path().is_ident("cell"));
-            if Some(&f.sig.ident) == silenced {
-                f.attrs.push(syn::parse_quote!(#[allow(unused_variables)]));
-                f.block = syn::parse_quote!({
-                    ::core::unreachable!("odyn rejected this model at compile time")
-                });
-            }
-        }
-    }
-    imp
-}
 
 /// The runtime trait impls of a field model; `lowered` is the cell kernel, absent with
 /// `jacobian = false`.
@@ -154,7 +136,6 @@ pub(super) fn impls(
             TokenStream::new(),
         ),
     };
-    let imp = strip_cell_attribute(imp, None);
     let model_impl = ModelImpl {
         self_ty: self_ty.to_token_stream(),
         generics: &imp.generics,
@@ -183,7 +164,6 @@ pub(super) fn impls(
     }
     .build();
     quote! {
-        #imp
         #[automatically_derived]
         impl #self_ty {
             #jacobian_fn

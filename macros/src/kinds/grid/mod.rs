@@ -14,8 +14,8 @@ use quote::{format_ident, quote};
 use syn::{FnArg, Ident, ImplItem, ImplItemFn, ItemImpl, ItemStruct, Pat, ReturnType, Type};
 
 use crate::args::Args;
-use crate::errors::{Errors, with_error};
-use crate::kinds::Struct;
+use crate::errors::Errors;
+use crate::kinds::{FrontEnd, Impl, Struct};
 use crate::lower;
 use crate::model::{Model, Order, Role, Shape, StateField};
 use crate::syntax::{attribute, has_attribute, int_literal, is_f64, names_type, no_arguments};
@@ -131,19 +131,6 @@ pub(crate) fn state(fields: &Fields<'_>) -> TokenStream {
         #[doc = #doc]
         #vis type #name = ::odyn::grid::GridState;
     }
-}
-
-/// The struct half: the state type, and what the model asks of an integrator, when accepted.
-pub(crate) fn expand_struct(item: &ItemStruct, errors: &mut Errors) -> Option<Struct> {
-    let fields = parse_struct(item, errors)?;
-    Some(Struct {
-        state: state(&fields),
-        first_order: Some(FirstOrder {
-            second_order: "positions and velocities",
-            model: format!("field model `{}` is first-order", item.ident),
-            instead: "`ExplicitEuler`, `Rk4`, `ImplicitEuler` or `Rodas5P`",
-        }),
-    })
 }
 
 /// The `#[cell]` kernel.
@@ -358,61 +345,85 @@ fn is_array_of(ty: &Type, n: usize) -> bool {
         if is_f64(&a.elem) && int_literal(&a.len) == Some(n))
 }
 
-/// The impl block of a field model: the cell kernel → blocks → runtime trait impls.
-pub(crate) fn expand_impl(args: &Args, item: &ItemStruct, imp: &ItemImpl) -> TokenStream {
-    let mut errors = Errors::default();
-    let Some(fields) = parse_struct(item, &mut errors) else {
-        return with_error(
-            generate::strip_cell_attribute(imp, None),
-            errors.finish().expect_err("a rejected model has errors"),
-        );
-    };
-    let cell = parse_cell(imp, &fields, &mut errors);
-    let mut lowered = None;
-    let mut misread = false;
-    if let Some(cell) = &cell {
-        let name = &cell.f.sig.ident;
-        let (_, state_reads) =
-            crate::rewrite::rewrite(&cell.f.block, &fields.rewriter_model(), name, &mut errors);
-        if let Some(tokens) = state_reads.values().next() {
-            errors.at(
-                tokens,
-                format_args!(
-                    "`{name}` reads the grids only through its stencil arguments, not through \
-                     `self`"
-                ),
-            );
-        }
-        let inputs: Vec<Ident> = cell
-            .stencils
-            .iter()
-            .flat_map(|(s, _)| NEIGHBOURS.map(|n| reads::input(s, n)))
-            .collect();
-        let before = errors.len();
-        let renamed = reads::rename(&cell.f, &cell.stencils, &mut errors);
-        misread = errors.len() > before;
-        if args.no_jacobian.is_none() && errors.is_empty() {
-            let model = fields.parameter_model();
-            let outputs = fields.fields.len();
-            match lower::lower_kernel(&model, &renamed, &inputs, 1, outputs, cell.time.clone()) {
-                Ok(l) => lowered = Some(l),
-                Err(error) => errors.push(error),
+/// The field-model front-end: structs with `#[field]` grids.
+pub(crate) struct Kind;
+
+impl FrontEnd for Kind {
+    fn recognises(&self, item: &ItemStruct) -> bool {
+        is_grid_model(item)
+    }
+
+    fn method_attributes(&self) -> &'static [&'static str] {
+        &["cell"]
+    }
+
+    /// The struct half: the state type, and what the model asks of an integrator, when accepted.
+    fn expand_struct(&self, item: &ItemStruct, errors: &mut Errors) -> Option<Struct> {
+        let fields = parse_struct(item, errors)?;
+        Some(Struct {
+            state: state(&fields),
+            first_order: Some(FirstOrder {
+                second_order: "positions and velocities",
+                model: format!("field model `{}` is first-order", item.ident),
+                instead: "`ExplicitEuler`, `Rk4`, `ImplicitEuler` or `Rodas5P`",
+            }),
+        })
+    }
+
+    /// The impl block of a field model: the cell kernel → blocks → runtime trait impls.
+    fn expand_impl(
+        &self,
+        args: &Args,
+        item: &ItemStruct,
+        imp: &ItemImpl,
+        errors: &mut Errors,
+    ) -> Impl {
+        let Some(fields) = parse_struct(item, errors) else {
+            return Impl::Rejected { silenced: None };
+        };
+        let cell = parse_cell(imp, &fields, errors);
+        let mut lowered = None;
+        let mut misread = false;
+        if let Some(cell) = &cell {
+            let name = &cell.f.sig.ident;
+            let (_, state_reads) =
+                crate::rewrite::rewrite(&cell.f.block, &fields.rewriter_model(), name, errors);
+            if let Some(tokens) = state_reads.values().next() {
+                errors.at(
+                    tokens,
+                    format_args!(
+                        "`{name}` reads the grids only through its stencil arguments, not through \
+                         `self`"
+                    ),
+                );
+            }
+            let inputs: Vec<Ident> = cell
+                .stencils
+                .iter()
+                .flat_map(|(s, _)| NEIGHBOURS.map(|n| reads::input(s, n)))
+                .collect();
+            let before = errors.len();
+            let renamed = reads::rename(&cell.f, &cell.stencils, errors);
+            misread = errors.len() > before;
+            if args.no_jacobian.is_none() && errors.is_empty() {
+                let model = fields.parameter_model();
+                let outputs = fields.fields.len();
+                match lower::lower_kernel(&model, &renamed, &inputs, 1, outputs, cell.time.clone())
+                {
+                    Ok(l) => lowered = Some(l),
+                    Err(error) => errors.push(error),
+                }
             }
         }
-    }
-    match (errors.finish(), cell) {
-        (Ok(()), Some(cell)) => generate::impls(&fields, args, &cell, imp, lowered),
-        (result, cell) => {
-            let error = result
-                .err()
-                .unwrap_or_else(|| syn::Error::new_spanned(&imp.self_ty, "field model rejected"));
+        match cell {
+            Some(cell) if errors.is_empty() => {
+                Impl::Accepted(generate::impls(&fields, args, &cell, imp, lowered))
+            }
             // A misread stencil (`u.nn`, `u.gradient()`) is also an error of rustc's in the
             // user's own body: emitted as written, it would be reported twice.
-            let silenced = cell.filter(|_| misread).map(|c| c.f.sig.ident);
-            let imp = generate::strip_cell_attribute(imp, silenced.as_ref());
-            let rejected = with_error(imp, error);
-            let stub = crate::generate::stub_model(&item.ident, &fields.state_ident());
-            quote!(#rejected #stub)
+            cell => Impl::Rejected {
+                silenced: cell.filter(|_| misread).map(|c| c.f.sig.ident),
+            },
         }
     }
 }

@@ -176,7 +176,6 @@ pub(super) fn generate(
             },
         ),
     };
-    let imp = crate::syntax::strip_method_attributes(imp);
     let model_impl = ModelImpl {
         self_ty: self_ty.to_token_stream(),
         generics: &imp.generics,
@@ -201,7 +200,6 @@ pub(super) fn generate(
     }
     .build();
     quote! {
-        #imp
         #[automatically_derived]
         impl #self_ty {
             #potential_fn

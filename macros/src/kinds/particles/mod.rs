@@ -16,7 +16,7 @@ use syn::{Ident, ItemImpl, ItemStruct};
 
 use crate::args::Args;
 use crate::errors::Errors;
-use crate::kinds::Struct;
+use crate::kinds::{FrontEnd, Impl, Struct};
 use crate::lower;
 use crate::model::{Model, Order, Role, Shape, StateField, shape_of};
 use crate::syntax::{attribute, has_attribute, is_plain, no_arguments, vec_element};
@@ -212,55 +212,68 @@ pub(crate) fn state(particles: &Particles<'_>) -> TokenStream {
     }
 }
 
-/// The impl block of a particle model: kernels → blocks → runtime trait impls.
-pub(crate) fn expand_impl(args: &Args, item: &ItemStruct, imp: &ItemImpl) -> TokenStream {
-    let mut errors = Errors::default();
-    let Some(particles) = parse_struct(item, &mut errors) else {
-        return crate::errors::with_error(
-            crate::syntax::strip_method_attributes(imp),
-            errors.finish().expect_err("a rejected model has errors"),
-        );
-    };
-    let functions = kernels::parse_kernels(imp, &particles, &mut errors);
-    let velocity_read = functions.kernels.iter().find(|k| k.reads_velocity());
-    let velocity_read = velocity_read.map(|kernel| VelocityRead {
-        reader: format!("kernel `{}` takes velocities", kernel.f.sig.ident),
-        at: None,
-    });
-    validate::forces(args, velocity_read, &mut errors);
-    let mut lowered = Vec::new();
-    if args.no_jacobian.is_none() {
-        let model = particles.parameter_model();
-        for kernel in &functions.kernels {
-            match lower::lower_kernel(
-                &model,
-                &kernel.f,
-                &kernel.vectors,
-                particles.dim,
-                particles.dim,
-                None,
-            ) {
-                Ok(l) => lowered.push(l),
-                Err(error) => errors.push(error),
+/// The particle front-end: structs with `Vec` positions and velocities, `#[mass]`, `#[pinned]`.
+pub(crate) struct Kind;
+
+impl FrontEnd for Kind {
+    fn recognises(&self, item: &ItemStruct) -> bool {
+        is_particle_model(item)
+    }
+
+    fn method_attributes(&self) -> &'static [&'static str] {
+        &["pair", "particle"]
+    }
+
+    /// The struct half: the state type when accepted (a particle model is second-order).
+    fn expand_struct(&self, item: &ItemStruct, errors: &mut Errors) -> Option<Struct> {
+        let particles = parse_struct(item, errors)?;
+        Some(Struct {
+            state: state(&particles),
+            first_order: None,
+        })
+    }
+
+    /// The impl block of a particle model: kernels → blocks → runtime trait impls.
+    fn expand_impl(
+        &self,
+        args: &Args,
+        item: &ItemStruct,
+        imp: &ItemImpl,
+        errors: &mut Errors,
+    ) -> Impl {
+        let Some(particles) = parse_struct(item, errors) else {
+            return Impl::Rejected { silenced: None };
+        };
+        let functions = kernels::parse_kernels(imp, &particles, errors);
+        let velocity_read = functions.kernels.iter().find(|k| k.reads_velocity());
+        let velocity_read = velocity_read.map(|kernel| VelocityRead {
+            reader: format!("kernel `{}` takes velocities", kernel.f.sig.ident),
+            at: None,
+        });
+        validate::forces(args, velocity_read, errors);
+        let mut lowered = Vec::new();
+        if args.no_jacobian.is_none() {
+            let model = particles.parameter_model();
+            for kernel in &functions.kernels {
+                match lower::lower_kernel(
+                    &model,
+                    &kernel.f,
+                    &kernel.vectors,
+                    particles.dim,
+                    particles.dim,
+                    None,
+                ) {
+                    Ok(l) => lowered.push(l),
+                    Err(error) => errors.push(error),
+                }
             }
         }
+        if !errors.is_empty() {
+            return Impl::Rejected { silenced: None };
+        }
+        let jacobian = (args.no_jacobian.is_none()).then_some(lowered);
+        Impl::Accepted(generate::generate(
+            &particles, args, &functions, imp, jacobian,
+        ))
     }
-    if let Err(error) = errors.finish() {
-        // The kernel attributes are odyn's: left in, rustc would add "cannot find attribute".
-        let rejected =
-            crate::errors::with_error(crate::syntax::strip_method_attributes(imp), error);
-        let stub = crate::generate::stub_model(&item.ident, &particles.state_ident());
-        return quote!(#rejected #stub);
-    }
-    let jacobian = (args.no_jacobian.is_none()).then_some(lowered);
-    generate::generate(&particles, args, &functions, imp, jacobian)
-}
-
-/// The struct half: the state type when accepted (a particle model is second-order).
-pub(crate) fn expand_struct(item: &ItemStruct, errors: &mut Errors) -> Option<Struct> {
-    let particles = parse_struct(item, errors)?;
-    Some(Struct {
-        state: state(&particles),
-        first_order: None,
-    })
 }
