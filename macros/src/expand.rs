@@ -78,7 +78,12 @@ fn forward_impl(args: TokenStream, item: &ItemImpl) -> TokenStream {
             let forwarder = generate::forwarder_name(model);
             quote!(#forwarder! { #item })
         }
-        (result, _) => with_error(item, result.expect_err("an error was recorded")),
+        (result, _) => {
+            let error = result.err().unwrap_or_else(|| {
+                syn::Error::new_spanned(&item.self_ty, "`#[system]` rejected this impl block")
+            });
+            with_error(item, error)
+        }
     }
 }
 
@@ -129,7 +134,11 @@ pub(crate) fn system_impl(input: TokenStream) -> TokenStream {
     };
     let mut errors = Errors::default();
     let args = args::parse(args, &mut errors);
-    kinds::expand_impl(&args, &item, &imp)
+    let expanded = kinds::expand_impl(&args, &item, &imp);
+    // The struct's expansion parsed these same tokens and was accepted, so this parse finds no
+    // problem; were it to find one, it is reported rather than dropped.
+    let error = errors.finish().err().map(|e| e.to_compile_error());
+    quote!(#expanded #error)
 }
 
 /// Input too deep to parse: the error, and the item unchanged (rustc parses it, on a stack that
