@@ -6,6 +6,7 @@
 //! locals, and documents every public item so `cargo doc` of a user's crate explains it.
 
 mod code;
+mod hidden;
 mod model;
 
 use proc_macro2::TokenStream;
@@ -13,6 +14,7 @@ use quote::{format_ident, quote};
 use syn::ItemStruct;
 
 pub(crate) use code::{lets, opaques_read, operand, prologue_tokens, straight_line};
+pub(crate) use hidden::{evaluation, hidden_fn, time_copy};
 pub(crate) use model::{ModelImpl, stub_model};
 
 use model::stub_model_with;

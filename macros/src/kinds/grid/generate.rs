@@ -8,7 +8,7 @@ use syn::ItemImpl;
 use super::{Argument, Cell, Fields, NEIGHBOURS};
 use crate::args::Args;
 use crate::derivative::Differentiator;
-use crate::generate::{ModelImpl, opaques_read, operand, prologue_tokens, straight_line};
+use crate::generate::{ModelImpl, evaluation, hidden_fn, operand, time_copy};
 use crate::lower::Lowered;
 
 /// The runtime trait impls of a field model; `lowered` is the cell kernel, absent with
@@ -285,16 +285,8 @@ fn blocks(cell: &Cell, lowered: Lowered) -> Generated {
             })
         })
         .collect();
-    // The time as the derivative code reads it: a hygienic copy made before the prologue, which
-    // may shadow the user's name (`let t = t - self.t0;`).
-    let time_copy = match &cell.time {
-        Some(t) => {
-            let copy = format_ident!("__odyn_time", span = Span::mixed_site());
-            components.push(quote!(#copy));
-            quote!(let #copy: f64 = #t;)
-        }
-        None => TokenStream::new(),
-    };
+    let (time_component, time_copy) = time_copy(cell.time.as_ref());
+    components.extend(time_component);
     // ∂f/∂t, row by row (0 where a row does not read the time).
     let time_roots: Vec<_> = match time {
         Some(var) if exact_time => outputs
@@ -304,30 +296,25 @@ fn blocks(cell: &Cell, lowered: Lowered) -> Generated {
         _ => Vec::new(),
     };
     // A hidden method of the kernel's arguments returning the values of `roots`.
-    let hidden_fn = |name: syn::Ident, roots: &[crate::ir::ExprId]| {
-        let lets = straight_line(&graph, roots, &components);
+    let values_fn = |name: syn::Ident, roots: &[crate::ir::ExprId]| {
+        let (prologue, lets) = evaluation(&graph, roots, &components, &prologue);
         let values = roots.iter().map(|&id| operand(&graph, id, &components));
-        let prologue = prologue_tokens(&prologue, &opaques_read(&graph, roots));
         let count = Literal::usize_unsuffixed(roots.len());
         let inputs = &cell.f.sig.inputs;
-        quote! {
-            #[doc(hidden)]
-            #[inline(always)]
-            #[allow(unused_variables, unused_parens, non_snake_case, clippy::all)]
-            fn #name(#inputs) -> [f64; #count] {
-                #time_copy
-                #(#prologue)*
-                #(#lets)*
-                [#(#values),*]
-            }
-        }
+        hidden_fn(
+            quote!(#name(#inputs) -> [f64; #count]),
+            quote!(#[inline(always)]),
+            &time_copy,
+            &prologue,
+            quote!(#(#lets)* [#(#values),*]),
+        )
     };
-    let mut function = hidden_fn(hidden_name(cell), &roots);
+    let mut function = values_fn(hidden_name(cell), &roots);
     let time = match time {
         None => Time::Unread,
         Some(_) if !exact_time => Time::Opaque,
         Some(_) => {
-            function.extend(hidden_fn(time_name(cell), &time_roots));
+            function.extend(values_fn(time_name(cell), &time_roots));
             Time::Exact
         }
     };

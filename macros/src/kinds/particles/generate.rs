@@ -9,7 +9,7 @@ use syn::{FnArg, ItemImpl};
 use super::Particles;
 use super::kernels::{Functions, Kernel, Over};
 use crate::args::Args;
-use crate::generate::{ModelImpl, opaques_read, operand, prologue_tokens, straight_line};
+use crate::generate::{ModelImpl, evaluation, hidden_fn, operand};
 use crate::ir::ExprId;
 use crate::lower::Lowered;
 
@@ -251,8 +251,7 @@ fn kernel_jacobian(
         .flat_map(|name| (0..dim).map(move |i| quote!(#name[#i])))
         .collect();
     let roots: Vec<ExprId> = blocks.iter().flatten().copied().collect();
-    let lets = straight_line(&graph, &roots, &components);
-    let prologue = prologue_tokens(&prologue, &opaques_read(&graph, &roots));
+    let (prologue, lets) = evaluation(&graph, &roots, &components, &prologue);
     let matrices = blocks.iter().map(|entries| {
         let columns = entries.chunks(dim).map(|column| {
             let rows = column.iter().map(|&id| operand(&graph, id, &components));
@@ -268,16 +267,13 @@ fn kernel_jacobian(
     let name = &kernel.f.sig.ident;
     let hidden = format_ident!("__odyn_{}_jacobian", name, span = Span::mixed_site());
     let inputs = &kernel.f.sig.inputs;
-    let function = quote! {
-        #[doc(hidden)]
-        #[inline(always)]
-        #[allow(unused_variables, unused_parens, non_snake_case, clippy::all)]
-        fn #hidden(#inputs) -> [::odyn::__private::nalgebra::SMatrix<f64, #d, #d>; #count] {
-            #(#prologue)*
-            #(#lets)*
-            [#(#matrices),*]
-        }
-    };
+    let function = hidden_fn(
+        quote!(#hidden(#inputs) -> [::odyn::__private::nalgebra::SMatrix<f64, #d, #d>; #count]),
+        quote!(#[inline(always)]),
+        &TokenStream::new(),
+        &prologue,
+        quote!(#(#lets)* [#(#matrices),*]),
+    );
     let zero = quote!(::odyn::__private::nalgebra::SMatrix::<f64, #d, #d>::zeros());
     let call = match &kernel.over {
         Over::Pairs(field) => {
