@@ -153,7 +153,7 @@ fn too_deep(item: TokenStream, error: syn::Error) -> TokenStream {
             Some(proc_macro2::TokenTree::Ident(model)),
             Some(proc_macro2::TokenTree::Group(_)),
         ) if keyword == "impl" => {
-            let state = quote::format_ident!("{}State", model);
+            let state = crate::model::state_ident(&model);
             generate::stub_model(&model, &state)
         }
         _ => TokenStream::new(),

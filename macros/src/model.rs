@@ -97,7 +97,17 @@ impl Model<'_> {
     }
 
     pub(crate) fn state_ident(&self) -> Ident {
-        quote::format_ident!("{}State", self.item.ident)
+        state_ident(&self.item.ident)
+    }
+
+    /// The model as a kernel's lowering sees it: every field a parameter, the state coming in
+    /// through the kernel's arguments (particle and grid kernels).
+    pub(crate) fn parameters(item: &ItemStruct, order: Order) -> Model<'_> {
+        Model {
+            item,
+            order,
+            states: Vec::new(),
+        }
     }
 
     pub(crate) fn field(&self, name: &Ident) -> Option<&StateField<'_>> {
@@ -112,6 +122,11 @@ impl Model<'_> {
     pub(crate) fn len(&self) -> usize {
         self.states.iter().map(|f| f.shape.len()).sum()
     }
+}
+
+/// The name of the state type `#[system]` generates for model `model`: `<Model>State`.
+pub(crate) fn state_ident(model: &Ident) -> Ident {
+    quote::format_ident!("{}State", model)
 }
 
 /// The shape of a supported state type.

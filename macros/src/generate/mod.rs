@@ -39,7 +39,7 @@ pub(crate) fn forwarder_name(model: &syn::Ident) -> syn::Ident {
 /// runs: the crate does not compile.
 pub(crate) fn rejected_struct(item: &ItemStruct) -> TokenStream {
     let vis = &item.vis;
-    let state = format_ident!("{}State", item.ident);
+    let state = crate::model::state_ident(&item.ident);
     let stub = stub_model_with(&item.ident, &state, &item.generics);
     quote! {
         #[doc(hidden)]

@@ -22,12 +22,13 @@ pub(crate) mod grid;
 pub(crate) mod particles;
 
 use proc_macro2::TokenStream;
-use quote::{format_ident, quote};
+use quote::quote;
 use syn::{ItemImpl, ItemStruct};
 
 use crate::args::{self, Args};
 use crate::errors::Errors;
 use crate::generate;
+use crate::model::state_ident;
 use crate::syntax::{strip_field_attributes, strip_method_attributes};
 use crate::validate::{self, FirstOrder};
 
@@ -151,7 +152,7 @@ pub(crate) fn expand_impl(args: &Args, item: &ItemStruct, imp: &ItemImpl) -> Tok
             };
             let imp = generate::never_run(stripped, |f| Some(&f.sig.ident) == silenced.as_ref());
             let error = error.to_compile_error();
-            let stub = generate::stub_model(&item.ident, &format_ident!("{}State", item.ident));
+            let stub = generate::stub_model(&item.ident, &state_ident(&item.ident));
             quote!(#imp #error #stub)
         }
     };

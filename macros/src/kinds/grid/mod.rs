@@ -10,14 +10,14 @@ mod generate;
 mod reads;
 
 use proc_macro2::TokenStream;
-use quote::{format_ident, quote};
+use quote::quote;
 use syn::{FnArg, Ident, ImplItem, ImplItemFn, ItemImpl, ItemStruct, Pat, ReturnType, Type};
 
 use crate::args::Args;
 use crate::errors::Errors;
 use crate::kinds::{FrontEnd, Impl, Struct};
 use crate::lower;
-use crate::model::{Model, Order, Role, Shape, StateField};
+use crate::model::{Model, Order, Role, Shape, StateField, state_ident};
 use crate::syntax::{attribute, has_attribute, int_literal, is_f64, names_type, no_arguments};
 use crate::validate::FirstOrder;
 
@@ -35,7 +35,7 @@ pub(crate) struct Fields<'a> {
 
 impl Fields<'_> {
     fn state_ident(&self) -> Ident {
-        format_ident!("{}State", self.item.ident)
+        state_ident(&self.item.ident)
     }
 
     /// The model as the body rewriter sees it: the grids are state (read only through
@@ -53,15 +53,6 @@ impl Fields<'_> {
                     shape: Shape::Scalar,
                 })
                 .collect(),
-        }
-    }
-
-    /// The model as the kernel's lowering sees it: every field a parameter.
-    fn parameter_model(&self) -> Model<'_> {
-        Model {
-            item: self.item,
-            order: Order::First,
-            states: Vec::new(),
         }
     }
 }
@@ -406,7 +397,7 @@ impl FrontEnd for Kind {
             let renamed = reads::rename(&cell.f, &cell.stencils, errors);
             misread = errors.len() > before;
             if args.no_jacobian.is_none() && errors.is_empty() {
-                let model = fields.parameter_model();
+                let model = Model::parameters(fields.item, Order::First);
                 let outputs = fields.fields.len();
                 match lower::lower_kernel(&model, &renamed, &inputs, 1, outputs, cell.time.clone())
                 {

@@ -11,14 +11,14 @@ mod generate;
 mod kernels;
 
 use proc_macro2::TokenStream;
-use quote::{format_ident, quote};
+use quote::quote;
 use syn::{Ident, ItemImpl, ItemStruct};
 
 use crate::args::Args;
 use crate::errors::Errors;
 use crate::kinds::{FrontEnd, Impl, Struct};
 use crate::lower;
-use crate::model::{Model, Order, Role, Shape, StateField, shape_of};
+use crate::model::{Model, Order, Role, Shape, StateField, shape_of, state_ident};
 use crate::syntax::{attribute, has_attribute, is_plain, no_arguments, vec_element};
 use crate::validate::{self, VelocityRead};
 
@@ -38,7 +38,7 @@ pub(crate) struct Particles<'a> {
 
 impl Particles<'_> {
     fn state_ident(&self) -> Ident {
-        format_ident!("{}State", self.item.ident)
+        state_ident(&self.item.ident)
     }
 
     /// The model as the body rewriter sees it: positions and velocities are state.
@@ -55,15 +55,6 @@ impl Particles<'_> {
                 field(self.position, Role::Position),
                 field(self.velocity, Role::Velocity),
             ],
-        }
-    }
-
-    /// The model as a kernel's lowering sees it: every field a parameter.
-    fn parameter_model(&self) -> Model<'_> {
-        Model {
-            item: self.item,
-            order: Order::Second,
-            states: Vec::new(),
         }
     }
 
@@ -253,7 +244,7 @@ impl FrontEnd for Kind {
         validate::forces(args, velocity_read, errors);
         let mut lowered = Vec::new();
         if args.no_jacobian.is_none() {
-            let model = particles.parameter_model();
+            let model = Model::parameters(particles.item, Order::Second);
             for kernel in &functions.kernels {
                 match lower::lower_kernel(
                     &model,
