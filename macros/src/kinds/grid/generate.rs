@@ -5,7 +5,8 @@ use proc_macro2::{Literal, Span, TokenStream};
 use quote::{ToTokens, format_ident, quote};
 use syn::ItemImpl;
 
-use super::{Argument, Cell, Fields, NEIGHBOURS};
+use super::cell::{Argument, Cell};
+use super::{Fields, NEIGHBOURS};
 use crate::args::Args;
 use crate::derivative::Differentiator;
 use crate::generate::{ModelImpl, evaluation, hidden_fn, operand, time_copy};
