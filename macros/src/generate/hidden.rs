@@ -5,7 +5,8 @@
 use proc_macro2::{Span, TokenStream};
 use quote::{ToTokens, format_ident, quote};
 
-use super::code::{opaques_read, prologue_tokens, straight_line};
+use super::code::straight_line;
+use super::prologue::{opaques_read, prologue_tokens};
 use crate::ir::{ExprId, Graph};
 use crate::lower::Prologue;
 

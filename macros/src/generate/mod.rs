@@ -8,14 +8,16 @@
 mod code;
 mod hidden;
 mod model;
+mod prologue;
 
 use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 use syn::ItemStruct;
 
-pub(crate) use code::{lets, opaques_read, operand, prologue_tokens, straight_line};
+pub(crate) use code::{lets, operand, straight_line};
 pub(crate) use hidden::{evaluation, hidden_fn, time_copy};
 pub(crate) use model::{ModelImpl, stub_model};
+pub(crate) use prologue::{opaques_read, prologue_tokens};
 
 use model::stub_model_with;
 
