@@ -94,6 +94,12 @@ pub(crate) fn is_self(expr: &Expr) -> bool {
     matches!(expr, Expr::Path(p) if p.qself.is_none() && p.path.is_ident("self"))
 }
 
+/// Whether `receiver` is `&self` (not `self`, not `&mut self`): what every function odyn reads
+/// takes, so it cannot change the model while it is evaluated.
+pub(crate) fn is_ref_self(receiver: &syn::Receiver) -> bool {
+    receiver.reference.is_some() && receiver.mutability.is_none()
+}
+
 /// The first of `attrs` that is one of `names`.
 pub(crate) fn attribute<'a>(attrs: &'a [Attribute], names: &[&str]) -> Option<&'a Attribute> {
     attrs

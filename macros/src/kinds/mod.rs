@@ -93,15 +93,10 @@ pub(crate) fn expand_struct(args_tokens: TokenStream, item: &ItemStruct) -> Toke
     let args = args::parse(args_tokens.clone(), &mut errors);
     let item = &attributes::unknown_attributes(item, &mut errors);
     let stripped = strip_field_attributes(item);
-    let state = if is_generic(item) {
+    let state = if let Some(refusal) = unsupported_shape(item) {
         // One error: the fields of a generic model (`[f64; N]`, `k: T`) would each be refused
-        // only because of the generics.
-        errors.at(
-            &item.generics,
-            "generic models are not supported: `#[system]` lays out the state and derives its \
-             Jacobian for one concrete struct; write array lengths as integer literals \
-             (`[f64; 3]`) and parameters as `f64` fields",
-        );
+        // only because of the generics, and a tuple struct's have no names to read.
+        errors.push(refusal);
         validate::structure(&args, None, &mut errors);
         None
     } else {
@@ -124,9 +119,23 @@ pub(crate) fn expand_struct(args_tokens: TokenStream, item: &ItemStruct) -> Toke
     }
 }
 
-/// Whether the struct has generic parameters or a `where` clause.
-fn is_generic(item: &ItemStruct) -> bool {
-    !item.generics.params.is_empty() || item.generics.where_clause.is_some()
+/// The error for a struct no kind reads: a generic one, or one without named fields.
+fn unsupported_shape(item: &ItemStruct) -> Option<syn::Error> {
+    if !item.generics.params.is_empty() || item.generics.where_clause.is_some() {
+        return Some(syn::Error::new_spanned(
+            &item.generics,
+            "generic models are not supported: `#[system]` lays out the state and derives its \
+             Jacobian for one concrete struct; write array lengths as integer literals \
+             (`[f64; 3]`) and parameters as `f64` fields",
+        ));
+    }
+    if !matches!(item.fields, syn::Fields::Named(_)) {
+        return Some(syn::Error::new(
+            item.ident.span(),
+            "a model must be a struct with named fields, such as `struct Spring { x: f64, .. }`",
+        ));
+    }
+    None
 }
 
 /// The impl half, with the struct: the impl block without odyn's method attributes and the

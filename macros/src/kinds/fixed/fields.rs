@@ -8,11 +8,8 @@ use crate::syntax::no_arguments;
 
 /// Reads the model from its struct, reporting every problem to `errors`.
 pub(crate) fn parse<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Option<Model<'a>> {
+    // Refused before the front-end with its own error (`kinds::expand_struct`).
     let Fields::Named(named) = &item.fields else {
-        errors.at_span(
-            item.ident.span(),
-            "a model must be a struct with named fields, such as `struct Spring { x: f64, .. }`",
-        );
         return None;
     };
     let mut declared = Vec::new();

@@ -5,7 +5,9 @@ use syn::{FnArg, Ident, ImplItem, ImplItemFn, ItemImpl, Pat, ReturnType, Type};
 
 use super::Fields;
 use crate::errors::Errors;
-use crate::syntax::{attribute, has_attribute, int_literal, is_f64, names_type, no_arguments};
+use crate::syntax::{
+    attribute, has_attribute, int_literal, is_f64, is_ref_self, names_type, no_arguments,
+};
 
 /// The `#[cell]` kernel.
 pub(crate) struct Cell {
@@ -93,7 +95,7 @@ pub(super) fn parse_cell(imp: &ItemImpl, fields: &Fields<'_>, errors: &mut Error
     }
     let mut inputs = f.sig.inputs.iter();
     match inputs.next() {
-        Some(FnArg::Receiver(r)) if r.reference.is_some() && r.mutability.is_none() => {}
+        Some(FnArg::Receiver(r)) if is_ref_self(r) => {}
         _ => errors.at(&f.sig, format_args!("`{name}` must take `&self` first")),
     }
     let mut stencils: Vec<(Ident, usize)> = Vec::new();

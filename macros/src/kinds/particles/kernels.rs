@@ -7,7 +7,7 @@ use syn::{Attribute, FnArg, Ident, ImplItem, ImplItemFn, ItemImpl, Pat, ReturnTy
 use super::Particles;
 use crate::errors::Errors;
 use crate::model::{Shape, shape_of};
-use crate::syntax::{attribute, is_plain, no_arguments, vec_element};
+use crate::syntax::{attribute, is_plain, is_ref_self, no_arguments, vec_element};
 
 /// Which elements a kernel runs over.
 pub(super) enum Over {
@@ -108,7 +108,7 @@ pub(super) fn parse_kernels(
 fn check_receiver_only(f: &ImplItemFn, errors: &mut Errors) {
     let mut inputs = f.sig.inputs.iter();
     match inputs.next() {
-        Some(FnArg::Receiver(r)) if r.reference.is_some() && r.mutability.is_none() => {}
+        Some(FnArg::Receiver(r)) if is_ref_self(r) => {}
         _ => errors.at(&f.sig, "`potential` must take `&self`"),
     }
     if let Some(extra) = inputs.next() {
@@ -177,7 +177,7 @@ fn parse_kernel(
     }
     let mut inputs = f.sig.inputs.iter().peekable();
     match inputs.next() {
-        Some(FnArg::Receiver(r)) if r.reference.is_some() && r.mutability.is_none() => {}
+        Some(FnArg::Receiver(r)) if is_ref_self(r) => {}
         _ => errors.at(
             &f.sig,
             format_args!("kernel `{name}` must take `&self` first"),

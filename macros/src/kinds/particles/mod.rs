@@ -83,8 +83,8 @@ pub(crate) fn parse_struct<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Opt
     let mut pinned = None;
     let mut dims = Vec::new();
     for field in &item.fields {
+        // Refused before the front-end with its own error (`kinds::expand_struct`).
         let Some(ident) = field.ident.as_ref() else {
-            errors.at(field, "a model must be a struct with named fields");
             return None;
         };
         if let Some(attr) = attribute(&field.attrs, &["state"]) {
