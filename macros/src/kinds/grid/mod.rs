@@ -71,9 +71,7 @@ pub(crate) fn parse_struct<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Opt
     let mut coefficients = Vec::new();
     for field in &item.fields {
         // Refused before the front-end with its own error (`kinds::expand_struct`).
-        let Some(ident) = field.ident.as_ref() else {
-            return None;
-        };
+        let ident = field.ident.as_ref()?;
         for attr in &field.attrs {
             let other = ["state", "position", "velocity", "mass", "pinned"];
             if other.iter().any(|n| attr.path().is_ident(n)) {

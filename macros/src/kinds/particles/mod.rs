@@ -84,9 +84,7 @@ pub(crate) fn parse_struct<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Opt
     let mut dims = Vec::new();
     for field in &item.fields {
         // Refused before the front-end with its own error (`kinds::expand_struct`).
-        let Some(ident) = field.ident.as_ref() else {
-            return None;
-        };
+        let ident = field.ident.as_ref()?;
         if let Some(attr) = attribute(&field.attrs, &["state"]) {
             errors.at(
                 attr,
