@@ -4,7 +4,7 @@
 //! attribute's constants and their compile-time check are written here.
 
 use proc_macro2::TokenStream;
-use quote::{quote, quote_spanned};
+use quote::{ToTokens, quote, quote_spanned};
 use syn::spanned::Spanned;
 
 use crate::args::Args;
@@ -32,7 +32,29 @@ pub(crate) struct ModelImpl<'a> {
     pub(crate) check: Option<TokenStream>,
 }
 
-impl ModelImpl<'_> {
+impl<'a> ModelImpl<'a> {
+    /// The impl of a model's runtime traits for its impl block `imp`, with the attribute's
+    /// `args`: no methods yet, neither its own `SecondOrder` nor its own `Jacobian` (a kind sets
+    /// what it has with struct update syntax).
+    pub(crate) fn for_impl(
+        imp: &'a syn::ItemImpl,
+        model: &syn::Ident,
+        state: &'a syn::Ident,
+        args: &'a Args,
+    ) -> Self {
+        ModelImpl {
+            self_ty: imp.self_ty.to_token_stream(),
+            generics: &imp.generics,
+            name: model.to_string(),
+            state,
+            args: Some(args),
+            methods: TokenStream::new(),
+            second_order: false,
+            jacobian: false,
+            check: None,
+        }
+    }
+
     /// The impl and, for a model with attribute arguments, a `const` that evaluates them, so a
     /// bad `dt` is an error even in a crate that never runs the model.
     pub(crate) fn build(self) -> TokenStream {

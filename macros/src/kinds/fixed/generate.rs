@@ -2,7 +2,7 @@
 //! re-emitted to take the state as arguments, and the `Model` and `SecondOrder` impls.
 
 use proc_macro2::{Span, TokenStream};
-use quote::{ToTokens, format_ident, quote, quote_spanned};
+use quote::{format_ident, quote, quote_spanned};
 use syn::ItemImpl;
 
 use super::functions::{Function, Functions};
@@ -133,11 +133,6 @@ pub(crate) fn model_impls(
         .chain(&functions.energy)
         .map(|f| &f.name);
     let model_impl = ModelImpl {
-        self_ty: self_ty.to_token_stream(),
-        generics: &imp.generics,
-        name: ident.to_string(),
-        state: &state,
-        args: Some(args),
         methods: quote! {
             #[inline]
             fn state(&self) -> #state {
@@ -155,6 +150,7 @@ pub(crate) fn model_impls(
         second_order: model.order == Order::Second,
         jacobian: has_jacobian,
         check: None,
+        ..ModelImpl::for_impl(imp, ident, &state, args)
     }
     .build();
     quote! {

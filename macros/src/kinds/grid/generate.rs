@@ -2,7 +2,7 @@
 //! and the `GridSystem`, `Model` and `Jacobian` impls, which call into `odyn::grid`.
 
 use proc_macro2::{Literal, Span, TokenStream};
-use quote::{ToTokens, format_ident, quote};
+use quote::{format_ident, quote};
 use syn::ItemImpl;
 
 use super::cell::{Argument, Cell};
@@ -22,7 +22,6 @@ pub(super) fn impls(
     lowered: Option<Lowered>,
 ) -> TokenStream {
     let self_ty = &imp.self_ty;
-    let name = fields.item.ident.to_string();
     let state = fields.state_ident();
     let count = Literal::usize_unsuffixed(fields.fields.len());
     let grids = &fields.fields;
@@ -138,11 +137,6 @@ pub(super) fn impls(
         ),
     };
     let model_impl = ModelImpl {
-        self_ty: self_ty.to_token_stream(),
-        generics: &imp.generics,
-        name,
-        state: &state,
-        args: Some(args),
         methods: quote! {
             fn state(&self) -> #state {
                 ::odyn::grid::GridState::from_grids(&[#(&self.#grids),*], &[#(#names),*])
@@ -162,6 +156,7 @@ pub(super) fn impls(
             #(::odyn::grid::check_coefficient::<Self>(#coefficient_names, &self.#coefficients, state)?;)*
             ::core::result::Result::Ok(())
         }),
+        ..ModelImpl::for_impl(imp, &fields.item.ident, &state, args)
     }
     .build();
     quote! {

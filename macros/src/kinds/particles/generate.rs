@@ -21,7 +21,6 @@ pub(super) fn generate(
     jacobian: Option<Vec<Lowered>>,
 ) -> TokenStream {
     let self_ty = &imp.self_ty;
-    let name = particles.item.ident.to_string();
     let state = particles.state_ident();
     let d = proc_macro2::Literal::usize_unsuffixed(particles.dim);
     let vector = particles.vector_type();
@@ -177,11 +176,6 @@ pub(super) fn generate(
         ),
     };
     let model_impl = ModelImpl {
-        self_ty: self_ty.to_token_stream(),
-        generics: &imp.generics,
-        name,
-        state: &state,
-        args: Some(args),
         methods: quote! {
             fn state(&self) -> #state {
                 ::odyn::particles::ParticleState::from_fields(&self.#x, &self.#v, [#x_name, #v_name])
@@ -197,6 +191,7 @@ pub(super) fn generate(
         second_order: true,
         jacobian: has_jacobian,
         check: Some(quote!(::odyn::particles::check(self, state))),
+        ..ModelImpl::for_impl(imp, &particles.item.ident, &state, args)
     }
     .build();
     quote! {
