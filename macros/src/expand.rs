@@ -12,7 +12,7 @@ use syn::{Item, ItemImpl, ItemStruct, Type};
 
 use crate::errors::{Errors, with_error};
 use crate::generate::never_run;
-use crate::syntax::{METHOD_ATTRIBUTES, strip_method_attributes};
+use crate::syntax::strip_method_attributes;
 use crate::{args, generate, kinds};
 
 /// `#[system(...)]` on an item.
@@ -60,8 +60,11 @@ fn forward_impl(args: TokenStream, item: &ItemImpl) -> TokenStream {
                 // The impl of a generic struct, which `#[system]` on the struct has reported
                 // (rustc reports generics on the impl of a plain one): the impl block stays, its
                 // bodies never run, and nothing more is said.
-                return never_run(strip_method_attributes(item, &METHOD_ATTRIBUTES), |_| true)
-                    .into_token_stream();
+                return never_run(
+                    strip_method_attributes(item, &kinds::method_attributes()),
+                    |_| true,
+                )
+                .into_token_stream();
             }
             Some(&segment.ident)
         }
@@ -114,7 +117,7 @@ impl Parse for Rejected {
     fn parse(input: ParseStream<'_>) -> syn::Result<Self> {
         input.parse::<syn::Token![!]>()?;
         Ok(Rejected(never_run(
-            strip_method_attributes(&input.parse()?, &METHOD_ATTRIBUTES),
+            strip_method_attributes(&input.parse()?, &kinds::method_attributes()),
             |_| true,
         )))
     }

@@ -15,10 +15,6 @@ use crate::errors::Errors;
 pub(crate) const FIELD_ATTRIBUTES: [&str; 6] =
     ["state", "position", "velocity", "field", "mass", "pinned"];
 
-/// odyn's attributes on the methods of a model's impl block: a grid's kernel (`cell`), a particle
-/// model's kernels (`pair`, `particle`).
-pub(crate) const METHOD_ATTRIBUTES: [&str; 3] = ["cell", "pair", "particle"];
-
 /// Rust's own attributes that may go on a struct, its fields, or a method.
 pub(crate) const RUST_ATTRIBUTES: [&str; 21] = [
     "doc",

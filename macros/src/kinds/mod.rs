@@ -60,6 +60,15 @@ pub(crate) trait FrontEnd: Sync {
 /// else a fixed-size model.
 const KINDS: [&dyn FrontEnd; 3] = [&particles::Kind, &grid::Kind, &fixed::Kind];
 
+/// odyn's attributes on the methods of any kind's impl block (`cell`, `pair`, `particle`): what
+/// is stripped from the impl block of a struct that was rejected before its kind was known.
+pub(crate) fn method_attributes() -> Vec<&'static str> {
+    KINDS
+        .iter()
+        .flat_map(|kind| kind.method_attributes().iter().copied())
+        .collect()
+}
+
 /// The front-end of `item`'s kind.
 fn front_end(item: &ItemStruct) -> &'static dyn FrontEnd {
     KINDS
