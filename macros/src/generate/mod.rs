@@ -7,6 +7,7 @@
 
 mod code;
 mod hidden;
+mod jacobian;
 mod model;
 mod prologue;
 
@@ -16,6 +17,7 @@ use syn::ItemStruct;
 
 pub(crate) use code::{lets, operand, straight_line};
 pub(crate) use hidden::{evaluation, hidden_fn, time_copy};
+pub(crate) use jacobian::{runtime_jacobian, time_independent};
 pub(crate) use model::{ModelImpl, stub_model};
 pub(crate) use prologue::{opaques_read, prologue_tokens};
 

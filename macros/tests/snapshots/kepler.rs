@@ -161,8 +161,9 @@ impl ::odyn::Jacobian for Kepler {
     ) {
         self.__odyn_jacobian(t, y.r, y.v, jacobian)
     }
+    /// The model's function does not read the time: ∂f/∂t = 0.
     const TIME_DEPENDENT: bool = false;
-    #[inline(always)]
+    #[inline]
     fn time_derivative(&self, _: f64, _: &KeplerState, dfdt: &mut KeplerState) {
         ::odyn::State::as_mut_slice(dfdt).fill(0.0);
     }

@@ -135,8 +135,9 @@ impl ::odyn::Jacobian for Lorenz {
     ) {
         self.__odyn_jacobian(t, y.x, y.y, y.z, jacobian)
     }
+    /// The model's function does not read the time: ∂f/∂t = 0.
     const TIME_DEPENDENT: bool = false;
-    #[inline(always)]
+    #[inline]
     fn time_derivative(&self, _: f64, _: &LorenzState, dfdt: &mut LorenzState) {
         ::odyn::State::as_mut_slice(dfdt).fill(0.0);
     }

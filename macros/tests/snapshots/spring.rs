@@ -139,8 +139,9 @@ impl ::odyn::Jacobian for Spring {
     ) {
         self.__odyn_jacobian(t, y.x, y.v, jacobian)
     }
+    /// The model's function does not read the time: ∂f/∂t = 0.
     const TIME_DEPENDENT: bool = false;
-    #[inline(always)]
+    #[inline]
     fn time_derivative(&self, _: f64, _: &SpringState, dfdt: &mut SpringState) {
         ::odyn::State::as_mut_slice(dfdt).fill(0.0);
     }

@@ -10,6 +10,7 @@ use super::functions::Function;
 use super::layout::{JacobianBody, SMALL, component_tokens, inline_hint, state_params, time_param};
 use crate::generate::{
     evaluation, hidden_fn, opaques_read, operand, prologue_tokens, straight_line, time_copy,
+    time_independent,
 };
 use crate::ir::ExprId;
 use crate::lower::{Lowered, Prologue};
@@ -248,13 +249,7 @@ fn time_derivative(
     if entries.is_empty() {
         return (
             None,
-            quote! {
-                const TIME_DEPENDENT: bool = false;
-                #[inline(always)]
-                fn time_derivative(&self, _: f64, _: &#state, dfdt: &mut #state) {
-                    ::odyn::State::as_mut_slice(dfdt).fill(0.0);
-                }
-            },
+            time_independent(&state, "The model's function does not read the time"),
         );
     }
     let roots: Vec<ExprId> = entries.iter().map(|e| e.1).collect();

@@ -9,7 +9,9 @@ use super::cell::{Argument, Cell};
 use super::{Fields, NEIGHBOURS};
 use crate::args::Args;
 use crate::derivative::Differentiator;
-use crate::generate::{ModelImpl, evaluation, hidden_fn, operand, time_copy};
+use crate::generate::{
+    ModelImpl, evaluation, hidden_fn, operand, runtime_jacobian, time_copy, time_independent,
+};
 use crate::lower::Lowered;
 
 /// The runtime trait impls of a field model; `lowered` is the cell kernel, absent with
@@ -95,14 +97,7 @@ pub(super) fn impls(
                 ),
                 Time::Unread => (
                     zeros.clone(),
-                    quote! {
-                        /// A cell's rate does not read the time: ∂f/∂t = 0.
-                        const TIME_DEPENDENT: bool = false;
-                        #[inline]
-                        fn time_derivative(&self, _: f64, _: &#state, dfdt: &mut #state) {
-                            ::odyn::State::as_mut_slice(dfdt).fill(0.0);
-                        }
-                    },
+                    time_independent(&state, "A cell's rate does not read the time"),
                 ),
             };
             (
@@ -110,22 +105,14 @@ pub(super) fn impls(
                 function,
                 quote!(blocks.copy_from_slice(&self.#hidden(#(#arguments),*));),
                 time_call,
-                quote! {
-                    #[automatically_derived]
-                    impl ::odyn::Jacobian for #self_ty {
-                        type Matrix = ::odyn::grid::GridJacobian;
-                        /// Empty: a field model's pattern comes from its grid at run time.
-                        const NONZEROS: &'static [(usize, usize)] = &[];
-                        fn jacobian_matrix(&self, state: &#state) -> Self::Matrix {
-                            ::odyn::grid::jacobian_matrix(self, state)
-                        }
-                        #[inline]
-                        fn jacobian(&self, t: f64, y: &#state, jacobian: &mut Self::Matrix) {
-                            ::odyn::grid::jacobian(self, t, y, jacobian)
-                        }
-                        #time_items
-                    }
-                },
+                runtime_jacobian(
+                    self_ty,
+                    &state,
+                    "grid",
+                    quote!(::odyn::grid::GridJacobian),
+                    "a field model's pattern comes from its grid at run time",
+                    time_items,
+                ),
             )
         }
         None => (

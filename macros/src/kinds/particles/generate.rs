@@ -9,7 +9,9 @@ use syn::{FnArg, ItemImpl};
 use super::Particles;
 use super::kernels::{Functions, Kernel, Over};
 use crate::args::Args;
-use crate::generate::{ModelImpl, evaluation, hidden_fn, operand};
+use crate::generate::{
+    ModelImpl, evaluation, hidden_fn, operand, runtime_jacobian, time_independent,
+};
 use crate::ir::ExprId;
 use crate::lower::Lowered;
 
@@ -118,6 +120,14 @@ pub(super) fn generate(
                 .zip(lowered)
                 .map(|(k, l)| kernel_jacobian(particles, k, l))
                 .unzip();
+            let jacobian_impl = runtime_jacobian(
+                self_ty,
+                &state,
+                "particles",
+                quote!(::odyn::particles::ParticleJacobian<#d>),
+                "a particle model's pattern comes from its topology at run time",
+                time_independent(&state, "Kernels do not read the time"),
+            );
             (
                 quote!(#(#fns)*),
                 quote! {
@@ -135,25 +145,7 @@ pub(super) fn generate(
                         }
                         #common
                     }
-                    #[automatically_derived]
-                    impl ::odyn::Jacobian for #self_ty {
-                        type Matrix = ::odyn::particles::ParticleJacobian<#d>;
-                        /// Empty: a particle model's pattern comes from its topology at run time.
-                        const NONZEROS: &'static [(usize, usize)] = &[];
-                        fn jacobian_matrix(&self, state: &#state) -> Self::Matrix {
-                            ::odyn::particles::jacobian_matrix(self, state)
-                        }
-                        #[inline]
-                        fn jacobian(&self, t: f64, y: &#state, jacobian: &mut Self::Matrix) {
-                            ::odyn::particles::jacobian(self, t, y, jacobian)
-                        }
-                        /// Kernels do not read the time: ∂f/∂t = 0.
-                        const TIME_DEPENDENT: bool = false;
-                        #[inline]
-                        fn time_derivative(&self, _: f64, _: &#state, dfdt: &mut #state) {
-                            ::odyn::State::as_mut_slice(dfdt).fill(0.0);
-                        }
-                    }
+                    #jacobian_impl
                 },
             )
         }
