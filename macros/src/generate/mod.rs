@@ -1,6 +1,13 @@
-//! Code generation shared by every model kind: the forwarding macro between a struct's expansion
-//! and its impl block's, the stand-ins of a rejected model, ([`model`]) the `impl ::odyn::Model`
-//! of every kind, and ([`code`]) the expression graph as straight-line Rust.
+//! Code generation shared by every model kind; the kinds' own `generate` files only say what
+//! differs. Here: the forwarding macro between a struct's expansion and its impl block's, and
+//! the stand-ins of a rejected model; in its modules:
+//!
+//! - [`model`]: the one `impl ::odyn::Model` builder (with the compile-time check of the
+//!   attribute's constants);
+//! - [`jacobian`]: what the `impl ::odyn::Jacobian` blocks share;
+//! - [`hidden`]: derivatives → a hidden method of the model (the one step every kind takes);
+//! - [`code`]: the expression graph as straight-line Rust, and [`prologue`], the user's
+//!   state-free code that runs before it.
 //!
 //! Generated code names everything by absolute path (`::odyn::…`), binds the state to hygienic
 //! locals, and documents every public item so `cargo doc` of a user's crate explains it.
