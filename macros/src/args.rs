@@ -63,7 +63,9 @@ pub(crate) struct Args {
 const SUPPORTED: &str = "`integrator = ...`, `dt = ...`, `rtol = ...`, `atol = ...`, \
     `jacobian = false`";
 
-/// Parses the attribute's arguments, reporting problems to `errors`.
+/// Parses the attribute's arguments, reporting problems to `errors`. A problem with one
+/// argument hides none of the others: an unknown argument or a value of the wrong form is
+/// reported and skipped, and parsing goes on after the next comma.
 pub(crate) fn parse(tokens: TokenStream, errors: &mut Errors) -> Args {
     let mut args = Args::default();
     let mut seen: Vec<String> = Vec::new();
@@ -79,58 +81,85 @@ pub(crate) fn parse(tokens: TokenStream, errors: &mut Errors) -> Args {
             );
         }
         seen.push(name.clone());
-        match name.as_str() {
-            "integrator" => {
-                let ident: Ident = meta.value()?.parse()?;
-                match METHODS.iter().find(|m| ident == m.name) {
-                    Some(info) => args.integrator = Some((ident, info)),
-                    None => errors.at(
-                        &ident,
-                        format_args!("unknown integrator `{ident}`; supported: {}", names()),
-                    ),
-                }
-            }
-            "dt" | "rtol" | "atol" => {
-                let expr: Expr = meta.value()?.parse()?;
-                check_number(&name, &expr, errors);
-                let slot = match name.as_str() {
-                    "dt" => &mut args.dt,
-                    "rtol" => &mut args.rtol,
-                    _ => &mut args.atol,
-                };
-                *slot = Some(expr);
-            }
-            "jacobian" => {
-                let value: syn::LitBool = meta.value()?.parse()?;
-                if !value.value {
-                    args.no_jacobian = Some(value);
-                }
-            }
-            _ => {
-                return Err(meta.error(format_args!(
-                    "unknown `#[system]` argument `{name}`; supported: {SUPPORTED}"
-                )));
-            }
+        if ["integrator", "dt", "rtol", "atol", "jacobian"].contains(&name.as_str()) {
+            let value: Expr = meta.value()?.parse()?;
+            read(&name, value, &mut args, errors);
+        } else {
+            errors.push(meta.error(format_args!(
+                "unknown `#[system]` argument `{name}`; supported: {SUPPORTED}"
+            )));
+            skip_to_comma(meta.input)?;
         }
         Ok(())
     });
     if let Err(error) = parser.parse2(tokens) {
         errors.push(error);
     }
-    if let (Some((ident, info)), Some(tolerance)) =
-        (&args.integrator, args.rtol.as_ref().or(args.atol.as_ref()))
-        && !info.adaptive
-    {
-        errors.at(
-            tolerance,
-            format_args!(
-                "`{ident}` steps with a fixed `dt` and has no error estimate to hold to a \
-                 tolerance; `rtol`/`atol` need an adaptive integrator ({})",
-                adaptive_names()
-            ),
-        );
-    }
     args
+}
+
+/// Reads the value of argument `name` into `args`.
+fn read(name: &str, value: Expr, args: &mut Args, errors: &mut Errors) {
+    match name {
+        "integrator" => {
+            let ident = match &value {
+                Expr::Path(p) if p.qself.is_none() && p.attrs.is_empty() => p.path.get_ident(),
+                _ => None,
+            };
+            let Some(ident) = ident else {
+                errors.at(
+                    &value,
+                    format_args!(
+                        "`integrator` takes a method's name, such as `integrator = Rk4`; \
+                         supported: {}",
+                        names()
+                    ),
+                );
+                return;
+            };
+            match METHODS.iter().find(|m| ident == m.name) {
+                Some(info) => args.integrator = Some((ident.clone(), info)),
+                None => errors.at(
+                    ident,
+                    format_args!("unknown integrator `{ident}`; supported: {}", names()),
+                ),
+            }
+        }
+        "jacobian" => match &value {
+            Expr::Lit(syn::ExprLit {
+                lit: Lit::Bool(value),
+                ..
+            }) => {
+                if !value.value {
+                    args.no_jacobian = Some(value.clone());
+                }
+            }
+            _ => errors.at(&value, "`jacobian` takes `false` (or `true`, the default)"),
+        },
+        _ => {
+            check_number(name, &value, errors);
+            let slot = match name {
+                "dt" => &mut args.dt,
+                "rtol" => &mut args.rtol,
+                _ => &mut args.atol,
+            };
+            *slot = Some(value);
+        }
+    }
+}
+
+/// Moves `input` to the next comma (or its end), past an argument that was not understood.
+fn skip_to_comma(input: syn::parse::ParseStream<'_>) -> syn::Result<()> {
+    input.step(|cursor| {
+        let mut rest = *cursor;
+        while let Some((tree, next)) = rest.token_tree() {
+            if matches!(&tree, proc_macro2::TokenTree::Punct(p) if p.as_char() == ',') {
+                break;
+            }
+            rest = next;
+        }
+        Ok(((), rest))
+    })
 }
 
 fn names() -> String {
@@ -141,7 +170,8 @@ fn names() -> String {
         .join(", ")
 }
 
-fn adaptive_names() -> String {
+/// The adaptive integrators' names, for messages.
+pub(crate) fn adaptive_names() -> String {
     METHODS
         .iter()
         .filter(|m| m.adaptive)
@@ -248,4 +278,35 @@ fn evaluate(expr: &Expr) -> Result<Option<f64>, (&Expr, String)> {
         Number::Int(v) => v as f64,
         Number::Float(v) => v,
     }))
+}
+
+#[cfg(test)]
+mod tests {
+    use quote::quote;
+
+    use crate::errors::Errors;
+
+    /// One problem per argument, each reported: none hides the ones after it.
+    #[test]
+    fn every_argument_error_is_kept() {
+        let mut errors = Errors::default();
+        let args = super::parse(
+            quote!(
+                tolerance = 1e-6,
+                integrator = Rk5,
+                jacobian = 1,
+                dt = 1 / 60,
+                rtol = 1e-6
+            ),
+            &mut errors,
+        );
+        assert_eq!(errors.len(), 4);
+        assert!(args.rtol.is_some());
+        let mut errors = Errors::default();
+        super::parse(
+            quote!(integrator = odyn::Method::Rk4, foo(1, 2), atol = -1.0),
+            &mut errors,
+        );
+        assert_eq!(errors.len(), 3);
+    }
 }

@@ -11,6 +11,8 @@ use syn::parse::{Parse, ParseStream};
 use syn::{Item, ItemImpl, ItemStruct, Type};
 
 use crate::errors::{Errors, with_error};
+use crate::generate::never_run;
+use crate::syntax::strip_method_attributes;
 use crate::{args, generate, kinds};
 
 /// `#[system(...)]` on an item.
@@ -58,7 +60,11 @@ fn forward_impl(args: TokenStream, item: &ItemImpl) -> TokenStream {
                 // The impl of a generic struct, which `#[system]` on the struct has reported
                 // (rustc reports generics on the impl of a plain one): the impl block stays, its
                 // bodies never run, and nothing more is said.
-                return never_run(item.clone()).into_token_stream();
+                return never_run(
+                    strip_method_attributes(item, &kinds::method_attributes()),
+                    |_| true,
+                )
+                .into_token_stream();
             }
             Some(&segment.ident)
         }
@@ -75,7 +81,12 @@ fn forward_impl(args: TokenStream, item: &ItemImpl) -> TokenStream {
             let forwarder = generate::forwarder_name(model);
             quote!(#forwarder! { #item })
         }
-        (result, _) => with_error(item, result.expect_err("an error was recorded")),
+        (result, _) => {
+            let error = result.err().unwrap_or_else(|| {
+                syn::Error::new_spanned(&item.self_ty, "`#[system]` rejected this impl block")
+            });
+            with_error(item, error)
+        }
     }
 }
 
@@ -105,29 +116,11 @@ struct Rejected(ItemImpl);
 impl Parse for Rejected {
     fn parse(input: ParseStream<'_>) -> syn::Result<Self> {
         input.parse::<syn::Token![!]>()?;
-        Ok(Rejected(never_run(input.parse()?)))
+        Ok(Rejected(never_run(
+            strip_method_attributes(&input.parse()?, &kinds::method_attributes()),
+            |_| true,
+        )))
     }
-}
-
-/// `imp` with odyn's method attributes removed and its bodies replaced by ones that never run.
-fn never_run(mut imp: ItemImpl) -> ItemImpl {
-    for member in &mut imp.items {
-        if let syn::ImplItem::Fn(f) = member {
-            f.attrs.retain(|a| {
-                !["cell", "pair", "particle"]
-                    .iter()
-                    .any(|name| a.path().is_ident(name))
-            });
-            // The bodies read fields the rejected struct may not have as declared (its state
-            // type is a stub): never run, they would only add follow-on errors.
-            f.attrs
-                .push(syn::parse_quote!(#[allow(unused_variables, unreachable_code)]));
-            f.block = syn::parse_quote!({
-                ::core::unreachable!("odyn rejected this model at compile time")
-            });
-        }
-    }
-    imp
 }
 
 /// Struct and impl together: the runtime trait impls.
@@ -144,7 +137,11 @@ pub(crate) fn system_impl(input: TokenStream) -> TokenStream {
     };
     let mut errors = Errors::default();
     let args = args::parse(args, &mut errors);
-    kinds::expand_impl(&args, &item, &imp)
+    let expanded = kinds::expand_impl(&args, &item, &imp);
+    // The struct's expansion parsed these same tokens and was accepted, so this parse finds no
+    // problem; were it to find one, it is reported rather than dropped.
+    let error = errors.finish().err().map(|e| e.to_compile_error());
+    quote!(#expanded #error)
 }
 
 /// Input too deep to parse: the error, and the item unchanged (rustc parses it, on a stack that
@@ -159,7 +156,7 @@ fn too_deep(item: TokenStream, error: syn::Error) -> TokenStream {
             Some(proc_macro2::TokenTree::Ident(model)),
             Some(proc_macro2::TokenTree::Group(_)),
         ) if keyword == "impl" => {
-            let state = quote::format_ident!("{}State", model);
+            let state = crate::model::state_ident(&model);
             generate::stub_model(&model, &state)
         }
         _ => TokenStream::new(),

@@ -2,32 +2,40 @@
 //! kind.
 //!
 //! ```text
-//!   #[system] struct / impl ──► expand ──► kinds::Kind::of(struct)
-//!                                            │  fixed / particles / grid front-end:
-//!                                            │  recognise the struct and the functions,
-//!                                            │  report what is rejected at its token
-//!                                            ▼
-//!   args ─► model (state description) ─► rewrite (self.x → state locals)
+//!   #[system] struct / impl ──► expand ──► args (each argument read once, every error kept)
+//!        ─► kinds: the FrontEnd of the struct's kind (one row of kinds::KINDS) reads the
+//!           struct and the functions, reporting what it rejects at its token
+//!        ─► validate (what the integrator asks: order, velocity-free forces, the Jacobian)
+//!        ─► model (state description) ─► rewrite (self.x → state locals)
 //!        ─► lower (body → expression graph, ir) ─► derivative / sparsity (∂f, pattern)
-//!        ─► generate (straight-line code) ─► the kind's generate (runtime trait impls)
+//!        ─► generate: hidden (derivatives → hidden methods: code, prologue), model (the one
+//!           impl Model) ─► the kind's generate (its runtime trait impls)
+//!   rejected anywhere: the item, the errors, and stand-ins (kinds::expand_impl, one path)
 //! ```
 //!
 //! Shared stages, one file or directory each, that know nothing of the kinds:
 //!
 //! - `args`: the attribute's arguments (`integrator`, `dt`, `rtol`, `atol`, `jacobian`);
+//! - `validate`: what the attribute's integrator asks of the model (its order, velocity-free
+//!   forces, the Jacobian, tolerances), checked once for every kind;
 //! - `model`: the state description a front-end builds — fields, roles, shapes;
 //! - `rewrite`: function bodies with every read of state made explicit;
 //! - `lower`: a body to the expression graph `ir` (`lower` for a whole-state function,
 //!   `lower_kernel` for a kernel of its arguments);
 //! - `derivative`, `sparsity`: exact derivatives and structural patterns of the graph (pure: no
 //!   syn, no quote);
-//! - `generate`: the forwarding macro, stub impls, defaults, and the graph as straight-line code;
+//! - `generate`: the forwarding macro, the stand-ins of a rejected model, the one
+//!   `impl ::odyn::Model` builder, the derivative-to-hidden-method step, and the graph as
+//!   straight-line code;
+//! - `syntax`: the names odyn gives meaning to, and the type and attribute questions every
+//!   stage asks;
 //! - `errors`, `limits`: every problem reported at its own token; inputs too deep to expand.
 //!
 //! Model kinds, under `kinds/` (see its module docs for adding one): `fixed` (fixed-size
 //! first- and second-order models), `particles` (`Vec` positions with pair and particle
-//! kernels), `grid` (`#[field]` grids with a `#[cell]` stencil kernel). Each has its struct and
-//! impl front-end and its own `generate` for the runtime trait impls of its `odyn` module.
+//! kernels), `grid` (`#[field]` grids with a `#[cell]` stencil kernel). Each is a `FrontEnd`
+//! (its struct and impl block read) with its own `generate` for the runtime trait impls of its
+//! `odyn` module.
 //!
 //! `expand` wires the two halves together: the struct's expansion defines a `macro_rules!`
 //! carrying the struct's tokens to the impl block's expansion, the one place that sees both.
@@ -44,6 +52,8 @@ mod lower;
 mod model;
 mod rewrite;
 mod sparsity;
+mod syntax;
+mod validate;
 
 use proc_macro::TokenStream;
 

@@ -3,7 +3,9 @@
 
 use proc_macro2::TokenStream;
 use quote::quote;
-use syn::{Expr, GenericArgument, Ident, ItemStruct, Lit, PathArguments, Type};
+use syn::{GenericArgument, Ident, ItemStruct, PathArguments, Type};
+
+use crate::syntax::{int_literal, is_f64};
 
 /// What a state field is.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
@@ -95,7 +97,17 @@ impl Model<'_> {
     }
 
     pub(crate) fn state_ident(&self) -> Ident {
-        quote::format_ident!("{}State", self.item.ident)
+        state_ident(&self.item.ident)
+    }
+
+    /// The model as a kernel's lowering sees it: every field a parameter, the state coming in
+    /// through the kernel's arguments (particle and grid kernels).
+    pub(crate) fn parameters(item: &ItemStruct, order: Order) -> Model<'_> {
+        Model {
+            item,
+            order,
+            states: Vec::new(),
+        }
     }
 
     pub(crate) fn field(&self, name: &Ident) -> Option<&StateField<'_>> {
@@ -110,6 +122,11 @@ impl Model<'_> {
     pub(crate) fn len(&self) -> usize {
         self.states.iter().map(|f| f.shape.len()).sum()
     }
+}
+
+/// The name of the state type `#[system]` generates for model `model`: `<Model>State`.
+pub(crate) fn state_ident(model: &Ident) -> Ident {
+    quote::format_ident!("{}State", model)
 }
 
 /// The shape of a supported state type.
@@ -148,21 +165,4 @@ pub(crate) fn shape_of(ty: &Type) -> Option<Shape> {
 /// `[f64; N]` whose length is not an integer literal (`[f64; N * N]`, `[f64; SIZE]`).
 pub(crate) fn array_of_f64_with_computed_length(ty: &Type) -> bool {
     matches!(ty, Type::Array(a) if is_f64(&a.elem) && int_literal(&a.len).is_none())
-}
-
-/// Whether `ty` is plain `f64`.
-pub(crate) fn is_f64(ty: &Type) -> bool {
-    matches!(ty, Type::Path(p) if p.qself.is_none() && p.path.is_ident("f64"))
-}
-
-/// The value of an integer literal, looking through parentheses and invisible groups.
-pub(crate) fn int_literal(expr: &Expr) -> Option<usize> {
-    match expr {
-        Expr::Lit(syn::ExprLit {
-            lit: Lit::Int(i), ..
-        }) => i.base10_parse().ok(),
-        Expr::Group(g) => int_literal(&g.expr),
-        Expr::Paren(p) => int_literal(&p.expr),
-        _ => None,
-    }
 }

@@ -14,6 +14,7 @@ use syn::{Block, Expr, Ident, Member};
 
 use crate::errors::Errors;
 use crate::model::Model;
+use crate::syntax::is_self;
 
 /// The local a state field `x` is bound to inside a rewritten body.
 pub(crate) fn state_local(field: &Ident) -> Ident {
@@ -103,10 +104,6 @@ impl VisitMut for Rewriter<'_, '_> {
             self.reject_self(span, &format!("`self` inside `{name}!`"));
         }
     }
-}
-
-fn is_self(expr: &Expr) -> bool {
-    matches!(expr, Expr::Path(p) if p.qself.is_none() && p.path.is_ident("self"))
 }
 
 fn span_of(expr: &Expr) -> Span {

@@ -1,20 +1,34 @@
-//! Code generation shared by every model kind: the forwarding macro between a struct's expansion
-//! and its impl block's, the stub `Model` impl of a rejected model, the `#[system]` arguments as
-//! constants, and ([`code`]) the expression graph as straight-line Rust.
+//! Code generation shared by every model kind; the kinds' own `generate` files only say what
+//! differs. Here: the forwarding macro between a struct's expansion and its impl block's, and
+//! the stand-ins of a rejected model; in its modules:
+//!
+//! - [`model`]: the one `impl ::odyn::Model` builder (with the compile-time check of the
+//!   attribute's constants);
+//! - [`jacobian`]: what the `impl ::odyn::Jacobian` blocks share;
+//! - [`hidden`]: derivatives → a hidden method of the model (the one step every kind takes);
+//! - [`code`]: the expression graph as straight-line Rust, and [`prologue`], the user's
+//!   state-free code that runs before it.
 //!
 //! Generated code names everything by absolute path (`::odyn::…`), binds the state to hygienic
 //! locals, and documents every public item so `cargo doc` of a user's crate explains it.
 
 mod code;
+mod hidden;
+mod jacobian;
+mod model;
+mod prologue;
 
 use proc_macro2::TokenStream;
-use quote::{format_ident, quote, quote_spanned};
+use quote::{format_ident, quote};
 use syn::ItemStruct;
-use syn::spanned::Spanned;
 
-use crate::args::Args;
+pub(crate) use code::{lets, operand, straight_line};
+pub(crate) use hidden::{evaluation, hidden_fn, time_copy};
+pub(crate) use jacobian::{runtime_jacobian, time_independent};
+pub(crate) use model::{ModelImpl, stub_model};
+pub(crate) use prologue::{opaques_read, prologue_tokens};
 
-pub(crate) use code::{lets, opaques_read, operand, prologue_tokens, straight_line};
+use model::stub_model_with;
 
 /// The name of the `macro_rules!` through which a struct's expansion reaches its impl block's.
 ///
@@ -30,65 +44,40 @@ pub(crate) fn forwarder_name(model: &syn::Ident) -> syn::Ident {
     )
 }
 
-/// A `Model` impl for a model whose impl block was rejected: it is never run (the crate does not
-/// compile), but with it the rest of the user's crate type-checks, so the user sees the real error
-/// and not "no method named `simulate`" at every call site.
-pub(crate) fn stub_model(model: &syn::Ident, state: &syn::Ident) -> TokenStream {
-    stub_model_with(model, state, &syn::Generics::default())
-}
-
-/// [`stub_model`] for a struct with `generics`.
-fn stub_model_with(
-    model: &syn::Ident,
-    state: &syn::Ident,
-    generics: &syn::Generics,
-) -> TokenStream {
-    let (impl_generics, type_generics, where_clause) = generics.split_for_impl();
-    let name = model.to_string();
-    let never = quote!(::core::unreachable!(
-        "odyn rejected this model at compile time"
-    ));
-    quote! {
-        #[automatically_derived]
-        impl #impl_generics ::odyn::Model for #model #type_generics #where_clause {
-            type State = #state;
-            type SecondOrder = ::odyn::Unavailable<Self>;
-            type Jacobian = ::odyn::Unavailable<Self>;
-            const NAME: &'static str = #name;
-            const DEFAULT_METHOD: ::odyn::Method = ::odyn::Method::Rk4;
-            const DEFAULT_DT: ::core::option::Option<f64> = ::core::option::Option::None;
-            fn state(&self) -> #state {
-                #never
-            }
-            fn derivative(&self, _: f64, _: &#state, _: &mut #state) {
-                #never
-            }
-            fn energy(&self, _: &#state) -> ::core::option::Option<f64> {
-                #never
-            }
-            fn as_second_order(&self) -> ::core::option::Option<&Self::SecondOrder> {
-                ::core::option::Option::None
-            }
-            fn as_jacobian(&self) -> ::core::option::Option<&Self::Jacobian> {
-                ::core::option::Option::None
-            }
-        }
-    }
-}
-
 /// For a struct `#[system]` rejected: its state type, as a type without values, and a stub
 /// `Model` impl, so that uses of the model elsewhere in the crate (`model.simulate()`, the
 /// state's name in signatures) type-check and the user sees the real error alone. Nothing of it
 /// runs: the crate does not compile.
 pub(crate) fn rejected_struct(item: &ItemStruct) -> TokenStream {
     let vis = &item.vis;
-    let state = format_ident!("{}State", item.ident);
+    let state = crate::model::state_ident(&item.ident);
     let stub = stub_model_with(&item.ident, &state, &item.generics);
     quote! {
         #[doc(hidden)]
         #vis type #state = ::odyn::__private::RejectedState;
         #stub
     }
+}
+
+/// `imp` with the bodies of the methods `which` selects replaced by ones that never run: for a
+/// rejected model, whose bodies read fields the stand-in state may not have as declared, or whose
+/// errors rustc would report a second time.
+pub(crate) fn never_run(
+    mut imp: syn::ItemImpl,
+    which: impl Fn(&syn::ImplItemFn) -> bool,
+) -> syn::ItemImpl {
+    for member in &mut imp.items {
+        if let syn::ImplItem::Fn(f) = member
+            && which(f)
+        {
+            f.attrs
+                .push(syn::parse_quote!(#[allow(unused_variables, unreachable_code)]));
+            f.block = syn::parse_quote!({
+                ::core::unreachable!("odyn rejected this model at compile time")
+            });
+        }
+    }
+    imp
 }
 
 /// The `macro_rules!` that hands the struct to the impl block's expansion. On `Err` (the struct was
@@ -108,49 +97,5 @@ pub(crate) fn forwarder(item: &ItemStruct, args: &TokenStream, ok: bool) -> Toke
         macro_rules! #name {
             ($($item:tt)*) => { #body };
         }
-    }
-}
-
-/// The `Model` constants the attribute sets: `DEFAULT_METHOD`, `DEFAULT_DT`, `DEFAULT_RTOL`,
-/// `DEFAULT_ATOL`. A value that is not a literal the macro could check (a `const`, an expression
-/// of consts) is checked by a `const` assertion instead, so a zero or negative one is a compile
-/// error at the user's tokens either way.
-pub(crate) fn attribute_defaults(args: &Args) -> TokenStream {
-    let method = match &args.integrator {
-        Some((method, _)) => quote!(::odyn::Method::#method),
-        None => quote!(::odyn::Method::Rk4),
-    };
-    let constant = |value: &Option<syn::Expr>, name: &str, zero_allowed: bool| match value {
-        Some(expr) => {
-            let message = if zero_allowed {
-                format!("`{name}` in `#[system]` must be finite and non-negative")
-            } else {
-                format!("`{name}` in `#[system]` must be finite and positive")
-            };
-            let check = if zero_allowed {
-                quote!(value >= 0.0)
-            } else {
-                quote!(value > 0.0)
-            };
-            quote_spanned! {expr.span()=>
-                ::core::option::Option::Some({
-                    let value = (#expr) as f64;
-                    ::core::assert!(value.is_finite() && #check, #message);
-                    value
-                })
-            }
-        }
-        None => quote!(::core::option::Option::None),
-    };
-    let (dt, rtol, atol) = (
-        constant(&args.dt, "dt", false),
-        constant(&args.rtol, "rtol", true),
-        constant(&args.atol, "atol", true),
-    );
-    quote! {
-        const DEFAULT_METHOD: ::odyn::Method = #method;
-        const DEFAULT_DT: ::core::option::Option<f64> = #dt;
-        const DEFAULT_RTOL: ::core::option::Option<f64> = #rtol;
-        const DEFAULT_ATOL: ::core::option::Option<f64> = #atol;
     }
 }

@@ -11,9 +11,10 @@
 
 use std::collections::HashMap;
 
-use syn::{BinOp, Expr, ExprIf, ExprMatch, Stmt};
+use syn::{Expr, ExprIf, ExprMatch, Stmt};
 
-use super::scope::{Binding, Targets, pattern_names};
+use super::conditions::Condition;
+use super::scope::{Binding, Scopes, changes_outer, let_names, pattern_names};
 use super::statements::{Context, Ending};
 use super::{Branch, BranchKind, Lowering, Prologue, Value};
 use crate::ir::ExprId;
@@ -33,21 +34,6 @@ enum Chooser {
     /// By conditions on graph values, one per arm but the last (the `else`).
     Conditions(Vec<Condition>),
 }
-
-/// A condition on the state, lowered.
-enum Condition {
-    /// `a <= b`, or, `negated`, its negation.
-    Compare {
-        a: ExprId,
-        b: ExprId,
-        negated: bool,
-    },
-    Not(Box<Condition>),
-    And(Box<Condition>, Box<Condition>),
-    Or(Box<Condition>, Box<Condition>),
-}
-
-type Scopes = Vec<HashMap<String, Binding>>;
 
 impl Lowering<'_> {
     /// The arms of `if`/`match` `e`; its conditions, scrutinee and guards must not read the
@@ -104,81 +90,6 @@ impl Lowering<'_> {
                 Some(Expr::If(next)) => branch = next,
                 _ => return false,
             }
-        }
-    }
-
-    /// The conditions of an `if` on the state, lowered in the scope before its arms.
-    fn conditions(&mut self, conditions: &[Expr]) -> syn::Result<Vec<Condition>> {
-        conditions.iter().map(|c| self.condition(c)).collect()
-    }
-
-    /// Checks that `condition` is comparisons (`<`, `<=`, `>`, `>=`) and parameter-only
-    /// conditions joined by `&&`, `||` and `!`, in parentheses or not; on failure, the first part
-    /// that is not.
-    fn check_condition<'e>(&self, condition: &'e Expr) -> Result<(), &'e Expr> {
-        match condition {
-            Expr::Paren(p) => self.check_condition(&p.expr),
-            Expr::Group(g) => self.check_condition(&g.expr),
-            Expr::Unary(u) if matches!(u.op, syn::UnOp::Not(_)) => self.check_condition(&u.expr),
-            Expr::Binary(b) if matches!(b.op, BinOp::And(_) | BinOp::Or(_)) => {
-                self.check_condition(&b.left)?;
-                self.check_condition(&b.right)
-            }
-            Expr::Binary(b)
-                if matches!(
-                    b.op,
-                    BinOp::Lt(_) | BinOp::Le(_) | BinOp::Gt(_) | BinOp::Ge(_)
-                ) =>
-            {
-                Ok(())
-            }
-            // `if let` binds names the arm reads: not a flag.
-            other if !matches!(other, Expr::Let(_)) && !self.depends(other) => Ok(()),
-            other => Err(other),
-        }
-    }
-
-    fn condition(&mut self, condition: &Expr) -> syn::Result<Condition> {
-        match condition {
-            Expr::Paren(p) => self.condition(&p.expr),
-            Expr::Group(g) => self.condition(&g.expr),
-            Expr::Unary(u) if matches!(u.op, syn::UnOp::Not(_)) => {
-                Ok(Condition::Not(Box::new(self.condition(&u.expr)?)))
-            }
-            Expr::Binary(b) if matches!(b.op, BinOp::And(_) | BinOp::Or(_)) => {
-                let (l, r) = (
-                    Box::new(self.condition(&b.left)?),
-                    Box::new(self.condition(&b.right)?),
-                );
-                Ok(match b.op {
-                    BinOp::And(_) => Condition::And(l, r),
-                    _ => Condition::Or(l, r),
-                })
-            }
-            // A parameter-only condition (a flag, a call), as 1 or 0 computed with the opaque
-            // values: taken when ½ ≤ it.
-            other if !matches!(other, Expr::Let(_)) && !self.depends(other) => {
-                let flag = self.opaque(quote::quote!(if #other { 1.0 } else { 0.0 }));
-                let half = self.graph.num(0.5);
-                Ok(Condition::Compare {
-                    a: half,
-                    b: flag,
-                    negated: false,
-                })
-            }
-            Expr::Binary(b) => {
-                let (left, right) = (self.scalar(&b.left)?, self.scalar(&b.right)?);
-                // `l <= r` as is; `l < r` is `!(r <= l)`; `l >= r` is `r <= l`; `l > r` is
-                // `!(l <= r)` (the same for every number but NaN, where no branch is meaningful).
-                let (a, b, negated) = match b.op {
-                    BinOp::Le(_) => (left, right, false),
-                    BinOp::Lt(_) => (right, left, true),
-                    BinOp::Ge(_) => (right, left, false),
-                    _ => (left, right, true),
-                };
-                Ok(Condition::Compare { a, b, negated })
-            }
-            other => Err(self.error(other, "this condition on the state")),
         }
     }
 
@@ -448,68 +359,4 @@ impl Lowering<'_> {
             Chooser::Conditions(conditions) => self.when(&conditions[arm], then, otherwise),
         }
     }
-
-    /// `then` where `condition` holds, else `otherwise`: `a && b` is `a` then `b`, `a || b`
-    /// is `a` else `b` (both sides evaluated; they are values without effects).
-    fn when(&mut self, condition: &Condition, then: ExprId, otherwise: ExprId) -> ExprId {
-        match condition {
-            &Condition::Compare { a, b, negated } => {
-                if negated {
-                    self.graph.pick(a, b, otherwise, then)
-                } else {
-                    self.graph.pick(a, b, then, otherwise)
-                }
-            }
-            Condition::Not(c) => self.when(c, otherwise, then),
-            Condition::And(l, r) => {
-                let inner = self.when(r, then, otherwise);
-                self.when(l, inner, otherwise)
-            }
-            Condition::Or(l, r) => {
-                let inner = self.when(r, then, otherwise);
-                self.when(l, then, inner)
-            }
-        }
-    }
-}
-
-/// The first statement of `prologue` (its branches' arms included) that assigns, borrows
-/// mutably or calls a method on a local bound in `outer`, and that local's name.
-fn changes_outer<'p>(prologue: &'p [Prologue], outer: &Scopes) -> Option<(&'p Stmt, String)> {
-    for item in prologue {
-        match item {
-            Prologue::Stmt(stmt) => {
-                let mut targets = Targets::default();
-                syn::visit::Visit::visit_stmt(&mut targets, stmt);
-                if let Some(name) = targets
-                    .0
-                    .iter()
-                    .map(ToString::to_string)
-                    .find(|name| outer.iter().any(|scope| scope.contains_key(name)))
-                {
-                    return Some((stmt, name));
-                }
-            }
-            Prologue::Branch(branch) => {
-                if let Some(found) = branch.arms.iter().find_map(|arm| changes_outer(arm, outer)) {
-                    return Some(found);
-                }
-            }
-            Prologue::Opaque(..) => {}
-        }
-    }
-    None
-}
-
-/// The names `let` conditions in `cond` bind (`if let Some(x) = …`).
-fn let_names(cond: &Expr) -> Vec<String> {
-    struct Lets(Vec<String>);
-    impl<'ast> syn::visit::Visit<'ast> for Lets {
-        fn visit_expr_let(&mut self, l: &'ast syn::ExprLet) {
-            self.0.extend(pattern_names(&l.pat));
-        }
-    }
-    let mut lets = Lets(Vec::new());
-    syn::visit::Visit::visit_expr(&mut lets, cond);
-    lets.0
 }

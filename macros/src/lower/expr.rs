@@ -5,11 +5,13 @@ use proc_macro2::TokenStream;
 use quote::{ToTokens, quote};
 use syn::{BinOp, Expr, ExprBinary, ExprField, Lit, Member, UnOp};
 
-use super::scope::{is_self, path_name};
+use super::scope::path_name;
 use super::state::vector_len;
 use super::{Lowering, MAX_DEPTH, Prologue, Value};
 use crate::ir::{ExprId, Graph};
-use crate::model::{Shape, int_literal};
+use crate::model::Shape;
+use crate::syntax::int_literal;
+use crate::syntax::is_self;
 
 /// An arithmetic operator.
 #[derive(Clone, Copy)]

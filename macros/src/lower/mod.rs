@@ -13,6 +13,7 @@
 //! - [`scope`]: locals, `let` patterns, and which expressions read the state or the time;
 //! - [`statements`]: statements: `let`, assignments, state-free statements;
 //! - [`branches`]: branches on parameters (`if`, `match`) and early `return`s from them;
+//! - [`conditions`]: the conditions of an `if` on the state, as comparisons in the graph;
 //! - [`expr`]: expressions — literals, paths, fields, operators, calls;
 //! - [`state`]: reads of state fields, parameter shapes, the state literal and the function's
 //!   value in state layout;
@@ -20,6 +21,7 @@
 //!   messages print.
 
 mod branches;
+mod conditions;
 mod expr;
 mod methods;
 mod scope;

@@ -1,11 +1,14 @@
 //! Locals and their values, `let` patterns, and which expressions read the state or the time.
 
+use std::collections::HashMap;
+
 use proc_macro2::TokenStream;
 use quote::quote;
 use syn::visit::{self, Visit};
-use syn::{Expr, Ident, Member, Pat};
+use syn::{Expr, Ident, Member, Pat, Stmt};
 
-use super::{Lowering, MAX_DEPTH, Value};
+use super::{Lowering, MAX_DEPTH, Prologue, Value};
+use crate::syntax::is_self;
 
 /// A local in scope.
 #[derive(Clone, Debug, PartialEq)]
@@ -311,13 +314,56 @@ pub(super) fn returns(stmts: &[syn::Stmt]) -> bool {
     finder.0
 }
 
-pub(super) fn is_self(e: &Expr) -> bool {
-    matches!(e, Expr::Path(p) if p.qself.is_none() && p.path.is_ident("self"))
-}
-
 pub(super) fn path_name(e: &Expr) -> Option<String> {
     match e {
         Expr::Path(p) if p.qself.is_none() => p.path.get_ident().map(Ident::to_string),
         _ => None,
     }
+}
+
+/// The scopes of locals, innermost last.
+pub(super) type Scopes = Vec<HashMap<String, Binding>>;
+
+/// The first statement of `prologue` (its branches' arms included) that assigns, borrows
+/// mutably or calls a method on a local bound in `outer`, and that local's name.
+pub(super) fn changes_outer<'p>(
+    prologue: &'p [Prologue],
+    outer: &Scopes,
+) -> Option<(&'p Stmt, String)> {
+    for item in prologue {
+        match item {
+            Prologue::Stmt(stmt) => {
+                let mut targets = Targets::default();
+                syn::visit::Visit::visit_stmt(&mut targets, stmt);
+                if let Some(name) = targets
+                    .0
+                    .iter()
+                    .map(ToString::to_string)
+                    .find(|name| outer.iter().any(|scope| scope.contains_key(name)))
+                {
+                    return Some((stmt, name));
+                }
+            }
+            Prologue::Branch(branch) => {
+                if let Some(found) = branch.arms.iter().find_map(|arm| changes_outer(arm, outer)) {
+                    return Some(found);
+                }
+            }
+            Prologue::Opaque(..) => {}
+        }
+    }
+    None
+}
+
+/// The names `let` conditions in `cond` bind (`if let Some(x) = …`).
+pub(super) fn let_names(cond: &Expr) -> Vec<String> {
+    struct Lets(Vec<String>);
+    impl<'ast> syn::visit::Visit<'ast> for Lets {
+        fn visit_expr_let(&mut self, l: &'ast syn::ExprLet) {
+            self.0.extend(pattern_names(&l.pat));
+        }
+    }
+    let mut lets = Lets(Vec::new());
+    syn::visit::Visit::visit_expr(&mut lets, cond);
+    lets.0
 }

@@ -196,7 +196,7 @@ impl Lowering<'_> {
         let (base, component) = match target {
             Expr::Index(index) => (
                 &*index.expr,
-                Some(crate::model::int_literal(&index.index).ok_or_else(|| {
+                Some(crate::syntax::int_literal(&index.index).ok_or_else(|| {
                     self.error(&index.index, "an index that is not an integer literal")
                 })),
             ),

@@ -7,7 +7,14 @@ impl Heat {
 impl Heat {
     #[doc(hidden)]
     #[inline(always)]
-    #[allow(unused_variables, unused_parens, non_snake_case, clippy::all)]
+    #[allow(
+        unused_variables,
+        unused_assignments,
+        unused_mut,
+        unused_parens,
+        non_snake_case,
+        clippy::all
+    )]
     fn __odyn_conduction_jacobian(&self, u: Stencil) -> [f64; 5] {
         let __odyn_p0: f64 = self.d;
         let __odyn_p1: f64 = self.dx;
@@ -141,3 +148,8 @@ impl ::odyn::Model for Heat {
         ::core::result::Result::Ok(())
     }
 }
+const _: () = {
+    let _ = <Heat as ::odyn::Model>::DEFAULT_DT;
+    let _ = <Heat as ::odyn::Model>::DEFAULT_RTOL;
+    let _ = <Heat as ::odyn::Model>::DEFAULT_ATOL;
+};

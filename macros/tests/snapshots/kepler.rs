@@ -22,6 +22,7 @@ impl Kepler {
 #[automatically_derived]
 impl ::odyn::Model for Kepler {
     type State = KeplerState;
+    type SecondOrder = Self;
     const NAME: &'static str = "Kepler";
     const DEFAULT_METHOD: ::odyn::Method = ::odyn::Method::Leapfrog;
     const DEFAULT_DT: ::core::option::Option<f64> = ::core::option::Option::None;
@@ -34,15 +35,14 @@ impl ::odyn::Model for Kepler {
             v: self.v,
         }
     }
-    #[inline]
-    fn energy(&self, state: &KeplerState) -> ::core::option::Option<f64> {
-        ::core::option::Option::None
-    }
-    type SecondOrder = Self;
     #[inline(always)]
     fn derivative(&self, t: f64, y: &KeplerState, dydt: &mut KeplerState) {
         <Self as ::odyn::SecondOrder>::acceleration(self, t, y, dydt);
         dydt.r = y.v;
+    }
+    #[inline]
+    fn energy(&self, state: &KeplerState) -> ::core::option::Option<f64> {
+        ::core::option::Option::None
     }
     #[inline(always)]
     fn as_second_order(&self) -> ::core::option::Option<&Self> {
@@ -54,6 +54,11 @@ impl ::odyn::Model for Kepler {
         ::core::option::Option::Some(self)
     }
 }
+const _: () = {
+    let _ = <Kepler as ::odyn::Model>::DEFAULT_DT;
+    let _ = <Kepler as ::odyn::Model>::DEFAULT_RTOL;
+    let _ = <Kepler as ::odyn::Model>::DEFAULT_ATOL;
+};
 #[automatically_derived]
 impl ::odyn::SecondOrder for Kepler {
     const READS_VELOCITY: bool = false;
@@ -65,11 +70,6 @@ impl ::odyn::SecondOrder for Kepler {
 }
 const _: () = {
     let _ = <Kepler>::acceleration;
-};
-const _: () = {
-    let _ = <Kepler as ::odyn::Model>::DEFAULT_DT;
-    let _ = <Kepler as ::odyn::Model>::DEFAULT_RTOL;
-    let _ = <Kepler as ::odyn::Model>::DEFAULT_ATOL;
 };
 #[automatically_derived]
 impl Kepler {
@@ -161,8 +161,9 @@ impl ::odyn::Jacobian for Kepler {
     ) {
         self.__odyn_jacobian(t, y.r, y.v, jacobian)
     }
+    /// The model's function does not read the time: ∂f/∂t = 0.
     const TIME_DEPENDENT: bool = false;
-    #[inline(always)]
+    #[inline]
     fn time_derivative(&self, _: f64, _: &KeplerState, dfdt: &mut KeplerState) {
         ::odyn::State::as_mut_slice(dfdt).fill(0.0);
     }

@@ -29,6 +29,7 @@ impl Lorenz {
 #[automatically_derived]
 impl ::odyn::Model for Lorenz {
     type State = LorenzState;
+    type SecondOrder = ::odyn::Unavailable<Self>;
     const NAME: &'static str = "Lorenz";
     const DEFAULT_METHOD: ::odyn::Method = ::odyn::Method::Rk4;
     const DEFAULT_DT: ::core::option::Option<f64> = ::core::option::Option::None;
@@ -42,14 +43,13 @@ impl ::odyn::Model for Lorenz {
             z: self.z,
         }
     }
-    #[inline]
-    fn energy(&self, state: &LorenzState) -> ::core::option::Option<f64> {
-        ::core::option::Option::None
-    }
-    type SecondOrder = ::odyn::Unavailable<Self>;
     #[inline(always)]
     fn derivative(&self, t: f64, y: &LorenzState, dydt: &mut LorenzState) {
         *dydt = self.__odyn_derivative(t, y.x, y.y, y.z);
+    }
+    #[inline]
+    fn energy(&self, state: &LorenzState) -> ::core::option::Option<f64> {
+        ::core::option::Option::None
     }
     #[inline(always)]
     fn as_second_order(&self) -> ::core::option::Option<&Self::SecondOrder> {
@@ -62,12 +62,12 @@ impl ::odyn::Model for Lorenz {
     }
 }
 const _: () = {
-    let _ = <Lorenz>::derivative;
-};
-const _: () = {
     let _ = <Lorenz as ::odyn::Model>::DEFAULT_DT;
     let _ = <Lorenz as ::odyn::Model>::DEFAULT_RTOL;
     let _ = <Lorenz as ::odyn::Model>::DEFAULT_ATOL;
+};
+const _: () = {
+    let _ = <Lorenz>::derivative;
 };
 #[automatically_derived]
 impl Lorenz {
@@ -135,8 +135,9 @@ impl ::odyn::Jacobian for Lorenz {
     ) {
         self.__odyn_jacobian(t, y.x, y.y, y.z, jacobian)
     }
+    /// The model's function does not read the time: ∂f/∂t = 0.
     const TIME_DEPENDENT: bool = false;
-    #[inline(always)]
+    #[inline]
     fn time_derivative(&self, _: f64, _: &LorenzState, dfdt: &mut LorenzState) {
         ::odyn::State::as_mut_slice(dfdt).fill(0.0);
     }

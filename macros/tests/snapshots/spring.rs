@@ -24,6 +24,7 @@ impl Spring {
 #[automatically_derived]
 impl ::odyn::Model for Spring {
     type State = SpringState;
+    type SecondOrder = Self;
     const NAME: &'static str = "Spring";
     const DEFAULT_METHOD: ::odyn::Method = ::odyn::Method::SymplecticEuler;
     const DEFAULT_DT: ::core::option::Option<f64> = ::core::option::Option::Some({
@@ -43,15 +44,14 @@ impl ::odyn::Model for Spring {
             v: self.v,
         }
     }
-    #[inline]
-    fn energy(&self, state: &SpringState) -> ::core::option::Option<f64> {
-        ::core::option::Option::Some(self.__odyn_energy(state.x, state.v))
-    }
-    type SecondOrder = Self;
     #[inline(always)]
     fn derivative(&self, t: f64, y: &SpringState, dydt: &mut SpringState) {
         <Self as ::odyn::SecondOrder>::acceleration(self, t, y, dydt);
         dydt.x = y.v;
+    }
+    #[inline]
+    fn energy(&self, state: &SpringState) -> ::core::option::Option<f64> {
+        ::core::option::Option::Some(self.__odyn_energy(state.x, state.v))
     }
     #[inline(always)]
     fn as_second_order(&self) -> ::core::option::Option<&Self> {
@@ -63,6 +63,11 @@ impl ::odyn::Model for Spring {
         ::core::option::Option::Some(self)
     }
 }
+const _: () = {
+    let _ = <Spring as ::odyn::Model>::DEFAULT_DT;
+    let _ = <Spring as ::odyn::Model>::DEFAULT_RTOL;
+    let _ = <Spring as ::odyn::Model>::DEFAULT_ATOL;
+};
 #[automatically_derived]
 impl ::odyn::SecondOrder for Spring {
     const READS_VELOCITY: bool = true;
@@ -75,11 +80,6 @@ impl ::odyn::SecondOrder for Spring {
 const _: () = {
     let _ = <Spring>::acceleration;
     let _ = <Spring>::energy;
-};
-const _: () = {
-    let _ = <Spring as ::odyn::Model>::DEFAULT_DT;
-    let _ = <Spring as ::odyn::Model>::DEFAULT_RTOL;
-    let _ = <Spring as ::odyn::Model>::DEFAULT_ATOL;
 };
 #[automatically_derived]
 impl Spring {
@@ -139,8 +139,9 @@ impl ::odyn::Jacobian for Spring {
     ) {
         self.__odyn_jacobian(t, y.x, y.v, jacobian)
     }
+    /// The model's function does not read the time: ∂f/∂t = 0.
     const TIME_DEPENDENT: bool = false;
-    #[inline(always)]
+    #[inline]
     fn time_derivative(&self, _: f64, _: &SpringState, dfdt: &mut SpringState) {
         ::odyn::State::as_mut_slice(dfdt).fill(0.0);
     }

@@ -4,14 +4,12 @@ use syn::{Attribute, Fields, ItemStruct};
 
 use crate::errors::Errors;
 use crate::model::{Model, Order, Role, StateField, array_of_f64_with_computed_length, shape_of};
+use crate::syntax::no_arguments;
 
 /// Reads the model from its struct, reporting every problem to `errors`.
 pub(crate) fn parse<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Option<Model<'a>> {
+    // Refused before the front-end with its own error (`kinds::expand_struct`).
     let Fields::Named(named) = &item.fields else {
-        errors.at_span(
-            item.ident.span(),
-            "a model must be a struct with named fields, such as `struct Spring { x: f64, .. }`",
-        );
         return None;
     };
     let mut declared = Vec::new();
@@ -145,12 +143,11 @@ fn role_of(attrs: &[Attribute], errors: &mut Errors) -> Option<Role> {
         else {
             continue;
         };
-        if let Err(e) = attr.meta.require_path_only() {
-            errors.push(syn::Error::new(
-                e.span(),
-                format_args!("`#[{}]` takes no arguments", role.attribute()),
-            ));
-        }
+        no_arguments(
+            attr,
+            format_args!("`#[{}]` takes no arguments", role.attribute()),
+            errors,
+        );
         match found {
             Some((first, _)) => errors.at(
                 attr,
@@ -163,19 +160,4 @@ fn role_of(attrs: &[Attribute], errors: &mut Errors) -> Option<Role> {
         }
     }
     found.map(|(role, _)| role)
-}
-
-/// The struct as the user wrote it, minus the role attributes (which are odyn's, not rustc's).
-pub(crate) fn strip_roles(item: &ItemStruct) -> ItemStruct {
-    let mut item = item.clone();
-    if let Fields::Named(named) = &mut item.fields {
-        for field in &mut named.named {
-            field.attrs.retain(|a| {
-                !Role::ATTRIBUTES
-                    .iter()
-                    .any(|(name, _)| a.path().is_ident(name))
-            });
-        }
-    }
-    item
 }

@@ -6,8 +6,9 @@ use proc_macro2::TokenStream;
 use syn::{Block, FnArg, Ident, ImplItem, ImplItemFn, ItemImpl, ReturnType, Type};
 
 use crate::errors::Errors;
-use crate::model::{Model, Order, Role, is_f64};
+use crate::model::{Model, Order, Role};
 use crate::rewrite::rewrite;
+use crate::syntax::{is_f64, is_ref_self};
 
 /// The functions the macro reads; everything else in the impl block passes through untouched.
 pub(crate) struct Functions {
@@ -136,9 +137,7 @@ fn read(
     }
     let mut inputs = sig.inputs.iter();
     let receiver = match inputs.next() {
-        Some(FnArg::Receiver(r)) if r.reference.is_some() && r.mutability.is_none() => {
-            Some(r.clone())
-        }
+        Some(FnArg::Receiver(r)) if is_ref_self(r) => Some(r.clone()),
         Some(other) => {
             errors.at(other, format_args!("`{name}` must take `&self`"));
             None

@@ -8,7 +8,7 @@ use syn::ItemImpl;
 use super::functions::{Function, Functions};
 use super::layout::{inline_hint, state_params, time_param};
 use crate::args::Args;
-use crate::generate::attribute_defaults;
+use crate::generate::ModelImpl;
 use crate::model::{Model, Order, Role, Shape};
 
 /// The typed state struct `<Model>State` and its runtime impls.
@@ -70,8 +70,6 @@ pub(crate) fn model_impls(
     let ident = model.ident();
     let self_ty = &imp.self_ty;
     let state = model.state_ident();
-    let name = ident.to_string();
-    let defaults = attribute_defaults(args);
     let fields: Vec<_> = model.states.iter().map(|f| f.ident).collect();
     let read = |from: &str| {
         let from = format_ident!("{}", from);
@@ -92,49 +90,14 @@ pub(crate) fn model_impls(
         None => (TokenStream::new(), quote!(::core::option::Option::None)),
     };
     let y = read("y");
-    let jacobian = if has_jacobian {
-        quote! {
-            type Jacobian = Self;
-            #[inline(always)]
-            fn as_jacobian(&self) -> ::core::option::Option<&Self> {
-                ::core::option::Option::Some(self)
-            }
-        }
-    } else {
-        quote! {
-            type Jacobian = ::odyn::Unavailable<Self>;
-            #[inline(always)]
-            fn as_jacobian(&self) -> ::core::option::Option<&Self::Jacobian> {
-                ::core::option::Option::None
-            }
-        }
-    };
-    let trait_impls = match model.order {
-        Order::First => quote! {
-            type SecondOrder = ::odyn::Unavailable<Self>;
-            #[inline(always)]
-            fn derivative(&self, t: f64, y: &#state, dydt: &mut #state) {
-                *dydt = self.#force_fn(t, #y);
-            }
-            #[inline(always)]
-            fn as_second_order(&self) -> ::core::option::Option<&Self::SecondOrder> {
-                ::core::option::Option::None
-            }
-        },
+    let derivative = match model.order {
+        Order::First => quote!(*dydt = self.#force_fn(t, #y);),
         Order::Second => {
             let positions = model.with_role(Role::Position).map(|f| f.ident);
             let velocities = model.with_role(Role::Velocity).map(|f| f.ident);
             quote! {
-                type SecondOrder = Self;
-                #[inline(always)]
-                fn derivative(&self, t: f64, y: &#state, dydt: &mut #state) {
-                    <Self as ::odyn::SecondOrder>::acceleration(self, t, y, dydt);
-                    #(dydt.#positions = y.#velocities;)*
-                }
-                #[inline(always)]
-                fn as_second_order(&self) -> ::core::option::Option<&Self> {
-                    ::core::option::Option::Some(self)
-                }
+                <Self as ::odyn::SecondOrder>::acceleration(self, t, y, dydt);
+                #(dydt.#positions = y.#velocities;)*
             }
         }
     };
@@ -169,37 +132,36 @@ pub(crate) fn model_impls(
     let originals = std::iter::once(force)
         .chain(&functions.energy)
         .map(|f| &f.name);
+    let model_impl = ModelImpl {
+        methods: quote! {
+            #[inline]
+            fn state(&self) -> #state {
+                #state_init
+            }
+            #[inline(always)]
+            fn derivative(&self, t: f64, y: &#state, dydt: &mut #state) {
+                #derivative
+            }
+            #[inline]
+            fn energy(&self, state: &#state) -> ::core::option::Option<f64> {
+                #energy
+            }
+        },
+        second_order: model.order == Order::Second,
+        jacobian: has_jacobian,
+        check: None,
+        ..ModelImpl::for_impl(imp, ident, &state, args)
+    }
+    .build();
     quote! {
         #[automatically_derived]
         impl #self_ty {
             #hidden_force
             #hidden_energy
         }
-        #[automatically_derived]
-        impl ::odyn::Model for #self_ty {
-            type State = #state;
-            const NAME: &'static str = #name;
-            #defaults
-            #[inline]
-            fn state(&self) -> #state {
-                #state_init
-            }
-            #[inline]
-            fn energy(&self, state: &#state) -> ::core::option::Option<f64> {
-                #energy
-            }
-            #trait_impls
-            #jacobian
-        }
+        #model_impl
         #second_order
         const _: () = { #(let _ = <#self_ty>::#originals;)* };
-        // Evaluates the attribute's constants here, so a bad `dt` is an error even in a crate
-        // that never runs the model.
-        const _: () = {
-            let _ = <#self_ty as ::odyn::Model>::DEFAULT_DT;
-            let _ = <#self_ty as ::odyn::Model>::DEFAULT_RTOL;
-            let _ = <#self_ty as ::odyn::Model>::DEFAULT_ATOL;
-        };
     }
 }
 

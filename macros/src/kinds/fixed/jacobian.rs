@@ -3,12 +3,15 @@
 //! in an `SMatrix` up to `SMALL` components and a `FaerDense` above; and ∂f/∂t.
 
 use proc_macro2::{Span, TokenStream};
-use quote::{ToTokens, format_ident, quote};
+use quote::{format_ident, quote};
 use syn::ItemImpl;
 
 use super::functions::Function;
 use super::layout::{JacobianBody, SMALL, component_tokens, inline_hint, state_params, time_param};
-use crate::generate::{opaques_read, operand, prologue_tokens, straight_line};
+use crate::generate::{
+    evaluation, hidden_fn, opaques_read, operand, prologue_tokens, straight_line, time_copy,
+    time_independent,
+};
 use crate::ir::ExprId;
 use crate::lower::{Lowered, Prologue};
 use crate::model::Model;
@@ -37,7 +40,7 @@ pub(crate) fn jacobian(
     } = lowered;
     let mut differentiator = crate::derivative::Differentiator::default();
     let mut components = component_tokens(model);
-    let (time_component, time_copy) = time_copy(force);
+    let (time_component, time_copy) = time_copy(time_ident(force));
     components.extend(time_component);
     let jac = format_ident!("__odyn_jac", span = Span::mixed_site());
     let n_usize = model.len();
@@ -98,29 +101,21 @@ pub(crate) fn jacobian(
     let receiver = &force.receiver;
     let time = time_param(force);
     let params = state_params(model);
+    let jacobian_fn = hidden_fn(
+        quote!(__odyn_jacobian(#receiver, #time, #(#params,)* #jac: &mut #matrix)),
+        inline_hint(model, quote!(#[inline])),
+        &time_copy,
+        &prologue,
+        body,
+    );
     let fields = model.states.iter().map(|f| f.ident);
     let doc = format!(
         "The {count} structural non-zeros of ∂f/∂y, derived by `#[system]` from the model's code."
     );
-    let inline = inline_hint(model, quote!(#[inline]));
     quote! {
         #[automatically_derived]
         impl #self_ty {
-            #[doc(hidden)]
-            #inline
-            #[allow(
-                unused_variables,
-                unused_assignments,
-                unused_mut,
-                unused_parens,
-                non_snake_case,
-                clippy::all
-            )]
-            fn __odyn_jacobian(#receiver, #time, #(#params,)* #jac: &mut #matrix) {
-                #time_copy
-                #(#prologue)*
-                #body
-            }
+            #jacobian_fn
             #time_derivative
         }
         #[automatically_derived]
@@ -219,18 +214,12 @@ fn listed_store(
     }
 }
 
-/// The time as the derivative code reads it — a hygienic copy made before the prologue, which
-/// may shadow the user's name (`let t = t - self.t0;`) — and the `let` making it; nothing when
-/// the function takes no named time.
-fn time_copy(force: &Function) -> (Option<TokenStream>, TokenStream) {
-    let Some(t) = force.time.as_ref().and_then(|t| match &*t.pat {
+/// The name of the force's time argument, if it has one.
+fn time_ident(force: &Function) -> Option<&syn::Ident> {
+    force.time.as_ref().and_then(|t| match &*t.pat {
         syn::Pat::Ident(p) => Some(&p.ident),
         _ => None,
-    }) else {
-        return (None, TokenStream::new());
-    };
-    let copy = format_ident!("__odyn_time", span = Span::mixed_site());
-    (Some(copy.to_token_stream()), quote!(let #copy: f64 = #t;))
+    })
 }
 
 /// The hidden ∂f/∂t function and the `Jacobian` items that use it: exact straight-line code when
@@ -246,7 +235,7 @@ fn time_derivative(
     prologue: &[Prologue],
     force: &Function,
 ) -> (Option<TokenStream>, TokenStream) {
-    let (_, time_copy) = time_copy(force);
+    let (_, time_copy) = time_copy(time_ident(force));
     let state = model.state_ident();
     let fields: Vec<_> = model.states.iter().map(|f| f.ident).collect();
     if !exact {
@@ -260,47 +249,31 @@ fn time_derivative(
     if entries.is_empty() {
         return (
             None,
-            quote! {
-                const TIME_DEPENDENT: bool = false;
-                #[inline(always)]
-                fn time_derivative(&self, _: f64, _: &#state, dfdt: &mut #state) {
-                    ::odyn::State::as_mut_slice(dfdt).fill(0.0);
-                }
-            },
+            time_independent(&state, "The model's function does not read the time"),
         );
     }
     let roots: Vec<ExprId> = entries.iter().map(|e| e.1).collect();
-    let lets = straight_line(graph, &roots, components);
+    let (prologue, lets) = evaluation(graph, &roots, components, prologue);
     let stores = entries.iter().map(|&(row, d)| {
         let value = operand(graph, d, components);
         quote!(out[#row] = #value;)
     });
-    let prologue = prologue_tokens(prologue, &opaques_read(graph, &roots));
     let receiver = &force.receiver;
     let time = time_param(force);
     let params = state_params(model);
     let out = format_ident!("__odyn_dfdt", span = Span::mixed_site());
-    let inline = inline_hint(model, quote!(#[inline]));
-    let hidden = quote! {
-        #[doc(hidden)]
-        #inline
-        #[allow(
-            unused_variables,
-            unused_assignments,
-            unused_mut,
-            unused_parens,
-            non_snake_case,
-            clippy::all
-        )]
-        fn __odyn_time_derivative(#receiver, #time, #(#params,)* #out: &mut #state) {
-            #time_copy
-            #(#prologue)*
+    let hidden = hidden_fn(
+        quote!(__odyn_time_derivative(#receiver, #time, #(#params,)* #out: &mut #state)),
+        inline_hint(model, quote!(#[inline])),
+        &time_copy,
+        &prologue,
+        quote! {
             #(#lets)*
             let out = ::odyn::State::as_mut_slice(#out);
             out.fill(0.0);
             #(#stores)*
-        }
-    };
+        },
+    );
     (
         Some(hidden),
         quote! {

@@ -3,31 +3,16 @@
 
 use proc_macro2::{Literal, Span, TokenStream};
 use quote::{format_ident, quote};
-use syn::{ImplItem, ItemImpl};
+use syn::ItemImpl;
 
-use super::{Argument, Cell, Fields, NEIGHBOURS};
+use super::cell::{Argument, Cell};
+use super::{Fields, NEIGHBOURS};
 use crate::args::Args;
 use crate::derivative::Differentiator;
-use crate::generate::{attribute_defaults, opaques_read, operand, prologue_tokens, straight_line};
+use crate::generate::{
+    ModelImpl, evaluation, hidden_fn, operand, runtime_jacobian, time_copy, time_independent,
+};
 use crate::lower::Lowered;
-
-/// The impl block with `#[cell]` removed (it is odyn's), and the body of method `silenced`, if
-/// any, replaced by one that is never run (the crate does not compile).
-pub(super) fn strip_cell_attribute(imp: &ItemImpl, silenced: Option<&syn::Ident>) -> ItemImpl {
-    let mut imp = imp.clone();
-    for member in &mut imp.items {
-        if let ImplItem::Fn(f) = member {
-            f.attrs.retain(|a| !a.path().is_ident("cell"));
-            if Some(&f.sig.ident) == silenced {
-                f.attrs.push(syn::parse_quote!(#[allow(unused_variables)]));
-                f.block = syn::parse_quote!({
-                    ::core::unreachable!("odyn rejected this model at compile time")
-                });
-            }
-        }
-    }
-    imp
-}
 
 /// The runtime trait impls of a field model; `lowered` is the cell kernel, absent with
 /// `jacobian = false`.
@@ -39,7 +24,6 @@ pub(super) fn impls(
     lowered: Option<Lowered>,
 ) -> TokenStream {
     let self_ty = &imp.self_ty;
-    let name = fields.item.ident.to_string();
     let state = fields.state_ident();
     let count = Literal::usize_unsuffixed(fields.fields.len());
     let grids = &fields.fields;
@@ -54,7 +38,6 @@ pub(super) fn impls(
         })
         .collect();
     let coefficient_names: Vec<String> = coefficients.iter().map(ToString::to_string).collect();
-    let defaults = attribute_defaults(args);
     let kernel = &cell.f.sig.ident;
     let arguments: Vec<TokenStream> = cell
         .arguments
@@ -79,99 +62,91 @@ pub(super) fn impls(
         quote!(self.#kernel(#(#arguments),*))
     };
     let zeros = quote!([0.0; #count]);
-    let (blocks, jacobian_fn, jacobian_call, time_call, jacobian_assoc, jacobian_impl) =
-        match lowered {
-            Some(lowered) => {
-                let Generated {
-                    blocks,
-                    function,
-                    time,
-                } = blocks(cell, lowered);
-                let hidden = hidden_name(cell);
-                let (time_call, time_items) = match time {
-                    Time::Exact => {
-                        let hidden = time_name(cell);
-                        (
-                            quote!(self.#hidden(#(#arguments),*)),
-                            quote! {
-                                /// The `#[cell]` method reads the time: ∂f/∂t of every cell,
-                                /// generated.
-                                const TIME_DEPENDENT: bool = true;
-                                #[inline]
-                                fn time_derivative(&self, t: f64, y: &#state, dfdt: &mut #state) {
-                                    ::odyn::grid::time_derivative(self, t, y, dfdt)
-                                }
-                            },
-                        )
-                    }
-                    // The time reaches the rate through code odyn cannot differentiate: the
-                    // runtime's central difference.
-                    Time::Opaque => (
-                        zeros.clone(),
-                        quote!(
-                            const TIME_DEPENDENT: bool = true;
-                        ),
-                    ),
-                    Time::Unread => (
-                        zeros.clone(),
+    let has_jacobian = lowered.is_some();
+    let (blocks, jacobian_fn, jacobian_call, time_call, jacobian_impl) = match lowered {
+        Some(lowered) => {
+            let Generated {
+                blocks,
+                function,
+                time,
+            } = blocks(cell, lowered);
+            let hidden = hidden_name(cell);
+            let (time_call, time_items) = match time {
+                Time::Exact => {
+                    let hidden = time_name(cell);
+                    (
+                        quote!(self.#hidden(#(#arguments),*)),
                         quote! {
-                            /// A cell's rate does not read the time: ∂f/∂t = 0.
-                            const TIME_DEPENDENT: bool = false;
+                            /// The `#[cell]` method reads the time: ∂f/∂t of every cell,
+                            /// generated.
+                            const TIME_DEPENDENT: bool = true;
                             #[inline]
-                            fn time_derivative(&self, _: f64, _: &#state, dfdt: &mut #state) {
-                                ::odyn::State::as_mut_slice(dfdt).fill(0.0);
+                            fn time_derivative(&self, t: f64, y: &#state, dfdt: &mut #state) {
+                                ::odyn::grid::time_derivative(self, t, y, dfdt)
                             }
                         },
+                    )
+                }
+                // The time reaches the rate through code odyn cannot differentiate: the
+                // runtime's central difference.
+                Time::Opaque => (
+                    zeros.clone(),
+                    quote!(
+                        const TIME_DEPENDENT: bool = true;
                     ),
-                };
-                (
-                    blocks,
-                    function,
-                    quote!(blocks.copy_from_slice(&self.#hidden(#(#arguments),*));),
-                    time_call,
-                    quote! {
-                        type Jacobian = Self;
-                        #[inline(always)]
-                        fn as_jacobian(&self) -> ::core::option::Option<&Self> {
-                            ::core::option::Option::Some(self)
-                        }
-                    },
-                    quote! {
-                        #[automatically_derived]
-                        impl ::odyn::Jacobian for #self_ty {
-                            type Matrix = ::odyn::grid::GridJacobian;
-                            /// Empty: a field model's pattern comes from its grid at run time.
-                            const NONZEROS: &'static [(usize, usize)] = &[];
-                            fn jacobian_matrix(&self, state: &#state) -> Self::Matrix {
-                                ::odyn::grid::jacobian_matrix(self, state)
-                            }
-                            #[inline]
-                            fn jacobian(&self, t: f64, y: &#state, jacobian: &mut Self::Matrix) {
-                                ::odyn::grid::jacobian(self, t, y, jacobian)
-                            }
-                            #time_items
-                        }
-                    },
-                )
+                ),
+                Time::Unread => (
+                    zeros.clone(),
+                    time_independent(&state, "A cell's rate does not read the time"),
+                ),
+            };
+            (
+                blocks,
+                function,
+                quote!(blocks.copy_from_slice(&self.#hidden(#(#arguments),*));),
+                time_call,
+                runtime_jacobian(
+                    self_ty,
+                    &state,
+                    "grid",
+                    quote!(::odyn::grid::GridJacobian),
+                    "a field model's pattern comes from its grid at run time",
+                    time_items,
+                ),
+            )
+        }
+        None => (
+            Vec::new(),
+            TokenStream::new(),
+            TokenStream::new(),
+            zeros,
+            TokenStream::new(),
+        ),
+    };
+    let model_impl = ModelImpl {
+        methods: quote! {
+            fn state(&self) -> #state {
+                ::odyn::grid::GridState::from_grids(&[#(&self.#grids),*], &[#(#names),*])
             }
-            None => (
-                Vec::new(),
-                TokenStream::new(),
-                TokenStream::new(),
-                zeros,
-                quote! {
-                    type Jacobian = ::odyn::Unavailable<Self>;
-                    #[inline(always)]
-                    fn as_jacobian(&self) -> ::core::option::Option<&Self::Jacobian> {
-                        ::core::option::Option::None
-                    }
-                },
-                TokenStream::new(),
-            ),
-        };
-    let imp = strip_cell_attribute(imp, None);
+            #[inline]
+            fn derivative(&self, t: f64, y: &#state, dydt: &mut #state) {
+                ::odyn::grid::derivative(self, t, y, dydt)
+            }
+            fn energy(&self, _: &#state) -> ::core::option::Option<f64> {
+                ::core::option::Option::None
+            }
+        },
+        second_order: false,
+        jacobian: has_jacobian,
+        check: Some(quote! {
+            ::odyn::grid::check(self, state)?;
+            #(::odyn::grid::check_coefficient::<Self>(#coefficient_names, &self.#coefficients, state)?;)*
+            ::core::result::Result::Ok(())
+        }),
+        ..ModelImpl::for_impl(imp, &fields.item.ident, &state, args)
+    }
+    .build();
     quote! {
-        #imp
         #[automatically_derived]
         impl #self_ty {
             #jacobian_fn
@@ -214,33 +189,7 @@ pub(super) fn impls(
             }
         }
         #jacobian_impl
-        #[automatically_derived]
-        impl ::odyn::Model for #self_ty {
-            type State = #state;
-            type SecondOrder = ::odyn::Unavailable<Self>;
-            const NAME: &'static str = #name;
-            #defaults
-            fn state(&self) -> #state {
-                ::odyn::grid::GridState::from_grids(&[#(&self.#grids),*], &[#(#names),*])
-            }
-            #[inline]
-            fn derivative(&self, t: f64, y: &#state, dydt: &mut #state) {
-                ::odyn::grid::derivative(self, t, y, dydt)
-            }
-            fn energy(&self, _: &#state) -> ::core::option::Option<f64> {
-                ::core::option::Option::None
-            }
-            #[inline(always)]
-            fn as_second_order(&self) -> ::core::option::Option<&Self::SecondOrder> {
-                ::core::option::Option::None
-            }
-            #jacobian_assoc
-            fn check(&self, state: &#state) -> ::odyn::Result<()> {
-                ::odyn::grid::check(self, state)?;
-                #(::odyn::grid::check_coefficient::<Self>(#coefficient_names, &self.#coefficients, state)?;)*
-                ::core::result::Result::Ok(())
-            }
-        }
+        #model_impl
     }
 }
 
@@ -319,16 +268,8 @@ fn blocks(cell: &Cell, lowered: Lowered) -> Generated {
             })
         })
         .collect();
-    // The time as the derivative code reads it: a hygienic copy made before the prologue, which
-    // may shadow the user's name (`let t = t - self.t0;`).
-    let time_copy = match &cell.time {
-        Some(t) => {
-            let copy = format_ident!("__odyn_time", span = Span::mixed_site());
-            components.push(quote!(#copy));
-            quote!(let #copy: f64 = #t;)
-        }
-        None => TokenStream::new(),
-    };
+    let (time_component, time_copy) = time_copy(cell.time.as_ref());
+    components.extend(time_component);
     // ∂f/∂t, row by row (0 where a row does not read the time).
     let time_roots: Vec<_> = match time {
         Some(var) if exact_time => outputs
@@ -338,30 +279,25 @@ fn blocks(cell: &Cell, lowered: Lowered) -> Generated {
         _ => Vec::new(),
     };
     // A hidden method of the kernel's arguments returning the values of `roots`.
-    let hidden_fn = |name: syn::Ident, roots: &[crate::ir::ExprId]| {
-        let lets = straight_line(&graph, roots, &components);
+    let values_fn = |name: syn::Ident, roots: &[crate::ir::ExprId]| {
+        let (prologue, lets) = evaluation(&graph, roots, &components, &prologue);
         let values = roots.iter().map(|&id| operand(&graph, id, &components));
-        let prologue = prologue_tokens(&prologue, &opaques_read(&graph, roots));
         let count = Literal::usize_unsuffixed(roots.len());
         let inputs = &cell.f.sig.inputs;
-        quote! {
-            #[doc(hidden)]
-            #[inline(always)]
-            #[allow(unused_variables, unused_parens, non_snake_case, clippy::all)]
-            fn #name(#inputs) -> [f64; #count] {
-                #time_copy
-                #(#prologue)*
-                #(#lets)*
-                [#(#values),*]
-            }
-        }
+        hidden_fn(
+            quote!(#name(#inputs) -> [f64; #count]),
+            quote!(#[inline(always)]),
+            &time_copy,
+            &prologue,
+            quote!(#(#lets)* [#(#values),*]),
+        )
     };
-    let mut function = hidden_fn(hidden_name(cell), &roots);
+    let mut function = values_fn(hidden_name(cell), &roots);
     let time = match time {
         None => Time::Unread,
         Some(_) if !exact_time => Time::Opaque,
         Some(_) => {
-            function.extend(hidden_fn(time_name(cell), &time_roots));
+            function.extend(values_fn(time_name(cell), &time_roots));
             Time::Exact
         }
     };

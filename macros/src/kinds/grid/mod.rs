@@ -1,22 +1,28 @@
 //! The field (grid) model front-end: `#[field]` grids and one `#[cell]` kernel.
 //!
 //! The struct gives the fields ([`parse_struct`]); the impl block gives the kernel
-//! ([`parse_cell`]), whose stencil reads `u.e` are renamed to scalar inputs `u__e` ([`reads`]) so
+//! ([`cell`]), whose stencil reads `u.e` are renamed to scalar inputs `u__e` ([`reads`]) so
 //! the shared [`crate::lower::lower_kernel`] sees a function of numbers; [`generate`] emits its
 //! derivative blocks and the runtime trait impls, which leave the loops over cells and the
 //! assembly to `odyn::grid`.
 
+mod cell;
 mod generate;
 mod reads;
 
 use proc_macro2::TokenStream;
-use quote::{format_ident, quote};
-use syn::{FnArg, Ident, ImplItem, ImplItemFn, ItemImpl, ItemStruct, Pat, ReturnType, Type};
+use quote::quote;
+use syn::{Ident, ItemImpl, ItemStruct};
+
+use cell::parse_cell;
 
 use crate::args::Args;
-use crate::errors::{Errors, with_error};
+use crate::errors::Errors;
+use crate::kinds::{FrontEnd, Impl, Struct};
 use crate::lower;
-use crate::model::{Model, Order, Role, Shape, StateField};
+use crate::model::{Model, Order, Role, Shape, StateField, state_ident};
+use crate::syntax::{attribute, has_attribute, names_type, no_arguments};
+use crate::validate::FirstOrder;
 
 /// The names of a stencil's neighbours, in the runtime's order (`odyn::grid::NEIGHBOURS`).
 pub(crate) const NEIGHBOURS: [&str; 9] = ["c", "e", "w", "n", "s", "ne", "nw", "se", "sw"];
@@ -32,7 +38,7 @@ pub(crate) struct Fields<'a> {
 
 impl Fields<'_> {
     fn state_ident(&self) -> Ident {
-        format_ident!("{}State", self.item.ident)
+        state_ident(&self.item.ident)
     }
 
     /// The model as the body rewriter sees it: the grids are state (read only through
@@ -52,27 +58,11 @@ impl Fields<'_> {
                 .collect(),
         }
     }
-
-    /// The model as the kernel's lowering sees it: every field a parameter.
-    fn parameter_model(&self) -> Model<'_> {
-        Model {
-            item: self.item,
-            order: Order::First,
-            states: Vec::new(),
-        }
-    }
 }
 
 /// Whether `item` is a field model: it has a `#[field]` field.
 pub(crate) fn is_grid_model(item: &ItemStruct) -> bool {
-    item.fields
-        .iter()
-        .any(|f| f.attrs.iter().any(|a| a.path().is_ident("field")))
-}
-
-fn last_segment_is(ty: &Type, name: &str) -> bool {
-    matches!(ty, Type::Path(p) if p.qself.is_none()
-        && p.path.segments.last().is_some_and(|s| s.ident == name && s.arguments.is_none()))
+    item.fields.iter().any(|f| has_attribute(&f.attrs, "field"))
 }
 
 /// Reads a field model's struct, reporting every problem to `errors`.
@@ -80,10 +70,8 @@ pub(crate) fn parse_struct<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Opt
     let mut fields = Vec::new();
     let mut coefficients = Vec::new();
     for field in &item.fields {
-        let Some(ident) = field.ident.as_ref() else {
-            errors.at(field, "a model must be a struct with named fields");
-            return None;
-        };
+        // Refused before the front-end with its own error (`kinds::expand_struct`).
+        let ident = field.ident.as_ref()?;
         for attr in &field.attrs {
             let other = ["state", "position", "velocity", "mass", "pinned"];
             if other.iter().any(|n| attr.path().is_ident(n)) {
@@ -94,20 +82,19 @@ pub(crate) fn parse_struct<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Opt
                 );
             }
         }
-        let Some(attr) = field.attrs.iter().find(|a| a.path().is_ident("field")) else {
-            if last_segment_is(&field.ty, "Grid") {
+        let Some(attr) = attribute(&field.attrs, &["field"]) else {
+            if names_type(&field.ty, "Grid") {
                 coefficients.push(ident);
             }
             continue;
         };
-        if let Err(e) = attr.meta.require_path_only() {
-            errors.push(syn::Error::new(
-                e.span(),
-                "`#[field]` takes no arguments; the boundary is part of the grid: \
-                 `Grid::new(nx, ny, Boundary::Periodic, values)`",
-            ));
-        }
-        if !last_segment_is(&field.ty, "Grid") {
+        no_arguments(
+            attr,
+            "`#[field]` takes no arguments; the boundary is part of the grid: \
+             `Grid::new(nx, ny, Boundary::Periodic, values)`",
+            errors,
+        );
+        if !names_type(&field.ty, "Grid") {
             errors.at(
                 &field.ty,
                 "a `#[field]` must be an `odyn::grid::Grid` (values on an nx × ny grid with a \
@@ -121,11 +108,6 @@ pub(crate) fn parse_struct<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Opt
         fields,
         coefficients,
     })
-}
-
-/// The struct as the user wrote it, minus `#[field]`.
-pub(crate) fn strip(item: &ItemStruct) -> ItemStruct {
-    super::strip_field_attributes(item, &["field"])
 }
 
 /// The state type of a field model: an alias of the runtime's.
@@ -143,309 +125,85 @@ pub(crate) fn state(fields: &Fields<'_>) -> TokenStream {
     }
 }
 
-/// The struct half: the struct without `#[field]`, and its state type when accepted.
-pub(crate) fn expand_struct(
-    item: &ItemStruct,
-    errors: &mut Errors,
-) -> (ItemStruct, Option<TokenStream>) {
-    let fields = parse_struct(item, errors);
-    (strip(item), fields.map(|f| state(&f)))
-}
+/// The field-model front-end: structs with `#[field]` grids.
+pub(crate) struct Kind;
 
-/// The `#[cell]` kernel.
-pub(crate) struct Cell {
-    pub(crate) f: ImplItemFn,
-    /// Its stencil arguments, each the index of the field it is named after.
-    pub(crate) stencils: Vec<(Ident, usize)>,
-    /// Every argument after `&self`, in order.
-    pub(crate) arguments: Vec<Argument>,
-    /// Its time argument, if it takes one.
-    pub(crate) time: Option<Ident>,
-    /// Whether it returns `f64` (one field) rather than `[f64; F]`.
-    pub(crate) scalar: bool,
-}
+impl FrontEnd for Kind {
+    fn recognises(&self, item: &ItemStruct) -> bool {
+        is_grid_model(item)
+    }
 
-/// An argument of the `#[cell]` kernel.
-#[derive(Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Argument {
-    /// The stencil of field k.
-    Stencil(usize),
-    /// The stencil of coefficient grid k (a parameter).
-    Coefficient(usize),
-    /// The cell's position along x, along y; the time.
-    X,
-    Y,
-    T,
-}
+    fn method_attributes(&self) -> &'static [&'static str] {
+        &["cell"]
+    }
 
-impl Argument {
-    /// The argument taking the place value `name` (`x`, `y`, `t`), if it is one.
-    fn place(name: &str) -> Option<Self> {
-        match name {
-            "x" => Some(Argument::X),
-            "y" => Some(Argument::Y),
-            "t" => Some(Argument::T),
-            _ => None,
-        }
+    /// The struct half: the state type, and what the model asks of an integrator, when accepted.
+    fn expand_struct(&self, item: &ItemStruct, errors: &mut Errors) -> Option<Struct> {
+        let fields = parse_struct(item, errors)?;
+        Some(Struct {
+            state: state(&fields),
+            first_order: Some(FirstOrder {
+                second_order: "positions and velocities",
+                model: format!("field model `{}` is first-order", item.ident),
+                instead: "`ExplicitEuler`, `Rk4`, `ImplicitEuler` or `Rodas5P`",
+            }),
+        })
     }
-}
 
-fn is_cell(f: &ImplItemFn) -> bool {
-    f.attrs.iter().any(|a| a.path().is_ident("cell"))
-}
-
-/// Finds and checks the one `#[cell]` method.
-fn parse_cell(imp: &ItemImpl, fields: &Fields<'_>, errors: &mut Errors) -> Option<Cell> {
-    let model = &fields.item.ident;
-    let mut found: Option<&ImplItemFn> = None;
-    for member in &imp.items {
-        let ImplItem::Fn(f) = member else { continue };
-        let name = &f.sig.ident;
-        if is_cell(f) {
-            if found.is_some() {
-                errors.at(
-                    name,
-                    "a field model has one `#[cell]` method, returning every field's rate",
-                );
-            }
-            found = Some(f);
-        } else if ["acceleration", "derivative", "energy", "potential"]
-            .contains(&name.to_string().as_str())
-        {
-            errors.at(
-                name,
-                format_args!(
-                    "`{name}` is not read in field model `{model}`; its right-hand side is one \
-                     `#[cell]` method: `fn rate(&self, u: Stencil) -> f64`"
-                ),
-            );
-        }
-    }
-    let Some(f) = found else {
-        errors.at(
-            &imp.self_ty,
-            format_args!(
-                "field model `{model}` has no `#[cell]` method; write the rate of every field at \
-                 one cell from stencils named like the fields: \
-                 `#[cell] fn rate(&self, u: Stencil) -> f64`"
-            ),
-        );
-        return None;
-    };
-    let before = errors.len();
-    if let Some(attr) = f.attrs.iter().find(|a| a.path().is_ident("cell"))
-        && let Err(e) = attr.meta.require_path_only()
-    {
-        errors.push(syn::Error::new(e.span(), "`#[cell]` takes no arguments"));
-    }
-    let name = &f.sig.ident;
-    if !f.sig.generics.params.is_empty() {
-        errors.at(&f.sig.generics, format_args!("`{name}` cannot be generic"));
-    }
-    let mut inputs = f.sig.inputs.iter();
-    match inputs.next() {
-        Some(FnArg::Receiver(r)) if r.reference.is_some() && r.mutability.is_none() => {}
-        _ => errors.at(&f.sig, format_args!("`{name}` must take `&self` first")),
-    }
-    let mut stencils: Vec<(Ident, usize)> = Vec::new();
-    let mut arguments = Vec::new();
-    let mut time = None;
-    for input in inputs {
-        let FnArg::Typed(t) = input else { continue };
-        let Pat::Ident(p) = &*t.pat else {
-            errors.at(&t.pat, "a stencil argument is a plain name, the field's");
-            continue;
+    /// The impl block of a field model: the cell kernel → blocks → runtime trait impls.
+    fn expand_impl(
+        &self,
+        args: &Args,
+        item: &ItemStruct,
+        imp: &ItemImpl,
+        errors: &mut Errors,
+    ) -> Impl {
+        let Some(fields) = parse_struct(item, errors) else {
+            return Impl::Rejected { silenced: None };
         };
-        if last_segment_is(&t.ty, "f64") {
-            match Argument::place(&p.ident.to_string()) {
-                Some(place) if arguments.contains(&place) => {
-                    errors.at(&p.ident, format_args!("`{}` is taken twice", p.ident))
-                }
-                Some(place) => {
-                    if place == Argument::T {
-                        time = Some(p.ident.clone());
-                    }
-                    arguments.push(place);
-                }
-                None => errors.at(
-                    &p.ident,
-                    format_args!(
-                        "`{name}` takes a number only as the cell's position or the time, named \
-                         `x`, `y` or `t`; a field's values come through a `Stencil` named like \
-                         the field"
-                    ),
-                ),
-            }
-            continue;
-        }
-        if !last_segment_is(&t.ty, "Stencil") {
-            errors.at(
-                &t.ty,
-                format_args!(
-                    "`{name}` takes one `odyn::grid::Stencil` per field it reads, named like the \
-                     field, and may take the cell's position and the time as `x: f64`, \
-                     `y: f64`, `t: f64`"
-                ),
-            );
-            continue;
-        }
-        if let Some(k) = fields.coefficients.iter().position(|c| **c == p.ident) {
-            if arguments.contains(&Argument::Coefficient(k)) {
+        let cell = parse_cell(imp, &fields, errors);
+        let mut lowered = None;
+        let mut misread = false;
+        if let Some(cell) = &cell {
+            let name = &cell.f.sig.ident;
+            let (_, state_reads) =
+                crate::rewrite::rewrite(&cell.f.block, &fields.rewriter_model(), name, errors);
+            if let Some(tokens) = state_reads.values().next() {
                 errors.at(
-                    &p.ident,
-                    format_args!("the stencil of `{}` is taken twice", p.ident),
+                    tokens,
+                    format_args!(
+                        "`{name}` reads the grids only through its stencil arguments, not through \
+                         `self`"
+                    ),
                 );
             }
-            arguments.push(Argument::Coefficient(k));
-            continue;
-        }
-        match fields.fields.iter().position(|f| **f == p.ident) {
-            Some(_) if stencils.iter().any(|(s, _)| *s == p.ident) => errors.at(
-                &p.ident,
-                format_args!("the stencil of `{}` is taken twice", p.ident),
-            ),
-            Some(index) => {
-                stencils.push((p.ident.clone(), index));
-                arguments.push(Argument::Stencil(index));
-            }
-            None => {
-                let listed = |names: &[&Ident]| {
-                    names
-                        .iter()
-                        .map(|f| format!("`{f}`"))
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                };
-                let coefficients = if fields.coefficients.is_empty() {
-                    String::new()
-                } else {
-                    format!(" ({})", listed(&fields.coefficients))
-                };
-                errors.at(
-                    &p.ident,
-                    format_args!(
-                        "`{model}` has no `#[field]` called `{}`; a stencil argument is named \
-                         like the field it reads ({}), or like a coefficient `Grid` of the \
-                         model{coefficients}",
-                        p.ident,
-                        listed(&fields.fields)
-                    ),
-                )
+            let inputs: Vec<Ident> = cell
+                .stencils
+                .iter()
+                .flat_map(|(s, _)| NEIGHBOURS.map(|n| reads::input(s, n)))
+                .collect();
+            let before = errors.len();
+            let renamed = reads::rename(&cell.f, &cell.stencils, errors);
+            misread = errors.len() > before;
+            if args.no_jacobian.is_none() && errors.is_empty() {
+                let model = Model::parameters(fields.item, Order::First);
+                let outputs = fields.fields.len();
+                match lower::lower_kernel(&model, &renamed, &inputs, 1, outputs, cell.time.clone())
+                {
+                    Ok(l) => lowered = Some(l),
+                    Err(error) => errors.push(error),
+                }
             }
         }
-    }
-    let count = fields.fields.len();
-    let scalar = match &f.sig.output {
-        ReturnType::Type(_, ty) if count == 1 && last_segment_is(ty, "f64") => true,
-        ReturnType::Type(_, ty) if is_array_of(ty, count) => false,
-        _ => {
-            let wanted = if count == 1 {
-                "`f64`".to_string()
-            } else {
-                format!("`[f64; {count}]`")
-            };
-            errors.at(
-                &f.sig,
-                format_args!(
-                    "`{name}` must return the rate of each of the {count} field{s} at the cell, \
-                     in declaration order: {wanted}",
-                    s = if count == 1 { "" } else { "s" }
-                ),
-            );
-            false
-        }
-    };
-    (errors.len() == before).then(|| Cell {
-        f: f.clone(),
-        stencils,
-        arguments,
-        time,
-        scalar,
-    })
-}
-
-/// `ty` is `[f64; n]`.
-fn is_array_of(ty: &Type, n: usize) -> bool {
-    matches!(ty, Type::Array(a)
-        if last_segment_is(&a.elem, "f64") && crate::model::int_literal(&a.len) == Some(n))
-}
-
-/// The impl block of a field model: the cell kernel → blocks → runtime trait impls.
-pub(crate) fn expand_impl(args: &Args, item: &ItemStruct, imp: &ItemImpl) -> TokenStream {
-    let mut errors = Errors::default();
-    let Some(fields) = parse_struct(item, &mut errors) else {
-        return with_error(
-            generate::strip_cell_attribute(imp, None),
-            errors.finish().expect_err("a rejected model has errors"),
-        );
-    };
-    let cell = parse_cell(imp, &fields, &mut errors);
-    if let Some((ident, info)) = &args.integrator
-        && info.needs_second_order
-    {
-        errors.at(
-            ident,
-            format_args!(
-                "`{ident}` needs a second-order model (positions and velocities), but field \
-                 model `{}` is first-order; use `ExplicitEuler`, `Rk4`, `ImplicitEuler` or \
-                 `Rodas5P`",
-                item.ident
-            ),
-        );
-    }
-    if let (Some(no), Some((ident, info))) = (&args.no_jacobian, &args.integrator)
-        && info.needs_jacobian
-    {
-        errors.at(
-            no,
-            format_args!("`{ident}` needs the Jacobian that `jacobian = false` turns off"),
-        );
-    }
-    let mut lowered = None;
-    let mut misread = false;
-    if let Some(cell) = &cell {
-        let name = &cell.f.sig.ident;
-        let (_, state_reads) =
-            crate::rewrite::rewrite(&cell.f.block, &fields.rewriter_model(), name, &mut errors);
-        if let Some(tokens) = state_reads.values().next() {
-            errors.at(
-                tokens,
-                format_args!(
-                    "`{name}` reads the grids only through its stencil arguments, not through \
-                     `self`"
-                ),
-            );
-        }
-        let inputs: Vec<Ident> = cell
-            .stencils
-            .iter()
-            .flat_map(|(s, _)| NEIGHBOURS.map(|n| reads::input(s, n)))
-            .collect();
-        let before = errors.len();
-        let renamed = reads::rename(&cell.f, &cell.stencils, &mut errors);
-        misread = errors.len() > before;
-        if args.no_jacobian.is_none() && errors.is_empty() {
-            let model = fields.parameter_model();
-            let outputs = fields.fields.len();
-            match lower::lower_kernel(&model, &renamed, &inputs, 1, outputs, cell.time.clone()) {
-                Ok(l) => lowered = Some(l),
-                Err(error) => errors.push(error),
+        match cell {
+            Some(cell) if errors.is_empty() => {
+                Impl::Accepted(generate::impls(&fields, args, &cell, imp, lowered))
             }
-        }
-    }
-    match (errors.finish(), cell) {
-        (Ok(()), Some(cell)) => generate::impls(&fields, args, &cell, imp, lowered),
-        (result, cell) => {
-            let error = result
-                .err()
-                .unwrap_or_else(|| syn::Error::new_spanned(&imp.self_ty, "field model rejected"));
             // A misread stencil (`u.nn`, `u.gradient()`) is also an error of rustc's in the
             // user's own body: emitted as written, it would be reported twice.
-            let silenced = cell.filter(|_| misread).map(|c| c.f.sig.ident);
-            let imp = generate::strip_cell_attribute(imp, silenced.as_ref());
-            let rejected = with_error(imp, error);
-            let stub = crate::generate::stub_model(&item.ident, &fields.state_ident());
-            quote!(#rejected #stub)
+            cell => Impl::Rejected {
+                silenced: cell.filter(|_| misread).map(|c| c.f.sig.ident),
+            },
         }
     }
 }

@@ -4,12 +4,14 @@
 
 use proc_macro2::{Span, TokenStream};
 use quote::{ToTokens, format_ident, quote};
-use syn::{FnArg, ImplItem, ItemImpl};
+use syn::{FnArg, ItemImpl};
 
 use super::Particles;
 use super::kernels::{Functions, Kernel, Over};
 use crate::args::Args;
-use crate::generate::{opaques_read, operand, prologue_tokens, straight_line};
+use crate::generate::{
+    ModelImpl, evaluation, hidden_fn, operand, runtime_jacobian, time_independent,
+};
 use crate::ir::ExprId;
 use crate::lower::Lowered;
 
@@ -21,7 +23,6 @@ pub(super) fn generate(
     jacobian: Option<Vec<Lowered>>,
 ) -> TokenStream {
     let self_ty = &imp.self_ty;
-    let name = particles.item.ident.to_string();
     let state = particles.state_ident();
     let d = proc_macro2::Literal::usize_unsuffixed(particles.dim);
     let vector = particles.vector_type();
@@ -31,7 +32,6 @@ pub(super) fn generate(
         Some(p) => quote!(&self.#p),
         None => quote!(&[]),
     };
-    let defaults = crate::generate::attribute_defaults(args);
     let link_lists = functions.kernels.iter().filter_map(|k| match &k.over {
         Over::Pairs(field) => {
             let name = field.to_string();
@@ -111,7 +111,8 @@ pub(super) fn generate(
             #potential
         }
     };
-    let (jacobian_fns, jacobian_impl, jacobian_assoc) = match jacobian {
+    let has_jacobian = jacobian.is_some();
+    let (jacobian_fns, jacobian_impl) = match jacobian {
         Some(lowered) => {
             let (fns, calls): (Vec<_>, Vec<_>) = functions
                 .kernels
@@ -119,6 +120,14 @@ pub(super) fn generate(
                 .zip(lowered)
                 .map(|(k, l)| kernel_jacobian(particles, k, l))
                 .unzip();
+            let jacobian_impl = runtime_jacobian(
+                self_ty,
+                &state,
+                "particles",
+                quote!(::odyn::particles::ParticleJacobian<#d>),
+                "a particle model's pattern comes from its topology at run time",
+                time_independent(&state, "Kernels do not read the time"),
+            );
             (
                 quote!(#(#fns)*),
                 quote! {
@@ -136,32 +145,7 @@ pub(super) fn generate(
                         }
                         #common
                     }
-                    #[automatically_derived]
-                    impl ::odyn::Jacobian for #self_ty {
-                        type Matrix = ::odyn::particles::ParticleJacobian<#d>;
-                        /// Empty: a particle model's pattern comes from its topology at run time.
-                        const NONZEROS: &'static [(usize, usize)] = &[];
-                        fn jacobian_matrix(&self, state: &#state) -> Self::Matrix {
-                            ::odyn::particles::jacobian_matrix(self, state)
-                        }
-                        #[inline]
-                        fn jacobian(&self, t: f64, y: &#state, jacobian: &mut Self::Matrix) {
-                            ::odyn::particles::jacobian(self, t, y, jacobian)
-                        }
-                        /// Kernels do not read the time: ∂f/∂t = 0.
-                        const TIME_DEPENDENT: bool = false;
-                        #[inline]
-                        fn time_derivative(&self, _: f64, _: &#state, dfdt: &mut #state) {
-                            ::odyn::State::as_mut_slice(dfdt).fill(0.0);
-                        }
-                    }
-                },
-                quote! {
-                    type Jacobian = Self;
-                    #[inline(always)]
-                    fn as_jacobian(&self) -> ::core::option::Option<&Self> {
-                        ::core::option::Option::Some(self)
-                    }
+                    #jacobian_impl
                 },
             )
         }
@@ -181,30 +165,10 @@ pub(super) fn generate(
                     #common
                 }
             },
-            quote! {
-                type Jacobian = ::odyn::Unavailable<Self>;
-                #[inline(always)]
-                fn as_jacobian(&self) -> ::core::option::Option<&Self::Jacobian> {
-                    ::core::option::Option::None
-                }
-            },
         ),
     };
-    let imp = strip_kernel_attributes(imp);
-    quote! {
-        #imp
-        #[automatically_derived]
-        impl #self_ty {
-            #potential_fn
-            #jacobian_fns
-        }
-        #jacobian_impl
-        #[automatically_derived]
-        impl ::odyn::Model for #self_ty {
-            type State = #state;
-            type SecondOrder = Self;
-            const NAME: &'static str = #name;
-            #defaults
+    let model_impl = ModelImpl {
+        methods: quote! {
             fn state(&self) -> #state {
                 ::odyn::particles::ParticleState::from_fields(&self.#x, &self.#v, [#x_name, #v_name])
             }
@@ -215,15 +179,21 @@ pub(super) fn generate(
             fn energy(&self, state: &#state) -> ::core::option::Option<f64> {
                 ::odyn::particles::energy(self, state)
             }
-            #[inline(always)]
-            fn as_second_order(&self) -> ::core::option::Option<&Self> {
-                ::core::option::Option::Some(self)
-            }
-            #jacobian_assoc
-            fn check(&self, state: &#state) -> ::odyn::Result<()> {
-                ::odyn::particles::check(self, state)
-            }
+        },
+        second_order: true,
+        jacobian: has_jacobian,
+        check: Some(quote!(::odyn::particles::check(self, state))),
+        ..ModelImpl::for_impl(imp, &particles.item.ident, &state, args)
+    }
+    .build();
+    quote! {
+        #[automatically_derived]
+        impl #self_ty {
+            #potential_fn
+            #jacobian_fns
         }
+        #jacobian_impl
+        #model_impl
         #[automatically_derived]
         impl ::odyn::SecondOrder for #self_ty {
             const READS_VELOCITY: bool = #reads_velocity;
@@ -268,8 +238,7 @@ fn kernel_jacobian(
         .flat_map(|name| (0..dim).map(move |i| quote!(#name[#i])))
         .collect();
     let roots: Vec<ExprId> = blocks.iter().flatten().copied().collect();
-    let lets = straight_line(&graph, &roots, &components);
-    let prologue = prologue_tokens(&prologue, &opaques_read(&graph, &roots));
+    let (prologue, lets) = evaluation(&graph, &roots, &components, &prologue);
     let matrices = blocks.iter().map(|entries| {
         let columns = entries.chunks(dim).map(|column| {
             let rows = column.iter().map(|&id| operand(&graph, id, &components));
@@ -285,16 +254,13 @@ fn kernel_jacobian(
     let name = &kernel.f.sig.ident;
     let hidden = format_ident!("__odyn_{}_jacobian", name, span = Span::mixed_site());
     let inputs = &kernel.f.sig.inputs;
-    let function = quote! {
-        #[doc(hidden)]
-        #[inline(always)]
-        #[allow(unused_variables, unused_parens, non_snake_case, clippy::all)]
-        fn #hidden(#inputs) -> [::odyn::__private::nalgebra::SMatrix<f64, #d, #d>; #count] {
-            #(#prologue)*
-            #(#lets)*
-            [#(#matrices),*]
-        }
-    };
+    let function = hidden_fn(
+        quote!(#hidden(#inputs) -> [::odyn::__private::nalgebra::SMatrix<f64, #d, #d>; #count]),
+        quote!(#[inline(always)]),
+        &TokenStream::new(),
+        &prologue,
+        quote!(#(#lets)* [#(#matrices),*]),
+    );
     let zero = quote!(::odyn::__private::nalgebra::SMatrix::<f64, #d, #d>::zeros());
     let call = match &kernel.over {
         Over::Pairs(field) => {
@@ -322,16 +288,4 @@ fn kernel_jacobian(
         }
     };
     (function, call)
-}
-
-/// The impl block with `#[pair]`/`#[particle]` removed from its kernels (they are odyn's).
-pub(super) fn strip_kernel_attributes(imp: &ItemImpl) -> ItemImpl {
-    let mut imp = imp.clone();
-    for member in &mut imp.items {
-        if let ImplItem::Fn(f) = member {
-            f.attrs
-                .retain(|a| !(a.path().is_ident("pair") || a.path().is_ident("particle")));
-        }
-    }
-    imp
 }

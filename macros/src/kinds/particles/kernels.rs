@@ -4,9 +4,10 @@
 use quote::ToTokens;
 use syn::{Attribute, FnArg, Ident, ImplItem, ImplItemFn, ItemImpl, Pat, ReturnType, Type};
 
-use super::{Particles, attribute, is_plain, vec_element};
+use super::Particles;
 use crate::errors::Errors;
 use crate::model::{Shape, shape_of};
+use crate::syntax::{attribute, is_plain, is_ref_self, no_arguments, vec_element};
 
 /// Which elements a kernel runs over.
 pub(super) enum Over {
@@ -107,7 +108,7 @@ pub(super) fn parse_kernels(
 fn check_receiver_only(f: &ImplItemFn, errors: &mut Errors) {
     let mut inputs = f.sig.inputs.iter();
     match inputs.next() {
-        Some(FnArg::Receiver(r)) if r.reference.is_some() && r.mutability.is_none() => {}
+        Some(FnArg::Receiver(r)) if is_ref_self(r) => {}
         _ => errors.at(&f.sig, "`potential` must take `&self`"),
     }
     if let Some(extra) = inputs.next() {
@@ -165,12 +166,7 @@ fn parse_kernel(
             }
         }
     } else {
-        if let Err(e) = attr.meta.require_path_only() {
-            errors.push(syn::Error::new(
-                e.span(),
-                "`#[particle]` takes no arguments",
-            ));
-        }
+        no_arguments(attr, "`#[particle]` takes no arguments", errors);
         Over::Particles
     };
     if !f.sig.generics.params.is_empty() {
@@ -181,7 +177,7 @@ fn parse_kernel(
     }
     let mut inputs = f.sig.inputs.iter().peekable();
     match inputs.next() {
-        Some(FnArg::Receiver(r)) if r.reference.is_some() && r.mutability.is_none() => {}
+        Some(FnArg::Receiver(r)) if is_ref_self(r) => {}
         _ => errors.at(
             &f.sig,
             format_args!("kernel `{name}` must take `&self` first"),

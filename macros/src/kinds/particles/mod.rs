@@ -11,13 +11,16 @@ mod generate;
 mod kernels;
 
 use proc_macro2::TokenStream;
-use quote::{format_ident, quote};
-use syn::{Attribute, GenericArgument, Ident, ItemImpl, ItemStruct, PathArguments, Type};
+use quote::quote;
+use syn::{Ident, ItemImpl, ItemStruct};
 
 use crate::args::Args;
 use crate::errors::Errors;
+use crate::kinds::{FrontEnd, Impl, Struct};
 use crate::lower;
-use crate::model::{Model, Order, Role, Shape, StateField, shape_of};
+use crate::model::{Model, Order, Role, Shape, StateField, shape_of, state_ident};
+use crate::syntax::{attribute, has_attribute, is_plain, no_arguments, vec_element};
+use crate::validate::{self, VelocityRead};
 
 /// The attributes that mark a particle model's fields.
 const FIELD_ATTRIBUTES: [&str; 4] = ["position", "velocity", "mass", "pinned"];
@@ -35,7 +38,7 @@ pub(crate) struct Particles<'a> {
 
 impl Particles<'_> {
     fn state_ident(&self) -> Ident {
-        format_ident!("{}State", self.item.ident)
+        state_ident(&self.item.ident)
     }
 
     /// The model as the body rewriter sees it: positions and velocities are state.
@@ -55,15 +58,6 @@ impl Particles<'_> {
         }
     }
 
-    /// The model as a kernel's lowering sees it: every field a parameter.
-    fn parameter_model(&self) -> Model<'_> {
-        Model {
-            item: self.item,
-            order: Order::Second,
-            states: Vec::new(),
-        }
-    }
-
     fn vector_type(&self) -> TokenStream {
         let d = proc_macro2::Literal::usize_unsuffixed(self.dim);
         quote!(::odyn::__private::nalgebra::SVector<f64, #d>)
@@ -74,39 +68,11 @@ impl Particles<'_> {
 /// field.
 pub(crate) fn is_particle_model(item: &ItemStruct) -> bool {
     item.fields.iter().any(|f| {
-        f.attrs.iter().any(|a| {
-            a.path().is_ident("mass")
-                || a.path().is_ident("pinned")
-                || ((a.path().is_ident("position") || a.path().is_ident("velocity"))
-                    && vec_element(&f.ty).is_some())
-        })
+        has_attribute(&f.attrs, "mass")
+            || has_attribute(&f.attrs, "pinned")
+            || (attribute(&f.attrs, &["position", "velocity"]).is_some()
+                && vec_element(&f.ty).is_some())
     })
-}
-
-/// `T` of `Vec<T>`.
-fn vec_element(ty: &Type) -> Option<&Type> {
-    let Type::Path(p) = ty else { return None };
-    let last = p.path.segments.last()?;
-    if last.ident != "Vec" {
-        return None;
-    }
-    let PathArguments::AngleBracketed(args) = &last.arguments else {
-        return None;
-    };
-    match args.args.iter().collect::<Vec<_>>().as_slice() {
-        [GenericArgument::Type(t)] => Some(t),
-        _ => None,
-    }
-}
-
-fn is_plain(ty: &Type, name: &str) -> bool {
-    matches!(ty, Type::Path(p) if p.qself.is_none() && p.path.is_ident(name))
-}
-
-fn attribute<'a>(attrs: &'a [Attribute], names: &[&str]) -> Option<&'a Attribute> {
-    attrs
-        .iter()
-        .find(|a| names.iter().any(|n| a.path().is_ident(n)))
 }
 
 /// Reads a particle model's struct, reporting every problem to `errors`.
@@ -117,10 +83,8 @@ pub(crate) fn parse_struct<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Opt
     let mut pinned = None;
     let mut dims = Vec::new();
     for field in &item.fields {
-        let Some(ident) = field.ident.as_ref() else {
-            errors.at(field, "a model must be a struct with named fields");
-            return None;
-        };
+        // Refused before the front-end with its own error (`kinds::expand_struct`).
+        let ident = field.ident.as_ref()?;
         if let Some(attr) = attribute(&field.attrs, &["state"]) {
             errors.at(
                 attr,
@@ -132,12 +96,7 @@ pub(crate) fn parse_struct<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Opt
         let Some(attr) = attribute(&field.attrs, &FIELD_ATTRIBUTES) else {
             continue;
         };
-        if let Err(e) = attr.meta.require_path_only() {
-            errors.push(syn::Error::new(
-                e.span(),
-                "this attribute takes no arguments",
-            ));
-        }
+        no_arguments(attr, "this attribute takes no arguments", errors);
         let name = attr
             .path()
             .get_ident()
@@ -226,11 +185,6 @@ pub(crate) fn parse_struct<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Opt
     })
 }
 
-/// The struct as the user wrote it, minus odyn's field attributes.
-pub(crate) fn strip(item: &ItemStruct) -> ItemStruct {
-    super::strip_field_attributes(item, &FIELD_ATTRIBUTES)
-}
-
 /// The state type of a particle model: an alias of the runtime's.
 pub(crate) fn state(particles: &Particles<'_>) -> TokenStream {
     let vis = &particles.item.vis;
@@ -247,69 +201,68 @@ pub(crate) fn state(particles: &Particles<'_>) -> TokenStream {
     }
 }
 
-/// The impl block of a particle model: kernels → blocks → runtime trait impls.
-pub(crate) fn expand_impl(args: &Args, item: &ItemStruct, imp: &ItemImpl) -> TokenStream {
-    let mut errors = Errors::default();
-    let Some(particles) = parse_struct(item, &mut errors) else {
-        return crate::errors::with_error(
-            generate::strip_kernel_attributes(imp),
-            errors.finish().expect_err("a rejected model has errors"),
-        );
-    };
-    let functions = kernels::parse_kernels(imp, &particles, &mut errors);
-    if let Some((ident, info)) = &args.integrator
-        && info.needs_velocity_free_forces
-        && let Some(kernel) = functions.kernels.iter().find(|k| k.reads_velocity())
-    {
-        errors.at(
-            ident,
-            format_args!(
-                "`{ident}` needs forces that do not read velocities, but kernel `{}` takes \
-                 velocities; use `VelocityVerlet` or `Leapfrog`",
-                kernel.f.sig.ident
-            ),
-        );
+/// The particle front-end: structs with `Vec` positions and velocities, `#[mass]`, `#[pinned]`.
+pub(crate) struct Kind;
+
+impl FrontEnd for Kind {
+    fn recognises(&self, item: &ItemStruct) -> bool {
+        is_particle_model(item)
     }
-    if let (Some(no), Some((ident, info))) = (&args.no_jacobian, &args.integrator)
-        && info.needs_jacobian
-    {
-        errors.at(
-            no,
-            format_args!("`{ident}` needs the Jacobian that `jacobian = false` turns off"),
-        );
+
+    fn method_attributes(&self) -> &'static [&'static str] {
+        &["pair", "particle"]
     }
-    let mut lowered = Vec::new();
-    if args.no_jacobian.is_none() {
-        let model = particles.parameter_model();
-        for kernel in &functions.kernels {
-            match lower::lower_kernel(
-                &model,
-                &kernel.f,
-                &kernel.vectors,
-                particles.dim,
-                particles.dim,
-                None,
-            ) {
-                Ok(l) => lowered.push(l),
-                Err(error) => errors.push(error),
+
+    /// The struct half: the state type when accepted (a particle model is second-order).
+    fn expand_struct(&self, item: &ItemStruct, errors: &mut Errors) -> Option<Struct> {
+        let particles = parse_struct(item, errors)?;
+        Some(Struct {
+            state: state(&particles),
+            first_order: None,
+        })
+    }
+
+    /// The impl block of a particle model: kernels → blocks → runtime trait impls.
+    fn expand_impl(
+        &self,
+        args: &Args,
+        item: &ItemStruct,
+        imp: &ItemImpl,
+        errors: &mut Errors,
+    ) -> Impl {
+        let Some(particles) = parse_struct(item, errors) else {
+            return Impl::Rejected { silenced: None };
+        };
+        let functions = kernels::parse_kernels(imp, &particles, errors);
+        let velocity_read = functions.kernels.iter().find(|k| k.reads_velocity());
+        let velocity_read = velocity_read.map(|kernel| VelocityRead {
+            reader: format!("kernel `{}` takes velocities", kernel.f.sig.ident),
+            at: None,
+        });
+        validate::forces(args, velocity_read, errors);
+        let mut lowered = Vec::new();
+        if args.no_jacobian.is_none() {
+            let model = Model::parameters(particles.item, Order::Second);
+            for kernel in &functions.kernels {
+                match lower::lower_kernel(
+                    &model,
+                    &kernel.f,
+                    &kernel.vectors,
+                    particles.dim,
+                    particles.dim,
+                    None,
+                ) {
+                    Ok(l) => lowered.push(l),
+                    Err(error) => errors.push(error),
+                }
             }
         }
+        if !errors.is_empty() {
+            return Impl::Rejected { silenced: None };
+        }
+        let jacobian = (args.no_jacobian.is_none()).then_some(lowered);
+        Impl::Accepted(generate::generate(
+            &particles, args, &functions, imp, jacobian,
+        ))
     }
-    if let Err(error) = errors.finish() {
-        // The kernel attributes are odyn's: left in, rustc would add "cannot find attribute".
-        let rejected = crate::errors::with_error(generate::strip_kernel_attributes(imp), error);
-        let stub = crate::generate::stub_model(&item.ident, &particles.state_ident());
-        return quote!(#rejected #stub);
-    }
-    let jacobian = (args.no_jacobian.is_none()).then_some(lowered);
-    generate::generate(&particles, args, &functions, imp, jacobian)
-}
-
-/// The struct half: the struct without odyn's attributes, and its state type when accepted.
-pub(crate) fn expand_struct(
-    item: &ItemStruct,
-    errors: &mut Errors,
-) -> (ItemStruct, Option<TokenStream>) {
-    let particles = parse_struct(item, errors);
-    (strip(item), particles.map(|p| state(&p)))
 }
