@@ -38,11 +38,11 @@ pub(crate) fn runtime_jacobian(
             #[doc = #doc]
             const NONZEROS: &'static [(usize, usize)] = &[];
             fn jacobian_matrix(&self, state: &#state) -> Self::Matrix {
-                ::odyn::#module::jacobian_matrix(self, state)
+                ::odyn::__private::#module::jacobian_matrix(self, state)
             }
             #[inline]
             fn jacobian(&self, t: f64, y: &#state, jacobian: &mut Self::Matrix) {
-                ::odyn::#module::jacobian(self, t, y, jacobian)
+                ::odyn::__private::#module::jacobian(self, t, y, jacobian)
             }
             #time
         }

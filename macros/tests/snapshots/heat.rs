@@ -95,11 +95,11 @@ impl ::odyn::Jacobian for Heat {
     /// Empty: a field model's pattern comes from its grid at run time.
     const NONZEROS: &'static [(usize, usize)] = &[];
     fn jacobian_matrix(&self, state: &HeatState) -> Self::Matrix {
-        ::odyn::grid::jacobian_matrix(self, state)
+        ::odyn::__private::grid::jacobian_matrix(self, state)
     }
     #[inline]
     fn jacobian(&self, t: f64, y: &HeatState, jacobian: &mut Self::Matrix) {
-        ::odyn::grid::jacobian(self, t, y, jacobian)
+        ::odyn::__private::grid::jacobian(self, t, y, jacobian)
     }
     /// A cell's rate does not read the time: ∂f/∂t = 0.
     const TIME_DEPENDENT: bool = false;
@@ -129,7 +129,7 @@ impl ::odyn::Model for Heat {
     }
     #[inline]
     fn derivative(&self, t: f64, y: &HeatState, dydt: &mut HeatState) {
-        ::odyn::grid::derivative(self, t, y, dydt)
+        ::odyn::__private::grid::derivative(self, t, y, dydt)
     }
     fn energy(&self, _: &HeatState) -> ::core::option::Option<f64> {
         ::core::option::Option::None
@@ -144,7 +144,7 @@ impl ::odyn::Model for Heat {
         ::core::option::Option::Some(self)
     }
     fn check(&self, state: &HeatState) -> ::odyn::Result<()> {
-        ::odyn::grid::check(self, state)?;
+        ::odyn::__private::grid::check(self, state)?;
         ::core::result::Result::Ok(())
     }
 }

@@ -4,7 +4,8 @@ use std::fmt;
 
 use faer::sparse::SparseColMatRef;
 
-use super::{Block, Boundary, NEIGHBOURS, neighbour};
+use super::stencil::neighbour;
+use super::{Block, Boundary, NEIGHBOURS};
 use crate::NewtonMatrix;
 use crate::linalg::sparse::{Factorizations, SparseSolver};
 

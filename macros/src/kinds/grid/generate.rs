@@ -49,7 +49,7 @@ pub(super) fn impls(
             }
             Argument::Coefficient(k) => {
                 let grid = fields.coefficients[k];
-                quote!(::odyn::grid::coefficient(&self.#grid, at))
+                quote!(::odyn::__private::grid::coefficient(&self.#grid, at))
             }
             Argument::X => quote!(at.x),
             Argument::Y => quote!(at.y),
@@ -82,7 +82,7 @@ pub(super) fn impls(
                             const TIME_DEPENDENT: bool = true;
                             #[inline]
                             fn time_derivative(&self, t: f64, y: &#state, dfdt: &mut #state) {
-                                ::odyn::grid::time_derivative(self, t, y, dfdt)
+                                ::odyn::__private::grid::time_derivative(self, t, y, dfdt)
                             }
                         },
                     )
@@ -130,7 +130,7 @@ pub(super) fn impls(
             }
             #[inline]
             fn derivative(&self, t: f64, y: &#state, dydt: &mut #state) {
-                ::odyn::grid::derivative(self, t, y, dydt)
+                ::odyn::__private::grid::derivative(self, t, y, dydt)
             }
             fn energy(&self, _: &#state) -> ::core::option::Option<f64> {
                 ::core::option::Option::None
@@ -139,8 +139,8 @@ pub(super) fn impls(
         second_order: false,
         jacobian: has_jacobian,
         check: Some(quote! {
-            ::odyn::grid::check(self, state)?;
-            #(::odyn::grid::check_coefficient::<Self>(#coefficient_names, &self.#coefficients, state)?;)*
+            ::odyn::__private::grid::check(self, state)?;
+            #(::odyn::__private::grid::check_coefficient::<Self>(#coefficient_names, &self.#coefficients, state)?;)*
             ::core::result::Result::Ok(())
         }),
         ..ModelImpl::for_impl(imp, &fields.item.ident, &state, args)

@@ -49,14 +49,14 @@ pub(super) fn generate(
                     quote!(self.#name(link, *xa, *xb))
                 };
                 quote! {
-                    ::odyn::particles::pair_forces(&self.#field, x, v, force, |link, xa, xb, va, vb| #call);
+                    ::odyn::__private::particles::pair_forces(&self.#field, x, v, force, |link, xa, xb, va, vb| #call);
                 }
             }
             Over::Particles => {
                 let index = k.index.then(|| quote!(i,));
                 let velocity = k.reads_velocity().then(|| quote!(, *v));
                 quote! {
-                    ::odyn::particles::particle_forces(x, v, force, |i, x, v| self.#name(#index *x #velocity));
+                    ::odyn::__private::particles::particle_forces(x, v, force, |i, x, v| self.#name(#index *x #velocity));
                 }
             }
         }
@@ -174,15 +174,15 @@ pub(super) fn generate(
             }
             #[inline]
             fn derivative(&self, t: f64, y: &#state, dydt: &mut #state) {
-                ::odyn::particles::derivative(self, t, y, dydt)
+                ::odyn::__private::particles::derivative(self, t, y, dydt)
             }
             fn energy(&self, state: &#state) -> ::core::option::Option<f64> {
-                ::odyn::particles::energy(self, state)
+                ::odyn::__private::particles::energy(self, state)
             }
         },
         second_order: true,
         jacobian: has_jacobian,
-        check: Some(quote!(::odyn::particles::check(self, state))),
+        check: Some(quote!(::odyn::__private::particles::check(self, state))),
         ..ModelImpl::for_impl(imp, &particles.item.ident, &state, args)
     }
     .build();
@@ -199,7 +199,7 @@ pub(super) fn generate(
             const READS_VELOCITY: bool = #reads_velocity;
             #[inline]
             fn acceleration(&self, t: f64, y: &#state, accel: &mut #state) {
-                ::odyn::particles::acceleration(self, t, y, accel)
+                ::odyn::__private::particles::acceleration(self, t, y, accel)
             }
         }
     }

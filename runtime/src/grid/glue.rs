@@ -1,0 +1,138 @@
+//! What the code `#[system]` generates for a field model calls: the `Model` and `Jacobian`
+//! methods of every field model, and the stencils of its coefficient grids. Reached through
+//! `odyn::__private::grid`; not a stable API.
+
+use super::stencil::{boundaries, each_cell_into, for_each_cell, geometry, place, stencil_at};
+use super::{Grid, GridJacobian, GridState, GridSystem, Place, Stencil};
+use crate::{Error, Model, Result};
+
+/// The stencil of a coefficient grid (a parameter `Grid` a `#[cell]` method reads through a
+/// `Stencil`) at the cell of `at`, through the grid's own boundary. Generated code calls it;
+/// `Model::check` has made sure the grid has the fields' size.
+#[inline(always)]
+pub fn coefficient(grid: &Grid, at: Place) -> Stencil {
+    stencil_at(&grid.values, grid.nx, grid.ny, grid.boundary, at.i, at.j)
+}
+
+/// [`Model::check`] of a coefficient grid: the size of the state's grids.
+pub fn check_coefficient<M: Model>(name: &str, grid: &Grid, state: &GridState) -> Result<()> {
+    if (grid.nx, grid.ny) == (state.nx, state.ny) {
+        return Ok(());
+    }
+    Err(Error::BadModel {
+        model: M::NAME,
+        what: format!("coefficient grid `{name}`"),
+        reason: format!(
+            "is {}×{} but the model's fields are {}×{}; a coefficient grid is read cell by \
+             cell beside them",
+            grid.nx, grid.ny, state.nx, state.ny
+        ),
+    })
+}
+
+/// [`Model::derivative`] of a field model: the `#[cell]` method at every cell.
+#[inline]
+pub fn derivative<M: GridSystem<F>, const F: usize>(
+    model: &M,
+    t: f64,
+    y: &GridState,
+    dydt: &mut GridState,
+) {
+    each_cell_into(model, t, y, dydt, |stencils, at| model.cell(stencils, at));
+}
+
+/// [`crate::Jacobian::time_derivative`] of a field model that reads the time: ∂f/∂t at every
+/// cell.
+#[inline]
+pub fn time_derivative<M: GridSystem<F>, const F: usize>(
+    model: &M,
+    t: f64,
+    y: &GridState,
+    dfdt: &mut GridState,
+) {
+    each_cell_into(model, t, y, dfdt, |stencils, at| {
+        model.cell_time_derivative(stencils, at)
+    });
+}
+
+/// [`crate::Jacobian::jacobian`] of a field model: every cell's blocks, placed.
+#[inline]
+pub fn jacobian<M: GridSystem<F>, const F: usize>(
+    model: &M,
+    t: f64,
+    y: &GridState,
+    jacobian: &mut GridJacobian,
+) {
+    jacobian.begin();
+    let geometry = geometry(model);
+    for_each_cell(y, boundaries(model), |k, i, j, stencils| {
+        let blocks = jacobian.cell_blocks();
+        model.cell_jacobian(stencils, place(geometry, t, i, j), blocks);
+        jacobian.place(k);
+    });
+}
+
+/// [`crate::Jacobian::jacobian_matrix`] of a field model.
+pub fn jacobian_matrix<M: GridSystem<F>, const F: usize>(
+    model: &M,
+    state: &GridState,
+) -> GridJacobian {
+    GridJacobian::new(state.nx, state.ny, &boundaries(model), M::BLOCKS)
+}
+
+/// [`Model::check`] of a field model: every grid the same size, and the state that size.
+pub fn check<M: GridSystem<F>, const F: usize>(model: &M, state: &GridState) -> Result<()> {
+    let bad = |what: String, reason: String| Error::BadModel {
+        model: M::NAME,
+        what,
+        reason,
+    };
+    let grids = model.grids();
+    let Some(first) = grids.first() else {
+        return Err(bad("the model".into(), "has no `#[field]` grids".into()));
+    };
+    for (name, grid) in M::FIELDS.iter().zip(&grids) {
+        if (grid.origin, grid.spacing) != (first.origin, first.spacing) {
+            return Err(bad(
+                format!("`{name}`"),
+                format!(
+                    "has origin {:?} and spacing {:?} but `{}` has {:?} and {:?}; every field \
+                     of a model shares one grid",
+                    grid.origin,
+                    grid.spacing,
+                    M::FIELDS[0],
+                    first.origin,
+                    first.spacing
+                ),
+            ));
+        }
+        if (grid.nx, grid.ny) != (first.nx, first.ny) {
+            return Err(bad(
+                format!("`{name}`"),
+                format!(
+                    "is {}×{} but `{}` is {}×{}; every field of a model shares one grid",
+                    grid.nx,
+                    grid.ny,
+                    M::FIELDS[0],
+                    first.nx,
+                    first.ny
+                ),
+            ));
+        }
+    }
+    if (state.nx, state.ny, state.values.len()) != (first.nx, first.ny, F * first.nx * first.ny) {
+        return Err(bad(
+            "the state".into(),
+            format!(
+                "is {}×{} with {} values; the model's fields are {}×{}, {} values in all",
+                state.nx,
+                state.ny,
+                state.values.len(),
+                first.nx,
+                first.ny,
+                F * first.nx * first.ny
+            ),
+        ));
+    }
+    Ok(())
+}
