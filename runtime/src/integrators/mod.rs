@@ -41,13 +41,17 @@ mod dense_step;
 mod explicit_rk;
 mod linearization;
 mod tableaux;
+mod verlet;
 
 pub use composition::{Composition, Weights};
 pub use dense_step::DenseStep;
 pub use dop853::Dop853Tableau;
 pub use explicit_rk::{ExplicitRk, Tableau};
 pub use kahan_li6::KahanLi6Weights;
+pub use leapfrog::LeapfrogForm;
 pub use tsit5::Tsit5Tableau;
+pub use velocity_verlet::VelocityVerletForm;
+pub use verlet::{Verlet, VerletForm};
 pub use yoshida4::Yoshida4Weights;
 pub use yoshida6::Yoshida6Weights;
 
