@@ -40,6 +40,7 @@ mod composition;
 mod dense_step;
 mod explicit_rk;
 mod linearization;
+mod rosenbrock;
 mod tableaux;
 mod verlet;
 
@@ -49,6 +50,10 @@ pub use dop853::Dop853Tableau;
 pub use explicit_rk::{ExplicitRk, Tableau};
 pub use kahan_li6::KahanLi6Weights;
 pub use leapfrog::LeapfrogForm;
+pub use linearization::Linearization;
+pub use rodas5p::Rodas5PTableau;
+pub use rosenbrock::{Rosenbrock, RosenbrockTableau};
+pub use rosenbrock23::Rosenbrock23Tableau;
 pub use tsit5::Tsit5Tableau;
 pub use velocity_verlet::VelocityVerletForm;
 pub use verlet::{Verlet, VerletForm};
