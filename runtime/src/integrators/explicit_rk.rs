@@ -58,10 +58,11 @@ pub trait Tableau: Clone + Debug {
 /// An explicit embedded Runge–Kutta pair with the tableau `T`, keeping `K` stage vectors (the
 /// s + 1 of a step and any that the dense output adds).
 ///
-/// A step costs s evaluations of f, or s − 1 after an accepted one whose kₛ₊₁ was made: the
-/// attempt starts from the kept k₁, so a rejected attempt is retried without evaluating it
-/// again. The continuous extension is built only when the driver asks for it (events, save
-/// times, a recorded dense output).
+/// An attempt evaluates k₂ … kₛ, and kₛ₊₁ = f(tₙ₊₁, yₙ₊₁) in the attempt if the estimate reads
+/// it, else once the step is accepted (by the next attempt as its k₁, or by the dense output):
+/// an accepted step costs s evaluations of f, a rejected one s or s − 1, and its retry starts
+/// from the kept k₁. The continuous extension is built only when the driver asks for it
+/// (events, save times, a recorded dense output).
 #[derive(Clone, Debug)]
 pub struct ExplicitRk<S, T, const K: usize> {
     /// k₁ … k_K (0-based); after an accepted step `k[s]` = f(tₙ₊₁, yₙ₊₁) once it is made.
