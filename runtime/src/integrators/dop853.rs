@@ -1,9 +1,9 @@
 //! DOP853: Dormand and Prince's order-8 Runge–Kutta method with Hairer's 8(5,3) error estimate.
 
+use super::explicit_rk::{ExplicitRk, Tableau, combine, weighted};
 use super::tableaux::dop853::{A, A_EXTRA, B, C, C_EXTRA, D, E3, E5, STAGES};
-use super::{Integrator, Step, copies, stage, weighted};
-use super::DenseStep;
-use crate::{Controller, Method, Model, NewtonOptions, Result, State, Stats};
+use super::{DenseStep, Step};
+use crate::{Controller, Method, Model, State, Tolerances};
 
 /// Stages kept: the 12 of the step, k₁₃ = f(tₙ₊₁, yₙ₊₁), and the 3 of the dense output.
 const KEPT: usize = 16;
@@ -35,113 +35,89 @@ pub(crate) fn stability_polynomial() -> Vec<f64> {
 /// Reference: E. Hairer, S. P. Nørsett, G. Wanner, *Solving Ordinary Differential Equations I*,
 /// 2nd ed., Springer 1993, §II.5, §II.6 and §II.10 (the code DOP853); J. R. Dormand,
 /// P. J. Prince, "A family of embedded Runge–Kutta formulae", J. Comp. Appl. Math. 6 (1980) 19.
-#[derive(Clone, Debug)]
-pub struct Dop853<S> {
-    /// k₁ … k₁₆ (0-based); `k[12]` = f(tₙ₊₁, yₙ₊₁) once the dense output needed it.
-    k: [S; KEPT],
-    probe: S,
-    /// Whether k₁ holds f at the start of the next attempt.
-    have_k1: bool,
-    /// Whether `k[12]` holds f at the end of the accepted step, the next step's k₁.
-    fsal: bool,
+pub type Dop853<S> = ExplicitRk<S, Dop853Tableau, KEPT>;
+
+/// Component i of the order-5 and order-3 estimates, without the factor h, over `scale`.
+#[inline(always)]
+fn estimates<S: State>(k: &[S], i: usize, scale: f64) -> (f64, f64) {
+    (weighted(&E5, k, i) / scale, weighted(&E3, k, i) / scale)
 }
 
-impl<M: Model> Integrator<M> for Dop853<M::State> {
+/// err = |h|·ERR/√(N·DENO), DENO = ERR + 0.01·ERR2 (1 if that is 0), from ERR = Σ e₅ᵢ² and
+/// ERR2 = Σ e₃ᵢ² over the N components.
+#[inline(always)]
+fn combined(h: f64, err5: f64, err3: f64, n: usize) -> f64 {
+    let denominator = err5 + 0.01 * err3;
+    let denominator = if denominator > 0.0 { denominator } else { 1.0 };
+    h.abs() * err5 / (n as f64 * denominator).sqrt()
+}
+
+/// The coefficients, error estimate and dense output of [`Dop853`]: `tableaux/dop853.rs`.
+#[derive(Clone, Copy, Debug)]
+pub struct Dop853Tableau;
+
+impl Tableau for Dop853Tableau {
     const METHOD: Method = Method::Dop853;
     const CONTROLLER: Controller = Controller::dop853();
     const DENSE_DEGREE: usize = 7;
+    const STAGES: usize = STAGES;
+    const ESTIMATE_READS_LAST: bool = false;
 
-    fn prepare(_: &M, _: f64, y0: &M::State, _: &NewtonOptions, _: &mut Stats) -> Result<Self> {
-        Ok(Dop853 {
-            k: copies(y0)?,
-            probe: y0.try_clone()?,
-            have_k1: false,
-            fsal: false,
-        })
+    #[inline(always)]
+    fn a(i: usize) -> &'static [f64] {
+        &A[i][..i]
     }
 
-    #[inline]
-    fn duplicate(&self) -> Option<Self> {
-        Some(self.clone())
+    #[inline(always)]
+    fn b() -> &'static [f64] {
+        &B
     }
 
-    fn attempt(&mut self, model: &M, s: Step<'_, M::State>, y_new: &mut M::State) -> Result<f64> {
-        let (t, h, y) = (s.t, s.h, s.y);
-        if self.fsal {
-            self.k.swap(0, STAGES);
-            self.fsal = false;
-        } else if !self.have_k1 {
-            model.derivative(t, y, &mut self.k[0]);
-            s.stats.evaluations += 1;
-        }
-        self.have_k1 = true;
-        for i in 1..STAGES {
-            let (done, rest) = self.k.split_at_mut(i);
-            stage(&mut self.probe, y, h, &A[i][..i], done);
-            model.derivative(t + C[i] * h, &self.probe, &mut rest[0]);
-        }
-        stage(y_new, y, h, &B, &self.k[..STAGES]);
-        s.stats.evaluations += STAGES as u64 - 1;
-        let Some(tolerances) = s.tolerances else {
-            return Ok(0.0);
-        };
-        let (y, z) = (y.as_slice(), y_new.as_slice());
+    #[inline(always)]
+    fn c(i: usize) -> f64 {
+        C[i]
+    }
+
+    /// err = ‖e₅‖²/√(‖e₅‖² + 0.01·‖e₃‖²), as DP86CO computes it.
+    #[inline(always)]
+    fn error<S: State>(h: f64, k: &[S], y: &S, y_new: &S, tolerances: &Tolerances) -> f64 {
         let (mut err5, mut err3) = (0.0, 0.0);
-        for i in 0..y.len() {
-            let sk = tolerances.scale(i, y[i], z[i]);
-            let e5 = weighted(&E5, &self.k, i) / sk;
-            let e3 = weighted(&E3, &self.k, i) / sk;
+        for (i, (y0, y1)) in y.as_slice().iter().zip(y_new.as_slice()).enumerate() {
+            let (e5, e3) = estimates(k, i, tolerances.scale(i, *y0, *y1));
             err5 += e5 * e5;
             err3 += e3 * e3;
         }
-        let denominator = err5 + 0.01 * err3;
-        let denominator = if denominator > 0.0 { denominator } else { 1.0 };
-        Ok(h.abs() * err5 / (y.len() as f64 * denominator).sqrt())
-    }
-
-    #[inline]
-    fn accept(&mut self) {
-        // k₁₃ is made by the next attempt, or by `dense` if the driver asks for it first.
-        self.have_k1 = false;
-    }
-
-    fn restart(&mut self, _: &M, _: f64, _: &M::State, _: &mut Stats) {
-        self.fsal = false;
-        self.have_k1 = false;
+        combined(h, err5, err3, y.as_slice().len())
     }
 
     /// Hairer's CONTD8 polynomial, r₀ + θ(r₁ + θ₁(r₂ + θ(r₃ + θ₁(r₄ + θ(r₅ + θ₁(r₆ + θr₇)))))) with
     /// θ₁ = 1 − θ, expanded into powers of θ after the three extra stages.
-    fn dense(
-        &mut self,
+    fn dense<M: Model>(
         model: &M,
         s: Step<'_, M::State>,
         y_new: &M::State,
+        k: &mut [M::State],
+        probe: &mut M::State,
         dense: &mut DenseStep<M::State>,
-    ) -> bool {
+    ) {
         let (t, h, y) = (s.t, s.h, s.y);
-        if !self.fsal {
-            model.derivative(t + h, y_new, &mut self.k[STAGES]);
-            s.stats.evaluations += 1;
-            self.fsal = true;
-        }
         for (r, (ar, cr)) in A_EXTRA.iter().zip(C_EXTRA).enumerate() {
             let i = STAGES + 1 + r;
-            let (done, rest) = self.k.split_at_mut(i);
-            stage(&mut self.probe, y, h, &ar[..i], done);
-            model.derivative(t + cr * h, &self.probe, &mut rest[0]);
+            let (done, rest) = k.split_at_mut(i);
+            combine(probe, y, h, &ar[..i], done);
+            model.derivative(t + cr * h, probe, &mut rest[0]);
         }
         s.stats.evaluations += 3;
         let coefficients = dense.fill(t, h, 7);
         for m in 0..y.as_slice().len() {
             let (y0, y1) = (y.as_slice()[m], y_new.as_slice()[m]);
             let r1 = y1 - y0;
-            let r2 = h * self.k[0].as_slice()[m] - r1;
-            let r3 = r1 - h * self.k[STAGES].as_slice()[m] - r2;
-            let d = |row: &[f64; 16]| {
+            let r2 = h * k[0].as_slice()[m] - r1;
+            let r3 = r1 - h * k[STAGES].as_slice()[m] - r2;
+            let d = |row: &[f64; KEPT]| {
                 h * row
                     .iter()
-                    .zip(&self.k)
+                    .zip(&*k)
                     .map(|(dj, kj)| dj * kj.as_slice()[m])
                     .sum::<f64>()
             };
@@ -163,6 +139,5 @@ impl<M: Model> Integrator<M> for Dop853<M::State> {
                 c.as_mut_slice()[m] = pi;
             }
         }
-        true
     }
 }

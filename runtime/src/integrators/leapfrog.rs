@@ -1,8 +1,9 @@
 //! Leapfrog in kick-drift-kick form.
 
-use super::{Integrator, Step, axpy, set_axpy};
+use super::verlet::{VerletForm, Verlet};
+use super::{Step, axpy, set_axpy};
 use crate::model::{split, split_mut};
-use crate::{Method, NewtonOptions, Result, SecondOrder, State, Stats};
+use crate::{Method, SecondOrder, State};
 
 /// Leapfrog, kick-drift-kick: vₙ₊½ = vₙ + ½h·aₙ, xₙ₊₁ = xₙ + h·vₙ₊½, vₙ₊₁ = vₙ₊½ + ½h·aₙ₊₁.
 ///
@@ -17,45 +18,26 @@ use crate::{Method, NewtonOptions, Result, SecondOrder, State, Stats};
 ///
 /// Reference: Hairer, Lubich & Wanner, *Geometric Numerical Integration*, 2nd ed., 2006,
 /// §I.3.1; V. Springel, "The cosmological simulation code GADGET-2", MNRAS 364 (2005) 1105, §4.
-#[derive(Clone, Debug)]
-pub struct Leapfrog<S> {
-    /// aₙ in the velocity half.
-    accel: S,
-    /// aₙ₊₁ of the last attempt, in the velocity half.
-    next: S,
-    /// The state at which aₙ₊₁ is evaluated, when the force reads velocities.
-    probe: S,
-}
+pub type Leapfrog<S> = Verlet<S, LeapfrogForm>;
 
-impl<M: SecondOrder> Integrator<M> for Leapfrog<M::State> {
+/// The kick-drift-kick step of [`Leapfrog`].
+#[derive(Clone, Copy, Debug)]
+pub struct LeapfrogForm;
+
+impl VerletForm for LeapfrogForm {
     const METHOD: Method = Method::Leapfrog;
 
-    fn prepare(
+    #[inline(always)]
+    fn step<M: SecondOrder>(
         model: &M,
-        t0: f64,
-        y0: &M::State,
-        _: &NewtonOptions,
-        stats: &mut Stats,
-    ) -> Result<Self> {
-        let mut accel = y0.try_clone()?;
-        model.acceleration(t0, y0, &mut accel);
-        stats.evaluations += 1;
-        Ok(Leapfrog {
-            next: accel.try_clone()?,
-            probe: y0.try_clone()?,
-            accel,
-        })
-    }
-
-    #[inline]
-    fn duplicate(&self) -> Option<Self> {
-        Some(self.clone())
-    }
-
-    #[inline]
-    fn attempt(&mut self, model: &M, s: Step<'_, M::State>, y_new: &mut M::State) -> Result<f64> {
+        s: Step<'_, M::State>,
+        accel: &M::State,
+        next: &mut M::State,
+        probe: &mut M::State,
+        y_new: &mut M::State,
+    ) {
         let (h, half) = (s.h, 0.5 * s.h);
-        let (_, a) = split(self.accel.as_slice());
+        let (_, a) = split(accel.as_slice());
         let (x0, v0) = split(s.y.as_slice());
         {
             let (x, v) = split_mut(y_new.as_mut_slice());
@@ -63,27 +45,16 @@ impl<M: SecondOrder> Integrator<M> for Leapfrog<M::State> {
             set_axpy(x, x0, h, v); // drift
         }
         if M::READS_VELOCITY {
-            self.probe.clone_from(y_new);
-            let (_, v_probe) = split_mut(self.probe.as_mut_slice());
+            probe.clone_from(y_new);
+            let (_, v_probe) = split_mut(probe.as_mut_slice());
             axpy(v_probe, half, a);
-            model.acceleration(s.t + h, &self.probe, &mut self.next);
+            model.acceleration(s.t + h, probe, next);
         } else {
-            model.acceleration(s.t + h, y_new, &mut self.next);
+            model.acceleration(s.t + h, y_new, next);
         }
         s.stats.evaluations += 1;
-        let (_, a_next) = split(self.next.as_slice());
+        let (_, a_next) = split(next.as_slice());
         let (_, v) = split_mut(y_new.as_mut_slice());
         axpy(v, half, a_next); // kick
-        Ok(0.0)
-    }
-
-    #[inline]
-    fn accept(&mut self) {
-        std::mem::swap(&mut self.accel, &mut self.next);
-    }
-
-    fn restart(&mut self, model: &M, t: f64, y: &M::State, stats: &mut Stats) {
-        model.acceleration(t, y, &mut self.accel);
-        stats.evaluations += 1;
     }
 }

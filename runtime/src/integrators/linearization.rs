@@ -9,7 +9,7 @@ use crate::{Error, Jacobian, NewtonMatrix, Result, Stats};
 /// retries that state with smaller steps (a rejected step keeps (t, y)); W is refactorized only
 /// when its c = γ·h changes, so a retried step costs one factorization and no Jacobian. Both are
 /// dropped when a step is accepted or an event changes the state.
-pub(super) struct Linearization<M: Jacobian> {
+pub struct Linearization<M: Jacobian> {
     pub(super) jacobian: M::Matrix,
     factors: <M::Matrix as NewtonMatrix>::Factors,
     /// ∂f/∂t at the start of the step (zero for autonomous models, never evaluated).

@@ -38,12 +38,25 @@
 
 mod composition;
 mod dense_step;
+mod explicit_rk;
 mod linearization;
+mod rosenbrock;
 mod tableaux;
+mod verlet;
 
 pub use composition::{Composition, Weights};
 pub use dense_step::DenseStep;
+pub use dop853::Dop853Tableau;
+pub use explicit_rk::{ExplicitRk, Tableau};
 pub use kahan_li6::KahanLi6Weights;
+pub use leapfrog::LeapfrogForm;
+pub use linearization::Linearization;
+pub use rodas5p::Rodas5PTableau;
+pub use rosenbrock::{Rosenbrock, RosenbrockTableau};
+pub use rosenbrock23::Rosenbrock23Tableau;
+pub use tsit5::Tsit5Tableau;
+pub use velocity_verlet::VelocityVerletForm;
+pub use verlet::{Verlet, VerletForm};
 pub use yoshida4::Yoshida4Weights;
 pub use yoshida6::Yoshida6Weights;
 
@@ -315,28 +328,4 @@ fn set_axpy(out: &mut [f64], y: &[f64], a: f64, x: &[f64]) {
     for ((oi, yi), xi) in out.iter_mut().zip(y).zip(x) {
         *oi = yi + a * xi;
     }
-}
-
-/// out ← y + h·Σⱼ aⱼ·kⱼ: one stage of an explicit Runge–Kutta method, component by component so
-/// each sum stays in a register (a pass per coefficient stored and reloaded the whole vector
-/// every time: 22 % of a DOP853 step on Lorenz, measured with perf).
-#[inline(always)]
-fn stage<S: crate::State>(out: &mut S, y: &S, h: f64, a: &[f64], k: &[S]) {
-    let n = out.as_slice().len();
-    let out = &mut out.as_mut_slice()[..n];
-    let y = &y.as_slice()[..n];
-    let k = &k[..a.len()];
-    for i in 0..n {
-        let mut sum = 0.0;
-        for (aj, kj) in a.iter().zip(k) {
-            sum += aj * kj.as_slice()[i];
-        }
-        out[i] = y[i] + h * sum;
-    }
-}
-
-/// `Σⱼ wⱼ·kⱼ[i]` for component i: the building block of error estimates.
-#[inline(always)]
-fn weighted<S: crate::State>(w: &[f64], k: &[S], i: usize) -> f64 {
-    w.iter().zip(k).map(|(wj, kj)| wj * kj.as_slice()[i]).sum()
 }

@@ -1,10 +1,10 @@
 //! Rodas5P: Steinebach's stiffly accurate Rosenbrock–Wanner method of order 5(4).
 
 use super::linearization::Linearization;
+use super::rosenbrock::{Rosenbrock, RosenbrockTableau};
 use super::tableaux::rodas5p::{A, C, COUPLING, D, GAMMA, H, STAGES};
-use super::{Integrator, Step, axpy, copies};
-use super::DenseStep;
-use crate::{Controller, Jacobian, Method, NewtonOptions, Result, State, Stats};
+use super::{DenseStep, Step, axpy};
+use crate::{Controller, Jacobian, Method, Result, State};
 
 /// Rodas5P, the Rosenbrock–Wanner method of order 5 of Steinebach (2023), in the W-transformed
 /// form of Hairer & Wanner (*Solving ODEs II*, §IV.7): with J = ∂f/∂y and T = ∂f/∂t at (tₙ, yₙ)
@@ -32,89 +32,71 @@ use crate::{Controller, Jacobian, Method, NewtonOptions, Result, State, Stats};
 ///
 /// Reference: G. Steinebach, "Construction of Rosenbrock–Wanner method Rodas5P and numerical
 /// benchmarks within the Julia Differential Equations package", BIT Numer. Math. 63 (2023) 27.
-pub struct Rodas5P<M: Jacobian> {
-    linear: Linearization<M>,
-    /// u₁ … u₈ of the last attempt.
-    u: [M::State; STAGES],
-    /// f(tₙ, yₙ), kept across retries of one state.
-    f0: M::State,
-    have_f0: bool,
-    /// Uᵢ.
-    stage: M::State,
-    /// The right-hand side of stage i, solved into uᵢ.
-    rhs: M::State,
-}
+pub type Rodas5P<M> = Rosenbrock<M, Rodas5PTableau, { STAGES + 2 }>;
 
-impl<M: Jacobian> Integrator<M> for Rodas5P<M> {
+/// The coefficients and stages of [`Rodas5P`]: `tableaux/rodas5p.rs`. Its work vectors are
+/// u₁ … u₈, then Uᵢ and the right-hand side of stage i.
+#[derive(Clone, Copy, Debug)]
+pub struct Rodas5PTableau;
+
+impl RosenbrockTableau for Rodas5PTableau {
     const METHOD: Method = Method::Rodas5P;
     const CONTROLLER: Controller = Controller::dopri5(4);
     const DENSE_DEGREE: usize = 4;
+    const GAMMA: f64 = GAMMA;
+    const FSAL: Option<usize> = None;
 
-    fn prepare(
+    #[inline(always)]
+    fn stages<M: Jacobian>(
         model: &M,
-        _: f64,
-        y0: &M::State,
-        newton: &NewtonOptions,
-        _: &mut Stats,
-    ) -> Result<Self> {
-        let mut linear = Linearization::new(model, y0)?;
-        crate::NewtonMatrix::configure(&mut linear.jacobian, newton, false);
-        Ok(Rodas5P {
-            linear,
-            u: copies(y0)?,
-            f0: y0.try_clone()?,
-            have_f0: false,
-            stage: y0.try_clone()?,
-            rhs: y0.try_clone()?,
-        })
-    }
-
-    fn attempt(&mut self, model: &M, s: Step<'_, M::State>, y_new: &mut M::State) -> Result<f64> {
+        s: Step<'_, M::State>,
+        linear: &mut Linearization<M>,
+        f0: &M::State,
+        work: &mut [M::State],
+        y_new: &mut M::State,
+    ) -> Result<f64> {
         let (t, h, y) = (s.t, s.h, s.y);
-        if !self.have_f0 {
-            model.derivative(t, y, &mut self.f0);
-            s.stats.evaluations += 1;
-            self.have_f0 = true;
-        }
-        self.linear.evaluate(model, t, y, s.stats);
         let gh = GAMMA * h;
-        self.linear.factorize(gh, t, h, s.stats)?;
+        let (u, rest) = work.split_at_mut(STAGES);
+        let [stage, rhs] = rest else {
+            unreachable!("Rodas5P has STAGES + 2 work vectors")
+        };
         for i in 0..STAGES {
-            let (done, rest) = self.u.split_at_mut(i);
-            let stage = self.stage.as_mut_slice();
-            stage.copy_from_slice(y.as_slice());
+            let (done, rest) = u.split_at_mut(i);
+            let input = stage.as_mut_slice();
+            input.copy_from_slice(y.as_slice());
             for (a, uj) in A[i].iter().zip(done.iter()) {
                 if *a != 0.0 {
-                    axpy(stage, *a, uj.as_slice());
+                    axpy(input, *a, uj.as_slice());
                 }
             }
             if i == 0 {
-                self.rhs.clone_from(&self.f0);
+                rhs.clone_from(f0);
             } else {
-                model.derivative(t + C[i] * h, &self.stage, &mut self.rhs);
+                model.derivative(t + C[i] * h, stage, rhs);
                 s.stats.evaluations += 1;
             }
-            let rhs = self.rhs.as_mut_slice();
+            let b = rhs.as_mut_slice();
             for (coupling, uj) in COUPLING[i].iter().zip(done.iter()) {
                 if *coupling != 0.0 {
-                    axpy(rhs, coupling / h, uj.as_slice());
+                    axpy(b, coupling / h, uj.as_slice());
                 }
             }
             if M::TIME_DEPENDENT && D[i] != 0.0 {
-                axpy(rhs, h * D[i], self.linear.dfdt.as_slice());
+                axpy(b, h * D[i], linear.dfdt.as_slice());
             }
-            for r in rhs.iter_mut() {
+            for r in b.iter_mut() {
                 *r *= gh;
             }
-            self.linear.solve(rhs, t, h, s.stats)?;
-            rest[0].clone_from(&self.rhs);
+            linear.solve(b, t, h, s.stats)?;
+            rest[0].clone_from(rhs);
         }
         // Stiffly accurate: yₙ₊₁ = U₈ + u₈, and u₈ is the error estimate.
-        let last = &self.u[STAGES - 1];
+        let last = &u[STAGES - 1];
         for ((o, stage), ui) in y_new
             .as_mut_slice()
             .iter_mut()
-            .zip(self.stage.as_slice())
+            .zip(stage.as_slice())
             .zip(last.as_slice())
         {
             *o = stage + ui;
@@ -124,31 +106,15 @@ impl<M: Jacobian> Integrator<M> for Rodas5P<M> {
         }))
     }
 
-    fn accept(&mut self) {
-        self.have_f0 = false;
-        self.linear.invalidate();
-    }
-
-    fn restart(&mut self, _: &M, _: f64, _: &M::State, _: &mut Stats) {
-        self.have_f0 = false;
-        self.linear.invalidate();
-    }
-
     /// (1 − θ)yₙ + θyₙ₊₁ + θ(1 − θ)(K₁ + θK₂ + θ²K₃) in powers of θ:
     /// yₙ + θ(Δ + K₁) + θ²(K₂ − K₁) + θ³(K₃ − K₂) − θ⁴K₃, Δ = yₙ₊₁ − yₙ.
-    fn dense(
-        &mut self,
-        _: &M,
-        s: Step<'_, M::State>,
-        y_new: &M::State,
-        dense: &mut DenseStep<M::State>,
-    ) -> bool {
+    fn dense<S: State>(s: Step<'_, S>, y_new: &S, work: &[S], dense: &mut DenseStep<S>) {
         let coefficients = dense.fill(s.t, s.h, 4);
         // K₁, K₂, K₃ into c₂, c₃, c₄ first.
         for (r, k) in coefficients[2..].iter_mut().enumerate() {
             let out = k.as_mut_slice();
             out.fill(0.0);
-            for (hj, uj) in H[r].iter().zip(&self.u) {
+            for (hj, uj) in H[r].iter().zip(&work[..STAGES]) {
                 if *hj != 0.0 {
                     axpy(out, *hj, uj.as_slice());
                 }
@@ -177,6 +143,5 @@ impl<M: Jacobian> Integrator<M> for Rodas5P<M> {
             *o3 = k3 - k2;
             *o4 = -k3;
         }
-        true
     }
 }

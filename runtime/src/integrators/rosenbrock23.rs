@@ -1,9 +1,9 @@
 //! Rosenbrock23: the modified Rosenbrock method of MATLAB's `ode23s`.
 
 use super::linearization::Linearization;
-use super::{Integrator, Step, axpy, copies, set_axpy};
-use super::DenseStep;
-use crate::{Controller, Jacobian, Method, NewtonOptions, Result, State, Stats};
+use super::rosenbrock::{Rosenbrock, RosenbrockTableau};
+use super::{DenseStep, Step, axpy, set_axpy};
+use crate::{Controller, Jacobian, Method, Result, State};
 
 /// d = 1/(2 + √2), the method's one coefficient (correctly rounded; `1 − 1/√2` in `f64` is one
 /// unit in the last place lower).
@@ -38,75 +38,51 @@ const INTERPOLANT: f64 = 2.414_213_562_373_095;
 /// Reference: L. F. Shampine, M. W. Reichelt, "The MATLAB ODE Suite", SIAM J. Sci. Comput. 18
 /// (1997) 1–22, §3.1; the formulas as in MATLAB's `ode23s.m` and `ntrp23s.m` (checked by
 /// `scripts/check_rosenbrock.py`).
-pub struct Rosenbrock23<M: Jacobian> {
-    linear: Linearization<M>,
-    /// F₀ = f(tₙ, yₙ), F₁, F₂ = f(tₙ₊₁, yₙ₊₁).
-    f: [M::State; 3],
-    k: [M::State; 3],
-    probe: M::State,
-    /// Whether F₀ holds f at the current state.
-    have_f0: bool,
-    /// Whether the last attempt was accepted, so its F₂ is the next F₀.
-    fsal: bool,
-}
+pub type Rosenbrock23<M> = Rosenbrock<M, Rosenbrock23Tableau, 6>;
 
-impl<M: Jacobian> Integrator<M> for Rosenbrock23<M> {
+/// The formulas of [`Rosenbrock23`]. Its work vectors are k₁, k₂, k₃, F₁, F₂ = f(tₙ₊₁, yₙ₊₁)
+/// (the next step's F₀) and a scratch vector (the stage input, then the error).
+#[derive(Clone, Copy, Debug)]
+pub struct Rosenbrock23Tableau;
+
+impl RosenbrockTableau for Rosenbrock23Tableau {
     const METHOD: Method = Method::Rosenbrock23;
     const CONTROLLER: Controller = Controller::rosenbrock23();
     const DENSE_DEGREE: usize = 2;
+    const GAMMA: f64 = D;
+    const FSAL: Option<usize> = Some(4);
 
-    fn prepare(
+    #[inline(always)]
+    fn stages<M: Jacobian>(
         model: &M,
-        _: f64,
-        y0: &M::State,
-        newton: &NewtonOptions,
-        _: &mut Stats,
-    ) -> Result<Self> {
-        let mut linear = Linearization::new(model, y0)?;
-        crate::NewtonMatrix::configure(&mut linear.jacobian, newton, false);
-        Ok(Rosenbrock23 {
-            linear,
-            f: copies(y0)?,
-            k: copies(y0)?,
-            probe: y0.try_clone()?,
-            have_f0: false,
-            fsal: false,
-        })
-    }
-
-    fn attempt(&mut self, model: &M, s: Step<'_, M::State>, y_new: &mut M::State) -> Result<f64> {
+        s: Step<'_, M::State>,
+        linear: &mut Linearization<M>,
+        f0: &M::State,
+        work: &mut [M::State],
+        y_new: &mut M::State,
+    ) -> Result<f64> {
         let (t, h, y) = (s.t, s.h, s.y);
-        if self.fsal {
-            self.f.swap(0, 2);
-            self.fsal = false;
-            self.have_f0 = true;
-        } else if !self.have_f0 {
-            model.derivative(t, y, &mut self.f[0]);
-            s.stats.evaluations += 1;
-            self.have_f0 = true;
-        }
-        self.linear.evaluate(model, t, y, s.stats);
-        self.linear.factorize(h * D, t, h, s.stats)?;
         let hd = h * D;
         let time = M::TIME_DEPENDENT;
-        let [f0, f1, f2] = &mut self.f;
-        let [k1, k2, k3] = &mut self.k;
+        let [k1, k2, k3, f1, f2, probe] = work else {
+            unreachable!("Rosenbrock23 has 6 work vectors")
+        };
         // k₁ = W⁻¹(F₀ + h·d·T)
         k1.clone_from(f0);
         if time {
-            axpy(k1.as_mut_slice(), hd, self.linear.dfdt.as_slice());
+            axpy(k1.as_mut_slice(), hd, linear.dfdt.as_slice());
         }
-        self.linear.solve(k1.as_mut_slice(), t, h, s.stats)?;
+        linear.solve(k1.as_mut_slice(), t, h, s.stats)?;
         // F₁ = f(t + h/2, y + h/2·k₁); k₂ = W⁻¹(F₁ − k₁) + k₁
         set_axpy(
-            self.probe.as_mut_slice(),
+            probe.as_mut_slice(),
             y.as_slice(),
             0.5 * h,
             k1.as_slice(),
         );
-        model.derivative(t + 0.5 * h, &self.probe, f1);
+        model.derivative(t + 0.5 * h, probe, f1);
         set_axpy(k2.as_mut_slice(), f1.as_slice(), -1.0, k1.as_slice());
-        self.linear.solve(k2.as_mut_slice(), t, h, s.stats)?;
+        linear.solve(k2.as_mut_slice(), t, h, s.stats)?;
         axpy(k2.as_mut_slice(), 1.0, k1.as_slice());
         set_axpy(y_new.as_mut_slice(), y.as_slice(), h, k2.as_slice());
         // F₂ = f(tₙ₊₁, yₙ₊₁), the next step's F₀.
@@ -122,11 +98,11 @@ impl<M: Jacobian> Integrator<M> for Rosenbrock23<M> {
             *o = f2i - E32 * (k2i - f1i) - 2.0 * (k1i - f0i);
         }
         if time {
-            axpy(k3.as_mut_slice(), hd, self.linear.dfdt.as_slice());
+            axpy(k3.as_mut_slice(), hd, linear.dfdt.as_slice());
         }
-        self.linear.solve(k3.as_mut_slice(), t, h, s.stats)?;
+        linear.solve(k3.as_mut_slice(), t, h, s.stats)?;
         // err = h/6·(k₁ − 2k₂ + k₃)
-        let e = self.probe.as_mut_slice();
+        let e = probe.as_mut_slice();
         for (o, ((a, b), c)) in e
             .iter_mut()
             .zip(k1.as_slice().iter().zip(k2.as_slice()).zip(k3.as_slice()))
@@ -136,26 +112,11 @@ impl<M: Jacobian> Integrator<M> for Rosenbrock23<M> {
         Ok(tolerances.norm(e, y.as_slice(), y_new.as_slice()))
     }
 
-    fn accept(&mut self) {
-        self.fsal = true;
-        self.linear.invalidate();
-    }
-
-    fn restart(&mut self, _: &M, _: f64, _: &M::State, _: &mut Stats) {
-        self.fsal = false;
-        self.have_f0 = false;
-        self.linear.invalidate();
-    }
-
     /// yₙ + θ·h(k₁ − 2d·k₂)/(1 − 2d) + θ²·h(k₂ − k₁)/(1 − 2d).
-    fn dense(
-        &mut self,
-        _: &M,
-        s: Step<'_, M::State>,
-        _: &M::State,
-        dense: &mut DenseStep<M::State>,
-    ) -> bool {
-        let [k1, k2, _] = &self.k;
+    fn dense<S: State>(s: Step<'_, S>, _: &S, work: &[S], dense: &mut DenseStep<S>) {
+        let [k1, k2, ..] = work else {
+            unreachable!("Rosenbrock23 has 6 work vectors")
+        };
         let [c0, c1, c2] = dense.fill(s.t, s.h, 2) else {
             unreachable!("fill returns degree + 1 coefficients")
         };
@@ -170,6 +131,5 @@ impl<M: Jacobian> Integrator<M> for Rosenbrock23<M> {
             *o1 = scale * (a - 2.0 * D * b);
             *o2 = scale * (b - a);
         }
-        true
     }
 }

@@ -1,9 +1,9 @@
 //! Tsit5: Tsitouras' 5(4) Runge–Kutta pair with its free order-4 interpolant.
 
+use super::explicit_rk::{ExplicitRk, Tableau, weighted};
 use super::tableaux::tsit5::{A, B, BTILDE, C, DENSE, STAGES};
-use super::{Integrator, Step, axpy, copies, stage, weighted};
-use super::DenseStep;
-use crate::{Controller, Method, Model, NewtonOptions, Result, State, Stats};
+use super::{DenseStep, Step, axpy};
+use crate::{Controller, Method, Model, State, Tolerances};
 
 /// R(z) from the tableau: the stability polynomial the stability explorer reads.
 pub(crate) fn stability_polynomial() -> Vec<f64> {
@@ -30,96 +30,65 @@ pub(crate) fn stability_polynomial() -> Vec<f64> {
 ///
 /// Reference: Ch. Tsitouras, "Runge–Kutta pairs of order 5(4) satisfying only the first column
 /// simplifying assumption", Computers & Mathematics with Applications 62 (2011) 770–775.
-#[derive(Clone, Debug)]
-pub struct Tsit5<S> {
-    /// k₁ … k₇ of the last attempt; after an accepted step k₇ = f(tₙ₊₁, yₙ₊₁).
-    k: [S; STAGES],
-    /// Stage inputs, then the error vector.
-    probe: S,
-    /// Whether k₁ already holds f at the start of the next attempt.
-    have_k1: bool,
-    /// Whether the last attempt was accepted, so its k₇ is the next step's k₁.
-    fsal: bool,
-}
+pub type Tsit5<S> = ExplicitRk<S, Tsit5Tableau, STAGES>;
 
-impl<M: Model> Integrator<M> for Tsit5<M::State> {
+/// The coefficients of [`Tsit5`]: `tableaux/tsit5.rs`.
+#[derive(Clone, Copy, Debug)]
+pub struct Tsit5Tableau;
+
+impl Tableau for Tsit5Tableau {
     const METHOD: Method = Method::Tsit5;
     const CONTROLLER: Controller = Controller::dopri5(4);
     const DENSE_DEGREE: usize = 4;
+    /// Row 7 of A is b: the seventh stage is f(tₙ₊₁, yₙ₊₁), the FSAL stage.
+    const STAGES: usize = STAGES - 1;
+    const ESTIMATE_READS_LAST: bool = true;
 
-    fn prepare(_: &M, _: f64, y0: &M::State, _: &NewtonOptions, _: &mut Stats) -> Result<Self> {
-        Ok(Tsit5 {
-            k: copies(y0)?,
-            probe: y0.try_clone()?,
-            have_k1: false,
-            fsal: false,
-        })
+    #[inline(always)]
+    fn a(i: usize) -> &'static [f64] {
+        &A[i][..i]
     }
 
-    #[inline]
-    fn duplicate(&self) -> Option<Self> {
-        Some(self.clone())
+    #[inline(always)]
+    fn b() -> &'static [f64] {
+        &B[..STAGES - 1]
     }
 
-    fn attempt(&mut self, model: &M, s: Step<'_, M::State>, y_new: &mut M::State) -> Result<f64> {
-        let (t, h, y) = (s.t, s.h, s.y);
-        if self.fsal {
-            self.k.swap(0, STAGES - 1);
-            self.fsal = false;
-        } else if !self.have_k1 {
-            model.derivative(t, y, &mut self.k[0]);
-            s.stats.evaluations += 1;
-        }
-        self.have_k1 = true;
-        for i in 1..STAGES - 1 {
-            let (done, rest) = self.k.split_at_mut(i);
-            stage(&mut self.probe, y, h, &A[i][..i], done);
-            model.derivative(t + C[i] * h, &self.probe, &mut rest[0]);
-        }
-        // Row 7 of A is b: the last stage input is yₙ₊₁ itself.
-        stage(y_new, y, h, &B[..STAGES - 1], &self.k[..STAGES - 1]);
-        model.derivative(t + h, y_new, &mut self.k[STAGES - 1]);
-        s.stats.evaluations += STAGES as u64 - 1;
-        let Some(tolerances) = s.tolerances else {
-            return Ok(0.0);
-        };
-        let k = &self.k;
-        Ok(tolerances.norm_of(
+    #[inline(always)]
+    fn c(i: usize) -> f64 {
+        C[i]
+    }
+
+    /// yₙ₊₁ − ŷₙ₊₁ = h·Σᵢ (bᵢ − b̂ᵢ)kᵢ over all seven stages.
+    #[inline(always)]
+    fn error<S: State>(h: f64, k: &[S], y: &S, y_new: &S, tolerances: &Tolerances) -> f64 {
+        let k = &k[..STAGES];
+        tolerances.norm_of(
             |i| h * weighted(&BTILDE, k, i),
             y.as_slice(),
             y_new.as_slice(),
-        ))
-    }
-
-    #[inline]
-    fn accept(&mut self) {
-        self.fsal = true;
-    }
-
-    fn restart(&mut self, _: &M, _: f64, _: &M::State, _: &mut Stats) {
-        self.fsal = false;
-        self.have_k1 = false;
+        )
     }
 
     /// y(tₙ + θh) = yₙ + Σₘ θᵐ⁺¹·(h·Σᵢ rᵢₘkᵢ): the interpolant's b_i(θ) regrouped by powers of θ.
-    fn dense(
-        &mut self,
+    fn dense<M: Model>(
         _: &M,
         s: Step<'_, M::State>,
         _: &M::State,
+        k: &mut [M::State],
+        _: &mut M::State,
         dense: &mut DenseStep<M::State>,
-    ) -> bool {
+    ) {
         let c = dense.fill(s.t, s.h, 4);
         c[0].clone_from(s.y);
         for (m, cm) in c[1..].iter_mut().enumerate() {
             let out = cm.as_mut_slice();
             out.fill(0.0);
-            for (r, ki) in DENSE.iter().zip(&self.k) {
+            for (r, ki) in DENSE.iter().zip(&*k) {
                 if r[m] != 0.0 {
                     axpy(out, s.h * r[m], ki.as_slice());
                 }
             }
         }
-        true
     }
 }

@@ -1,8 +1,9 @@
 //! Velocity Verlet.
 
-use super::{Integrator, Step, axpy};
+use super::verlet::{VerletForm, Verlet};
+use super::{Step, axpy};
 use crate::model::{split, split_mut};
-use crate::{Method, NewtonOptions, Result, SecondOrder, State, Stats};
+use crate::{Method, SecondOrder, State};
 
 /// Velocity Verlet: xₙ₊₁ = xₙ + h·vₙ + ½h²·aₙ, vₙ₊₁ = vₙ + ½h·(aₙ + aₙ₊₁).
 ///
@@ -18,45 +19,27 @@ use crate::{Method, NewtonOptions, Result, SecondOrder, State, Stats};
 ///
 /// Reference: W. C. Swope, H. C. Andersen, P. H. Berens, K. R. Wilson, J. Chem. Phys. 76 (1982)
 /// 637; Hairer, Lubich & Wanner, *Geometric Numerical Integration*, 2nd ed., 2006, §I.1.4.
-#[derive(Clone, Debug)]
-pub struct VelocityVerlet<S> {
-    /// aₙ in the velocity half.
-    accel: S,
-    /// aₙ₊₁ of the last attempt, in the velocity half.
-    next: S,
-    /// The state at which aₙ₊₁ is evaluated, when the force reads velocities.
-    probe: S,
-}
+pub type VelocityVerlet<S> = Verlet<S, VelocityVerletForm>;
 
-impl<M: SecondOrder> Integrator<M> for VelocityVerlet<M::State> {
+/// The step of [`VelocityVerlet`]: positions from aₙ, then velocities from the mean of aₙ and
+/// aₙ₊₁.
+#[derive(Clone, Copy, Debug)]
+pub struct VelocityVerletForm;
+
+impl VerletForm for VelocityVerletForm {
     const METHOD: Method = Method::VelocityVerlet;
 
-    fn prepare(
+    #[inline(always)]
+    fn step<M: SecondOrder>(
         model: &M,
-        t0: f64,
-        y0: &M::State,
-        _: &NewtonOptions,
-        stats: &mut Stats,
-    ) -> Result<Self> {
-        let mut accel = y0.try_clone()?;
-        model.acceleration(t0, y0, &mut accel);
-        stats.evaluations += 1;
-        Ok(VelocityVerlet {
-            next: accel.try_clone()?,
-            probe: y0.try_clone()?,
-            accel,
-        })
-    }
-
-    #[inline]
-    fn duplicate(&self) -> Option<Self> {
-        Some(self.clone())
-    }
-
-    #[inline]
-    fn attempt(&mut self, model: &M, s: Step<'_, M::State>, y_new: &mut M::State) -> Result<f64> {
+        s: Step<'_, M::State>,
+        accel: &M::State,
+        next: &mut M::State,
+        probe: &mut M::State,
+        y_new: &mut M::State,
+    ) {
         let h = s.h;
-        let (_, a) = split(self.accel.as_slice());
+        let (_, a) = split(accel.as_slice());
         let (x0, v0) = split(s.y.as_slice());
         {
             let (x, v) = split_mut(y_new.as_mut_slice());
@@ -66,30 +49,19 @@ impl<M: SecondOrder> Integrator<M> for VelocityVerlet<M::State> {
             v.copy_from_slice(v0);
         }
         let probe = if M::READS_VELOCITY {
-            self.probe.clone_from(y_new);
-            let (_, v_probe) = split_mut(self.probe.as_mut_slice());
+            probe.clone_from(y_new);
+            let (_, v_probe) = split_mut(probe.as_mut_slice());
             axpy(v_probe, h, a);
-            &self.probe
+            &*probe
         } else {
             &*y_new
         };
-        model.acceleration(s.t + h, probe, &mut self.next);
+        model.acceleration(s.t + h, probe, next);
         s.stats.evaluations += 1;
-        let (_, a_next) = split(self.next.as_slice());
+        let (_, a_next) = split(next.as_slice());
         let (_, v) = split_mut(y_new.as_mut_slice());
         for ((vi, ai), bi) in v.iter_mut().zip(a).zip(a_next) {
             *vi += 0.5 * h * (ai + bi);
         }
-        Ok(0.0)
-    }
-
-    #[inline]
-    fn accept(&mut self) {
-        std::mem::swap(&mut self.accel, &mut self.next);
-    }
-
-    fn restart(&mut self, model: &M, t: f64, y: &M::State, stats: &mut Stats) {
-        model.acceleration(t, y, &mut self.accel);
-        stats.evaluations += 1;
     }
 }
