@@ -24,46 +24,17 @@ use std::path::Path;
 use std::time::Instant;
 
 use clap::Parser;
-use odyn::grid::{Boundary, Grid, GridState, Stencil};
+use odyn::grid::{Boundary, Grid, GridState};
 use odyn::output::{number, write_table};
 use odyn::plot::{Field, FieldStyle, field_animation, field_image};
 use odyn::rand::{Rng, SeedableRng};
 use odyn::stability::gershgorin_limit;
-use odyn::{Method, Model, NewtonOptions, system};
+use odyn::{Method, Model, NewtonOptions};
 
-/// Gray–Scott: concentrations u and v on a periodic grid.
-#[system(integrator = ExplicitEuler, dt = 1.0)]
-pub struct GrayScott {
-    /// Concentration of U.
-    #[field]
-    pub u: Grid,
-    /// Concentration of V.
-    #[field]
-    pub v: Grid,
-    /// D_u.
-    pub du: f64,
-    /// D_v.
-    pub dv: f64,
-    /// Feed rate F.
-    pub feed: f64,
-    /// Kill rate k.
-    pub kill: f64,
-    /// Cell size.
-    pub dx: f64,
-}
-
-#[system]
-impl GrayScott {
-    #[cell]
-    fn reaction(&self, u: Stencil, v: Stencil) -> [f64; 2] {
-        let uvv = u.c * v.c * v.c;
-        let h2 = self.dx * self.dx;
-        [
-            self.du * u.laplacian() / h2 - uvv + self.feed * (1.0 - u.c),
-            self.dv * v.laplacian() / h2 + uvv - (self.feed + self.kill) * v.c,
-        ]
-    }
-}
+// The model, written once for the examples, tests and benches (`scenes/src/fields.rs`): two
+// #[field] grids u, v and one #[cell] method: u′ = D_u∇²u − uv² + F(1 − u), v′ = D_v∇²v + uv² − (F
+// + k)v.
+use scenes::GrayScott;
 
 /// Named (F, k) points: "mitosis" and "coral" from Karl Sims' reaction–diffusion tutorial
 /// (karlsims.com/rd.html, whose grid and Laplacian give nearly Pearson's D_u/dx² = 0.21), and

@@ -19,37 +19,9 @@ use odyn::output::write_table;
 use odyn::plot::{Chart, Frame, Series, View, animation, views};
 use odyn::prelude::*;
 
-/// The Lorenz system.
-#[system]
-#[derive(Clone, Copy)]
-pub struct Lorenz {
-    /// x
-    #[state]
-    pub x: f64,
-    /// y
-    #[state]
-    pub y: f64,
-    /// z
-    #[state]
-    pub z: f64,
-    /// σ
-    pub sigma: f64,
-    /// ρ
-    pub rho: f64,
-    /// β
-    pub beta: f64,
-}
-
-#[system]
-impl Lorenz {
-    fn derivative(&self) -> LorenzState {
-        LorenzState {
-            x: self.sigma * (self.y - self.x),
-            y: self.x * (self.rho - self.z) - self.y,
-            z: self.x * self.y - self.beta * self.z,
-        }
-    }
-}
+// The model, written once for the examples, tests and benches (`scenes/src/chaos.rs`): x′ = σ(y −
+// x), y′ = x(ρ − z) − y, z′ = xy − βz.
+use scenes::{Lorenz, LorenzState};
 
 /// The end time and the recording interval.
 const T_END: f64 = 40.0;

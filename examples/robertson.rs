@@ -13,33 +13,9 @@ use odyn::output::{number, write_csv, write_table};
 use odyn::plot::{Chart, Series};
 use odyn::prelude::*;
 
-/// A → B (0.04), B + C → A + C (10⁴), 2B → B + C (3·10⁷).
-#[system(integrator = ImplicitEuler)]
-pub struct Robertson {
-    /// Concentration of A.
-    #[state]
-    pub a: f64,
-    /// Concentration of B (of order 10⁻⁵).
-    #[state]
-    pub b: f64,
-    /// Concentration of C.
-    #[state]
-    pub c: f64,
-}
-
-#[system]
-impl Robertson {
-    fn derivative(&self) -> RobertsonState {
-        let slow = 0.04 * self.a;
-        let exchange = 1e4 * self.b * self.c;
-        let fast = 3e7 * self.b * self.b;
-        RobertsonState {
-            a: -slow + exchange,
-            b: slow - exchange - fast,
-            c: fast,
-        }
-    }
-}
+// The model, written once for the examples, tests and benches (`scenes/src/stiff.rs`): A → B
+// (0.04), B + C → A + C (10⁴), 2B → B + C (3·10⁷), implicit Euler by default.
+use scenes::{Robertson, RobertsonState};
 
 /// y(40): SciPy Radau (rtol 1e-12, atol 1e-14), BDF agrees to 2.4e-9; Hairer & Wanner, *Solving
 /// ODEs II*, §IV.10 give 0.7158270687, 9.185534764e-6, 0.2841637457.

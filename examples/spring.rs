@@ -16,33 +16,10 @@ use odyn::plot::{Chart, Series};
 use odyn::prelude::*;
 use odyn::reference::DampedOscillator;
 
-/// Damped spring, m·ẍ = −k·x − b·ẋ, damping as a force.
-#[system(integrator = SymplecticEuler, dt = 0.016)]
-pub struct Spring {
-    /// Displacement from rest.
-    #[position]
-    pub x: f64,
-    /// Velocity.
-    #[velocity]
-    pub v: f64,
-    /// Stiffness.
-    pub k: f64,
-    /// Damping coefficient.
-    pub b: f64,
-    /// Mass.
-    pub m: f64,
-}
-
-#[system]
-impl Spring {
-    fn acceleration(&self) -> f64 {
-        (-self.k * self.x - self.b * self.v) / self.m
-    }
-
-    fn energy(&self) -> f64 {
-        0.5 * self.m * self.v * self.v + 0.5 * self.k * self.x * self.x
-    }
-}
+// The model, written once for the examples, tests and benches (`scenes/src/oscillators.rs`): the
+// damped spring m·ẍ = −k·x − b·ẋ with k, b, m as fields, symplectic Euler at dt = 0.016 by default,
+// and its energy.
+use scenes::{Spring, SpringState};
 
 #[derive(Parser)]
 #[command(about = "The spring lab: energy behaviour of six integrators on a spring")]

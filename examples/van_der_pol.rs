@@ -14,28 +14,9 @@ use odyn::output::{number, write_csv, write_table};
 use odyn::plot::{Chart, Series};
 use odyn::prelude::*;
 
-/// Van der Pol's oscillator.
-#[system(integrator = ImplicitEuler)]
-pub struct VanDerPol {
-    /// Position-like variable.
-    #[state]
-    pub y1: f64,
-    /// Its rate.
-    #[state]
-    pub y2: f64,
-    /// Stiffness parameter μ.
-    pub mu: f64,
-}
-
-#[system]
-impl VanDerPol {
-    fn derivative(&self) -> VanDerPolState {
-        VanDerPolState {
-            y1: self.y2,
-            y2: self.mu * (1.0 - self.y1 * self.y1) * self.y2 - self.y1,
-        }
-    }
-}
+// The model, written once for the examples, tests and benches (`scenes/src/stiff.rs`): y₁′ = y₂,
+// y₂′ = μ(1 − y₁²)y₂ − y₁, implicit Euler by default.
+use scenes::VanDerPol;
 
 /// SciPy Radau, rtol 1e-12, atol 1e-14 (`scripts/reference.py`); BDF agrees to 3.5e-9 at t = 100,
 /// 8.2e-9 at t = 808 (just after the first relaxation jump, at t ≈ 807.1) and 5.0e-8 at t = 3000.

@@ -13,9 +13,8 @@
 //! - [`fields`] — Gray–Scott reaction–diffusion, [`GrayScott`].
 //! - [`analysis`] — the fitted [`slope`] of a convergence study.
 //!
-//! Not published: the scenes serve odyn's own checks. The examples that teach one model
-//! (`spring`, `lorenz`, `van_der_pol`, `robertson`, `pendulum`, `gray_scott`) keep their model in the example,
-//! where a reader looks for it.
+//! Not published: the scenes serve odyn's own checks and examples; each example that uses one
+//! imports it and says where it lives.
 
 pub mod analysis;
 pub mod chaos;
