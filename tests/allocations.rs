@@ -16,6 +16,7 @@ static GLOBAL: common::Counting = common::Counting;
 /// One test, so that no other test's allocations are counted.
 #[test]
 fn allocations_do_not_grow_with_the_steps() {
+    common::count_this_thread();
     a_longer_run_allocates_no_more();
     the_particle_lu_path_allocates_per_run_not_per_step();
 }

@@ -56,6 +56,7 @@ fn allocations_with<M: Model, I: Integrator<M>>(model: &M, dt: f64, newton: &New
 
 #[test]
 fn stepping_a_field_model_allocates_nothing() {
+    common::count_this_thread();
     let n = 12;
     let bump = |i: usize, j: usize| ((i * 7 + j * 3) % 5) as f64 * 0.1;
     let heat = Heat {

@@ -61,6 +61,7 @@ fn allocations<I: Integrator<Chain>>(model: &Chain, newton: &NewtonOptions) -> u
 
 #[test]
 fn stepping_a_particle_model_allocates_nothing() {
+    common::count_this_thread();
     let n = 12;
     let x: Vec<_> = (0..n).map(|i| Vector2::new(0.1 * i as f64, 0.0)).collect();
     let model = Chain {

@@ -8,7 +8,7 @@ use crate::errors::Errors;
 
 /// What the macro knows of a method: enough to reject a model it cannot integrate.
 #[derive(Clone, Copy)]
-pub(crate) struct MethodInfo {
+pub(crate) struct MethodNeeds {
     /// The `odyn::Method` variant.
     pub(crate) name: &'static str,
     pub(crate) needs_second_order: bool,
@@ -19,9 +19,9 @@ pub(crate) struct MethodInfo {
     pub(crate) needs_jacobian: bool,
 }
 
-const fn method(row: odyn_methods::MethodRow) -> MethodInfo {
+const fn method(row: odyn_methods::MethodRow) -> MethodNeeds {
     use odyn_methods::Needs;
-    MethodInfo {
+    MethodNeeds {
         name: row.variant,
         needs_second_order: matches!(row.needs, Needs::Split | Needs::VelocityFree),
         needs_velocity_free_forces: matches!(row.needs, Needs::VelocityFree),
@@ -32,7 +32,7 @@ const fn method(row: odyn_methods::MethodRow) -> MethodInfo {
 
 /// The methods an attribute may name: the rows of the one table of methods (`odyn-methods`),
 /// which `odyn::Method` is generated from too.
-const METHODS: [MethodInfo; odyn_methods::METHODS.len()] = {
+const METHODS: [MethodNeeds; odyn_methods::METHODS.len()] = {
     let rows = odyn_methods::METHODS;
     let mut out = [method(rows[0]); odyn_methods::METHODS.len()];
     let mut i = 1;
@@ -47,7 +47,7 @@ const METHODS: [MethodInfo; odyn_methods::METHODS.len()] = {
 #[derive(Default)]
 pub(crate) struct Args {
     /// `integrator = Name`, with the token for error spans.
-    pub(crate) integrator: Option<(Ident, &'static MethodInfo)>,
+    pub(crate) integrator: Option<(Ident, &'static MethodNeeds)>,
     /// `dt = <expr>`: a literal expression is checked here, any other constant expression by a
     /// `const` assertion in the generated code.
     pub(crate) dt: Option<Expr>,

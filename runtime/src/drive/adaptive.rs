@@ -27,7 +27,7 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
                 ),
             ));
         }
-        let mut control_state = Control::new(control.controller.unwrap_or(controller));
+        let mut control_state = ControllerState::new(control.controller.unwrap_or(controller));
         let mut h = match control.dt_initial {
             Some(h) => h,
             None => {

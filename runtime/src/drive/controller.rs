@@ -183,16 +183,16 @@ impl Controller {
 
 /// A controller in use: the settings plus what it remembers between steps.
 #[derive(Clone, Debug)]
-pub(crate) struct Control {
+pub(crate) struct ControllerState {
     settings: Controller,
     /// err of the last accepted step, at least 1e-4 (Hairer's FACOLD).
     previous: f64,
     rejected_last: bool,
 }
 
-impl Control {
+impl ControllerState {
     pub(crate) fn new(settings: Controller) -> Self {
-        Control {
+        ControllerState {
             settings,
             previous: 1e-4,
             rejected_last: false,
@@ -276,11 +276,11 @@ pub(crate) fn initial_step<M: Model>(
 
 #[cfg(test)]
 mod tests {
-    use super::{Control, Controller};
+    use super::{Controller, ControllerState};
 
     #[test]
     fn integral_control_follows_the_error_exponent() {
-        let mut c = Control::new(Controller::scipy(4));
+        let mut c = ControllerState::new(Controller::scipy(4));
         // err = 2^-5 → factor 0.9·2 = 1.8 with α = 1/5.
         let next = c.accepted(1.0, 2f64.powi(-5));
         assert!((next - 1.8).abs() < 1e-12, "{next}");
@@ -296,7 +296,7 @@ mod tests {
     #[test]
     fn the_pi_term_damps_growth_when_the_error_rises() {
         let pi = Controller::dopri5(4);
-        let (mut a, mut b) = (Control::new(pi), Control::new(pi));
+        let (mut a, mut b) = (ControllerState::new(pi), ControllerState::new(pi));
         a.accepted(1.0, 0.9);
         b.accepted(1.0, 1e-3);
         // Same current error; the one whose error rose to it (from 1e-3) grows less than the

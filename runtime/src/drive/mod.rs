@@ -31,7 +31,7 @@ pub use events::{Action, Direction, Event, EventRecord, StateChange};
 pub use stats::Stats;
 pub use tolerances::{Atol, Tolerances};
 
-use controller::{Control, initial_step};
+use controller::{ControllerState, initial_step};
 use events::{Outcome, Watch};
 use record::sample;
 

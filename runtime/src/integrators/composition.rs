@@ -4,9 +4,10 @@
 use std::fmt::Debug;
 use std::marker::PhantomData;
 
-use super::{Integrator, Step, axpy};
+use super::verlet::{Verlet, VerletForm};
+use super::{Step, axpy};
 use crate::model::{split, split_mut};
-use crate::{Method, NewtonOptions, Result, SecondOrder, State, Stats};
+use crate::{Method, SecondOrder, State};
 
 /// The weights γ₁ … γₛ of a symmetric composition (γᵢ = γₛ₊₁₋ᵢ, Σγᵢ = 1).
 pub trait Weights: Clone + Debug {
@@ -30,75 +31,48 @@ pub trait Weights: Clone + Debug {
 ///
 /// The forces must not read velocities: the velocity-dependent leapfrog odyn uses (a predictor
 /// for vₙ₊₁) is not symmetric, and composing it would not raise its order.
-#[derive(Clone, Debug)]
-pub struct Composition<S, W> {
-    /// aₙ, in the velocity half.
-    accel: S,
-    /// The force at the current substep of an attempt; a(yₙ₊₁) once it ends.
-    stage: S,
-    /// The force being evaluated.
-    next: S,
-    weights: PhantomData<W>,
-}
+pub type Composition<S, W> = Verlet<S, Composed<W>>;
 
-impl<M: SecondOrder, W: Weights> Integrator<M> for Composition<M::State, W> {
+/// The [`VerletForm`] of the composition with weights `W`: the Verlet family's kept force and
+/// start-up evaluation, with s leapfrog substeps a step.
+#[derive(Clone, Debug)]
+pub struct Composed<W>(PhantomData<W>);
+
+impl<W: Weights> VerletForm for Composed<W> {
     const METHOD: Method = W::METHOD;
 
-    fn prepare(
+    /// `probe` carries the force at the current substep (the forces never read velocities, so
+    /// no predictor needs it); a(yₙ₊₁) ends in `next`.
+    #[inline]
+    fn step<M: SecondOrder>(
         model: &M,
-        t0: f64,
-        y0: &M::State,
-        _: &NewtonOptions,
-        stats: &mut Stats,
-    ) -> Result<Self> {
-        let mut accel = y0.try_clone()?;
-        model.acceleration(t0, y0, &mut accel);
-        stats.evaluations += 1;
-        Ok(Composition {
-            stage: accel.try_clone()?,
-            next: accel.try_clone()?,
-            accel,
-            weights: PhantomData,
-        })
-    }
-
-    #[inline]
-    fn duplicate(&self) -> Option<Self> {
-        Some(self.clone())
-    }
-
-    #[inline]
-    fn attempt(&mut self, model: &M, s: Step<'_, M::State>, y_new: &mut M::State) -> Result<f64> {
+        s: Step<'_, M::State>,
+        accel: &M::State,
+        next: &mut M::State,
+        probe: &mut M::State,
+        y_new: &mut M::State,
+    ) {
+        let stage = probe;
         y_new.clone_from(s.y);
-        self.stage.clone_from(&self.accel);
+        stage.clone_from(accel);
         let mut elapsed = 0.0;
         for &gamma in W::WEIGHTS {
             let (h, half) = (gamma * s.h, 0.5 * gamma * s.h);
             {
-                let (_, a) = split(self.stage.as_slice());
+                let (_, a) = split(stage.as_slice());
                 let (x, v) = split_mut(y_new.as_mut_slice());
                 axpy(v, half, a); // kick
                 axpy(x, h, v); // drift
             }
             elapsed += gamma;
-            model.acceleration(s.t + elapsed * s.h, y_new, &mut self.next);
+            model.acceleration(s.t + elapsed * s.h, y_new, next);
             s.stats.evaluations += 1;
-            let (_, a) = split(self.next.as_slice());
+            let (_, a) = split(next.as_slice());
             let (_, v) = split_mut(y_new.as_mut_slice());
             axpy(v, half, a); // kick
-            std::mem::swap(&mut self.stage, &mut self.next);
+            std::mem::swap(stage, next);
         }
-        Ok(0.0)
-    }
-
-    #[inline]
-    fn accept(&mut self) {
-        std::mem::swap(&mut self.accel, &mut self.stage);
-    }
-
-    fn restart(&mut self, model: &M, t: f64, y: &M::State, stats: &mut Stats) {
-        model.acceleration(t, y, &mut self.accel);
-        stats.evaluations += 1;
+        std::mem::swap(stage, next);
     }
 }
 

@@ -44,7 +44,7 @@ mod rosenbrock;
 mod tableaux;
 mod verlet;
 
-pub use composition::{Composition, Weights};
+pub use composition::{Composed, Composition, Weights};
 pub use dense_step::DenseStep;
 pub use dop853::Dop853Tableau;
 pub use explicit_rk::{ExplicitRk, Tableau};
