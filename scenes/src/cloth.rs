@@ -169,3 +169,28 @@ impl Sheet {
         (cloth, structural)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An n × n sheet has 2n(n − 1) structural springs, 2(n − 1)² shear and 2n(n − 2) bend
+    /// springs, all at rest, 0.5 kg in all for the falling cloth, and its two top corners pinned.
+    #[test]
+    fn a_sheet_has_the_springs_and_mass_of_its_topology() {
+        for n in [2, 3, 7] {
+            let (cloth, structural) = Sheet::falling(n).build();
+            assert_eq!(structural.len(), 2 * n * (n - 1));
+            let springs = 2 * n * (n - 1) + 2 * (n - 1) * (n - 1) + 2 * n * (n - 2);
+            assert_eq!(cloth.springs.len(), springs);
+            for s in &cloth.springs {
+                let length = (cloth.x[s.b] - cloth.x[s.a]).norm();
+                assert!((length - s.rest).abs() < 1e-15, "{length} vs {}", s.rest);
+            }
+            let mass: f64 = cloth.mass.iter().sum();
+            assert!((mass - 0.5).abs() < 1e-14, "{mass}");
+            assert_eq!(cloth.pinned, vec![0, n - 1]);
+            assert!(cloth.potential().abs() < 1e-12, "flat, at rest, at y = 0");
+        }
+    }
+}
