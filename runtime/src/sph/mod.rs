@@ -30,10 +30,17 @@
 //! the particles with rayon, each particle writing only its own entries, so results do not
 //! depend on the thread count.
 
+mod block;
+mod kernel;
+mod neighbours;
+
 use nalgebra::Vector2;
 use rayon::prelude::*;
 
 use crate::{Error, Result};
+
+use kernel::Wendland;
+use neighbours::Grid;
 
 /// Settings: plain data with a [`Default`] (water at 1/100 of a metre's resolution).
 #[derive(Clone, Debug, PartialEq)]
@@ -89,118 +96,6 @@ pub struct Sph {
 }
 
 impl Sph {
-    /// A liquid filling the rectangle [0, width] × [0, height] of the box (particles on a
-    /// square lattice at `spacing`, starting half a spacing from the walls), at rest.
-    ///
-    /// Errors: [`Error::InvalidInput`] for a non-positive or non-finite setting, a block that
-    /// does not fit in the box, a box smaller than 4 spacings a side, or more particles than
-    /// the machine can allocate.
-    pub fn block(options: SphOptions, width: f64, height: f64) -> Result<Sph> {
-        let positive = [
-            ("spacing", options.spacing),
-            ("smoothing", options.smoothing),
-            ("rest_density", options.rest_density),
-            ("sound_speed", options.sound_speed),
-            ("domain width", options.domain.0),
-            ("domain height", options.domain.1),
-            ("block width", width),
-            ("block height", height),
-        ];
-        for (name, value) in positive {
-            if !(value.is_finite() && value > 0.0) {
-                return Err(Error::invalid(
-                    name,
-                    format!("must be finite and positive, got {value:?}"),
-                ));
-            }
-        }
-        if !(options.viscosity.is_finite()
-            && options.viscosity >= 0.0
-            && options.gravity.iter().all(|g| g.is_finite()))
-        {
-            return Err(Error::invalid(
-                "viscosity/gravity",
-                "must be finite (viscosity ≥ 0)",
-            ));
-        }
-        let (w, h) = options.domain;
-        let dx = options.spacing;
-        if w < 4.0 * dx || h < 4.0 * dx {
-            return Err(Error::invalid(
-                "domain",
-                format!(
-                    "{w:?} × {h:?} is too small for a spacing of {dx:?}: at least 4 spacings a \
-                     side"
-                ),
-            ));
-        }
-        if width > w || height > h {
-            return Err(Error::invalid(
-                "block",
-                format!("{width:?} × {height:?} does not fit in the {w:?} × {h:?} box"),
-            ));
-        }
-        let (nx, ny) = (
-            (width / dx).round() as usize,
-            (height / dx).round() as usize,
-        );
-        // Three layers of wall particles below and beside the box (open at the top).
-        let layers = 3;
-        let (cols, rows) = ((w / dx).round() as i64, (h / dx).round() as i64);
-        // Counted before anything is allocated: a spacing far below the box's size would
-        // otherwise run the machine out of memory (an abort) or overflow the count.
-        let fluid = nx.checked_mul(ny);
-        let wall = (cols as u64)
-            .checked_add(2 * layers as u64)
-            .zip((rows as u64).checked_mul(2))
-            .and_then(|(a, b)| a.checked_add(b))
-            .and_then(|n| n.checked_mul(layers as u64))
-            .and_then(|n| usize::try_from(n).ok());
-        let too_many = || {
-            Error::invalid(
-                "spacing",
-                format!(
-                    "{dx:?} in a {w:?} × {h:?} box is more particles than this machine can \
-                     allocate"
-                ),
-            )
-        };
-        let (Some(fluid), Some(wall)) = (fluid, wall) else {
-            return Err(too_many());
-        };
-        let (mut x, mut walls) = (Vec::new(), Vec::new());
-        x.try_reserve_exact(fluid).map_err(|_| too_many())?;
-        walls.try_reserve_exact(wall).map_err(|_| too_many())?;
-        x.extend((0..ny).flat_map(|j| {
-            (0..nx).map(move |i| Vector2::new((i as f64 + 0.5) * dx, (j as f64 + 0.5) * dx))
-        }));
-        for layer in 0..layers {
-            let out = -(layer as f64 + 0.5) * dx;
-            for i in -layers..cols + layers {
-                walls.push(Vector2::new((i as f64 + 0.5) * dx, out));
-            }
-            for j in 0..rows {
-                let y = (j as f64 + 0.5) * dx;
-                walls.push(Vector2::new(out, y));
-                walls.push(Vector2::new(w - out, y));
-            }
-        }
-        let n = x.len() + walls.len();
-        let cell = 2.0 * options.smoothing * dx;
-        Ok(Sph {
-            mass: options.rest_density * dx * dx,
-            v: vec![Vector2::zeros(); x.len()],
-            density: vec![options.rest_density; n],
-            pressure: vec![0.0; n],
-            acceleration: vec![Vector2::zeros(); x.len()],
-            grid: Grid::new(cell),
-            all: x.iter().chain(&walls).copied().collect(),
-            options,
-            x,
-            walls,
-        })
-    }
-
     /// The settings.
     pub fn options(&self) -> &SphOptions {
         &self.options
@@ -370,151 +265,5 @@ impl Sph {
     /// The fluid densities (the walls' are not included).
     pub fn densities(&self) -> &[f64] {
         &self.density[..self.x.len()]
-    }
-}
-
-/// Wendland's C² kernel in 2-D with support 2h.
-#[derive(Clone, Copy)]
-struct Wendland {
-    h: f64,
-    norm: f64,
-}
-
-impl Wendland {
-    fn new(h: f64) -> Wendland {
-        Wendland {
-            h,
-            norm: 7.0 / (4.0 * std::f64::consts::PI * h * h),
-        }
-    }
-
-    fn value(&self, r: f64) -> f64 {
-        let q = r / self.h;
-        if q >= 2.0 {
-            return 0.0;
-        }
-        self.norm * (1.0 - 0.5 * q).powi(4) * (1.0 + 2.0 * q)
-    }
-
-    /// dW/dr = norm·(−5q(1 − q/2)³)/h.
-    fn derivative(&self, r: f64) -> f64 {
-        let q = r / self.h;
-        if q >= 2.0 {
-            return 0.0;
-        }
-        -self.norm * 5.0 * q * (1.0 - 0.5 * q).powi(3) / self.h
-    }
-}
-
-/// A uniform grid of square cells, rebuilt by a counting sort every step.
-struct Grid {
-    cell: f64,
-    origin: Vector2<f64>,
-    dims: (usize, usize),
-    /// Start of each cell's particles in `order`, one more than there are cells.
-    starts: Vec<usize>,
-    order: Vec<usize>,
-    /// Scratch of `build`: each point's cell, and the next free slot of each cell.
-    cell_of: Vec<usize>,
-    next: Vec<usize>,
-}
-
-impl Grid {
-    fn new(cell: f64) -> Grid {
-        Grid {
-            cell,
-            origin: Vector2::zeros(),
-            dims: (0, 0),
-            starts: Vec::new(),
-            order: Vec::new(),
-            cell_of: Vec::new(),
-            next: Vec::new(),
-        }
-    }
-
-    fn coordinates(&self, x: Vector2<f64>) -> (usize, usize) {
-        let c = (x - self.origin) / self.cell;
-        (
-            (c.x.max(0.0) as usize).min(self.dims.0 - 1),
-            (c.y.max(0.0) as usize).min(self.dims.1 - 1),
-        )
-    }
-
-    /// Sorts `points` (finite) into the cells of their bounding box.
-    ///
-    /// Errors: [`Error::InvalidInput`] when that box has more cells than this machine can
-    /// allocate (a domain far larger than the spacing).
-    fn build(&mut self, points: &[Vector2<f64>]) -> Result<()> {
-        let (lo, hi) = points.iter().fold(
-            (
-                Vector2::repeat(f64::INFINITY),
-                Vector2::repeat(f64::NEG_INFINITY),
-            ),
-            |(lo, hi), p| (lo.inf(p), hi.sup(p)),
-        );
-        let cell = self.cell;
-        // Cells along an extent; `as` would saturate, so a count past usize::MAX (or ∞) is
-        // refused here.
-        let side = |extent: f64| {
-            let whole = (extent / cell).floor();
-            (whole < usize::MAX as f64).then(|| whole as usize + 1)
-        };
-        let too_many = || {
-            Error::invalid(
-                "domain",
-                format!(
-                    "the particles span {:e} × {:e}: more cells of the neighbour grid ({cell:e} \
-                     wide) than this machine can allocate; use a larger spacing or a smaller box",
-                    hi.x - lo.x,
-                    hi.y - lo.y
-                ),
-            )
-        };
-        let (Some(nx), Some(ny)) = (side(hi.x - lo.x), side(hi.y - lo.y)) else {
-            return Err(too_many());
-        };
-        // One start more than there are cells, so their count must be below usize::MAX.
-        let cells = nx
-            .checked_mul(ny)
-            .filter(|&cells| cells < usize::MAX)
-            .ok_or_else(too_many)?;
-        self.origin = lo;
-        self.dims = (nx, ny);
-        self.starts.clear();
-        self.starts
-            .try_reserve_exact(cells + 1)
-            .map_err(|_| too_many())?;
-        self.starts.resize(cells + 1, 0);
-        self.cell_of.clear();
-        for p in points {
-            let (i, j) = self.coordinates(*p);
-            self.cell_of.push(i + j * self.dims.0);
-        }
-        for &c in &self.cell_of {
-            self.starts[c + 1] += 1;
-        }
-        for c in 0..cells {
-            self.starts[c + 1] += self.starts[c];
-        }
-        self.next.clone_from(&self.starts);
-        self.order.resize(points.len(), 0);
-        for (p, &c) in self.cell_of.iter().enumerate() {
-            self.order[self.next[c]] = p;
-            self.next[c] += 1;
-        }
-        Ok(())
-    }
-
-    /// Calls `visit` with every point in the 3×3 cells around `x`.
-    fn neighbours(&self, x: Vector2<f64>, mut visit: impl FnMut(usize)) {
-        let (ci, cj) = self.coordinates(x);
-        for j in cj.saturating_sub(1)..=(cj + 1).min(self.dims.1 - 1) {
-            for i in ci.saturating_sub(1)..=(ci + 1).min(self.dims.0 - 1) {
-                let c = i + j * self.dims.0;
-                for &p in &self.order[self.starts[c]..self.starts[c + 1]] {
-                    visit(p);
-                }
-            }
-        }
     }
 }

@@ -1,7 +1,14 @@
 //! Stable Fluids (Stam 1999) on a staggered grid.
 
-use super::spd::SpdSolver;
+mod advection;
+mod diffusion;
+mod projection;
+
+use crate::fluids::spd::SpdSolver;
 use crate::{Error, Result};
+
+use diffusion::diffusion_number;
+use projection::poisson_entries;
 
 /// The grid and the fluid's constants: plain data with a [`Default`].
 #[derive(Clone, Debug, PartialEq)]
@@ -200,45 +207,7 @@ impl StableFluids {
                 }
             }
         }
-        let [u0, v0, s0] = &mut self.before;
-        u0.clone_from(&self.u);
-        v0.clone_from(&self.v);
-        s0.clone_from(&self.density);
-        let (u0, v0, s0) = (&*u0, &*v0, &*s0);
-        let velocity = |x: f64, y: f64| {
-            (
-                sample(u0, nx + 1, ny, 0.0, 0.5, x, y, h),
-                sample(v0, nx, ny + 1, 0.5, 0.0, x, y, h),
-            )
-        };
-        let (width, height) = (nx as f64 * h, ny as f64 * h);
-        let back = |x: f64, y: f64| {
-            let (a, b) = velocity(x, y);
-            let (mx, my) = (x - 0.5 * dt * a, y - 0.5 * dt * b);
-            let (a, b) = velocity(mx, my);
-            (
-                (x - dt * a).clamp(0.0, width),
-                (y - dt * b).clamp(0.0, height),
-            )
-        };
-        for j in 0..ny {
-            for i in 1..nx {
-                let (x, y) = back(i as f64 * h, (j as f64 + 0.5) * h);
-                self.u[i + j * (nx + 1)] = sample(u0, nx + 1, ny, 0.0, 0.5, x, y, h);
-            }
-        }
-        for j in 1..ny {
-            for i in 0..nx {
-                let (x, y) = back((i as f64 + 0.5) * h, j as f64 * h);
-                self.v[i + j * nx] = sample(v0, nx, ny + 1, 0.5, 0.0, x, y, h);
-            }
-        }
-        for j in 0..ny {
-            for i in 0..nx {
-                let (x, y) = back((i as f64 + 0.5) * h, (j as f64 + 0.5) * h);
-                self.density[i + j * nx] = sample(s0, nx, ny, 0.5, 0.5, x, y, h);
-            }
-        }
+        self.advect(dt);
         if viscosity > 0.0 {
             self.diffuse(dt)?;
         }
@@ -297,7 +266,7 @@ impl StableFluids {
     }
 
     /// [`Error::NotFinite`] if the fields hold a NaN or an infinity after step `self.steps`.
-    fn check_finite(&self, dt: f64) -> Result<()> {
+    pub(super) fn check_finite(&self, dt: f64) -> Result<()> {
         for (field, name) in [&self.u, &self.v, &self.density]
             .into_iter()
             .zip(["u", "v", "density"])
@@ -318,108 +287,6 @@ impl StableFluids {
         Ok(())
     }
 
-    /// Solves (I − νΔt·L)·u = u for each velocity component, no-slip at the walls.
-    fn diffuse(&mut self, dt: f64) -> Result<()> {
-        let FluidOptions {
-            nx,
-            ny,
-            cell: h,
-            viscosity,
-            ..
-        } = self.options;
-        if self
-            .diffusion
-            .as_ref()
-            .is_none_or(|(last, _, _)| *last != dt)
-        {
-            let k = diffusion_number(viscosity, h, dt);
-            let u = SpdSolver::new((nx - 1) * ny, &diffusion_entries(nx - 1, ny, k))?;
-            let v = SpdSolver::new(nx * (ny - 1), &diffusion_entries_transposed(nx, ny - 1, k))?;
-            self.diffusion = Some((dt, u, v));
-        }
-        let Some((_, solve_u, solve_v)) = &mut self.diffusion else {
-            return Ok(());
-        };
-        let rhs = &mut self.rhs;
-        rhs.clear();
-        rhs.extend(
-            (0..ny)
-                .flat_map(|j| (1..nx).map(move |i| (i, j)))
-                .map(|(i, j)| self.u[i + j * (nx + 1)]),
-        );
-        solve_u.solve_in_place(rhs);
-        for (k, value) in rhs.iter().enumerate() {
-            let (i, j) = (1 + k % (nx - 1), k / (nx - 1));
-            self.u[i + j * (nx + 1)] = *value;
-        }
-        rhs.clear();
-        rhs.extend(
-            (1..ny)
-                .flat_map(|j| (0..nx).map(move |i| (i, j)))
-                .map(|(i, j)| self.v[i + j * nx]),
-        );
-        solve_v.solve_in_place(rhs);
-        for (k, value) in rhs.iter().enumerate() {
-            let (i, j) = (k % nx, 1 + k / nx);
-            self.v[i + j * nx] = *value;
-        }
-        Ok(())
-    }
-
-    /// Makes the velocity divergence-free, as a step's last stage does: solves L·p = ∇·u/Δt and
-    /// subtracts Δt·∇p, then once more on what is left (one step of iterative refinement: the
-    /// Cholesky solve alone leaves a divergence of ~1e-10 on a 33² grid, the refined one
-    /// ~1e-14). The result does not depend on Δt (only Δt·p enters), so none is taken.
-    ///
-    /// Errors: [`Error::InvalidInput`] for what [`StableFluids::check`] finds;
-    /// [`Error::NotFinite`] (with the steps taken so far and dt = 0) when velocities near
-    /// f64::MAX overflow in the solve.
-    pub fn project(&mut self) -> Result<()> {
-        self.check()?;
-        self.remove_divergence();
-        self.check_finite(0.0)
-    }
-
-    /// The projection on checked fields.
-    fn remove_divergence(&mut self) {
-        self.correct();
-        self.correct();
-    }
-
-    /// One pressure correction, solved for r = Δt·p/h: the Poisson equation L·p = ∇·u/Δt becomes
-    /// A·r = −(net outflow of each cell) with A = −h²·L, the cells' graph Laplacian, and the
-    /// update Δt·(p_i − p_{i−1})/h of a face is r_i − r_{i−1}.
-    fn correct(&mut self) {
-        let (nx, ny) = (self.options.nx, self.options.ny);
-        // Unknowns: every cell but cell 0 (r₀ = 0), solved in place.
-        outflow_into(&self.u, &self.v, nx, ny, &mut self.potential);
-        self.potential.iter_mut().for_each(|d| *d = -*d);
-        self.poisson.solve_in_place(&mut self.potential[1..]);
-        self.potential[0] = 0.0;
-        let r = &self.potential;
-        for j in 0..ny {
-            for i in 1..nx {
-                self.u[i + j * (nx + 1)] -= r[i + j * nx] - r[i - 1 + j * nx];
-            }
-        }
-        for j in 1..ny {
-            for i in 0..nx {
-                self.v[i + j * nx] -= r[i + j * nx] - r[i + (j - 1) * nx];
-            }
-        }
-    }
-
-    /// The discrete divergence (u_{i+1,j} − u_{i,j} + v_{i,j+1} − v_{i,j})/h of every cell.
-    pub fn divergence(&self) -> Vec<f64> {
-        let FluidOptions {
-            nx, ny, cell: h, ..
-        } = self.options;
-        let mut divergence = vec![0.0; nx * ny];
-        outflow_into(&self.u, &self.v, nx, ny, &mut divergence);
-        divergence.iter_mut().for_each(|d| *d /= h);
-        divergence
-    }
-
     /// The largest face speed |u| or |v|.
     pub fn max_speed(&self) -> f64 {
         self.u
@@ -433,126 +300,4 @@ impl StableFluids {
         let h = self.options.cell;
         0.5 * h * h * self.u.iter().chain(&self.v).map(|x| x * x).sum::<f64>()
     }
-}
-
-/// k = ν·Δt/h², formed so that ν·Δt alone cannot overflow (ν/h² is finite, `new` checks), and
-/// 0 without viscosity whatever h (h² may underflow to 0).
-fn diffusion_number(viscosity: f64, h: f64, dt: f64) -> f64 {
-    if viscosity == 0.0 {
-        return 0.0;
-    }
-    viscosity / (h * h) * dt
-}
-
-/// Writes the net outflow u_{i+1,j} − u_{i,j} + v_{i,j+1} − v_{i,j} of every cell i + j·nx
-/// into `out`: h times its divergence.
-fn outflow_into(u: &[f64], v: &[f64], nx: usize, ny: usize, out: &mut [f64]) {
-    for j in 0..ny {
-        for i in 0..nx {
-            out[i + j * nx] =
-                u[i + 1 + j * (nx + 1)] - u[i + j * (nx + 1)] + v[i + (j + 1) * nx] - v[i + j * nx];
-        }
-    }
-}
-
-/// Bilinear interpolation of a grid whose point (i, j) sits at ((i + ox)h, (j + oy)h), clamped
-/// to the grid.
-#[allow(
-    clippy::too_many_arguments,
-    reason = "a grid, its offset and a point: all needed"
-)]
-fn sample(f: &[f64], w: usize, hgt: usize, ox: f64, oy: f64, x: f64, y: f64, h: f64) -> f64 {
-    let fx = (x / h - ox).clamp(0.0, (w - 1) as f64);
-    let fy = (y / h - oy).clamp(0.0, (hgt - 1) as f64);
-    let (i, j) = ((fx as usize).min(w - 2), (fy as usize).min(hgt - 2));
-    let (a, b) = (fx - i as f64, fy - j as f64);
-    let at = |i: usize, j: usize| f[i + j * w];
-    (1.0 - a) * (1.0 - b) * at(i, j)
-        + a * (1.0 - b) * at(i + 1, j)
-        + (1.0 - a) * b * at(i, j + 1)
-        + a * b * at(i + 1, j + 1)
-}
-
-/// −h²·L (the 5-point Neumann Laplacian times −h²: the cells' graph Laplacian) on the cells,
-/// cell 0 removed: unknown k is cell k + 1.
-///
-/// Errors: [`Error::InvalidInput`] when the entries cannot be allocated: the first and largest
-/// allocation of a fluid, so a grid too big for the machine is an error rather than an abort.
-fn poisson_entries(nx: usize, ny: usize) -> Result<Vec<(usize, usize, f64)>> {
-    let mut entries = Vec::new();
-    entries.try_reserve_exact(5 * nx * ny).map_err(|_| {
-        Error::invalid(
-            "grid",
-            format!("{nx}×{ny} cells is more than this machine can allocate"),
-        )
-    })?;
-    for j in 0..ny {
-        for i in 0..nx {
-            let c = i + j * nx;
-            if c == 0 {
-                continue;
-            }
-            let mut neighbours = Vec::with_capacity(4);
-            if i > 0 {
-                neighbours.push(c - 1);
-            }
-            if i + 1 < nx {
-                neighbours.push(c + 1);
-            }
-            if j > 0 {
-                neighbours.push(c - nx);
-            }
-            if j + 1 < ny {
-                neighbours.push(c + nx);
-            }
-            entries.push((c - 1, c - 1, neighbours.len() as f64));
-            for nb in neighbours.into_iter().filter(|&nb| nb != 0) {
-                entries.push((c - 1, nb - 1, -1.0));
-            }
-        }
-    }
-    Ok(entries)
-}
-
-/// I − k·L for an mx×my block of unknowns with zero (wall) values just past the x ends and
-/// no-slip ghosts (−u) just past the y ends: the u faces.
-fn diffusion_entries(mx: usize, my: usize, k: f64) -> Vec<(usize, usize, f64)> {
-    let mut entries = Vec::with_capacity(5 * mx * my);
-    for j in 0..my {
-        for i in 0..mx {
-            let c = i + j * mx;
-            let mut diagonal = 1.0 + 4.0 * k;
-            if i > 0 {
-                entries.push((c, c - 1, -k));
-            }
-            if i + 1 < mx {
-                entries.push((c, c + 1, -k));
-            }
-            for inside in [j > 0, j + 1 < my] {
-                if !inside {
-                    diagonal += k; // the ghost −u adds k to the diagonal
-                }
-            }
-            if j > 0 {
-                entries.push((c, c - mx, -k));
-            }
-            if j + 1 < my {
-                entries.push((c, c + mx, -k));
-            }
-            entries.push((c, c, diagonal));
-        }
-    }
-    entries
-}
-
-/// The same for the v faces: walls just past the y ends, ghosts just past the x ends.
-fn diffusion_entries_transposed(mx: usize, my: usize, k: f64) -> Vec<(usize, usize, f64)> {
-    let index = |i: usize, j: usize| i + j * mx;
-    diffusion_entries(my, mx, k)
-        .into_iter()
-        .map(|(r, c, v)| {
-            let swap = |n: usize| index(n / my, n % my);
-            (swap(r), swap(c), v)
-        })
-        .collect()
 }
