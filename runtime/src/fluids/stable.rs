@@ -1,6 +1,6 @@
 //! Stable Fluids (Stam 1999) on a staggered grid.
 
-use super::spd::SpdSolver;
+use crate::linalg::spd::SpdSolver;
 use crate::{Error, Result};
 
 /// The grid and the fluid's constants: plain data with a [`Default`].
