@@ -45,8 +45,8 @@ pub use drive::{
 pub use error::{Error, NewtonFailure, Result};
 pub use integrators::Integrator;
 pub use linalg::{
-    DenseMatrix, FaerDense, Krylov, KrylovCounts, LinearSolver, NewtonMatrix, NewtonOptions,
-    Preconditioner,
+    DenseMatrix, FactorizeError, FaerDense, Krylov, KrylovCounts, LinearSolver, NewtonMatrix,
+    NewtonOptions, Preconditioner, SolveError,
 };
 pub use method::{Method, MethodInfo};
 pub use model::{Jacobian, Model, SecondOrder, State, Unavailable};

@@ -246,12 +246,10 @@ pub(crate) struct KrylovSolver {
     pub(crate) in_newton: bool,
 }
 
-/// How a Krylov solve ended.
-pub(crate) enum Outcome {
-    Converged,
-    /// No convergence or a breakdown: the caller solves directly.
-    Failed,
-}
+/// A Krylov solve that did not converge within `max_iters`, broke down, or ended on a
+/// non-finite iterate: the caller solves directly.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct NoConvergence;
 
 impl KrylovSolver {
     pub(crate) fn new(options: Krylov, n: usize) -> Self {
@@ -271,7 +269,9 @@ impl KrylovSolver {
 
     /// Solves a·x = b, b given in `x`, preconditioned by `precond`: conjugate gradient when
     /// `symmetric` (falling back to BiCGSTAB if CG meets an indefinite matrix), BiCGSTAB
-    /// otherwise. On [`Outcome::Failed`] `x` holds b again.
+    /// otherwise.
+    ///
+    /// Errors: [`NoConvergence`], with `x` holding b again.
     pub(crate) fn solve<P: Precond<f64> + Copy>(
         &mut self,
         a: SparseColMatRef<'_, usize, f64>,
@@ -279,7 +279,7 @@ impl KrylovSolver {
         precond: P,
         x: &mut [f64],
         counts: &mut KrylovCounts,
-    ) -> Outcome {
+    ) -> Result<(), NoConvergence> {
         let n = x.len();
         self.reserve(a, precond);
         self.rhs.copy_from_slice(x);
@@ -354,14 +354,14 @@ impl KrylovSolver {
                     self.refresh = iters > refresh_above;
                 }
                 self.guess.copy_from_slice(x);
-                Outcome::Converged
+                Ok(())
             }
             _ => {
                 counts.fallbacks += 1;
                 x.copy_from_slice(&self.rhs);
                 self.guess.fill(0.0);
                 self.refresh = true;
-                Outcome::Failed
+                Err(NoConvergence)
             }
         }
     }

@@ -2,7 +2,7 @@
 //! Krylov iterations and their preconditioners, Newton's options, and the sparse SPD solver of
 //! the grid fluid.
 
-mod dense;
+pub(crate) mod dense;
 pub(crate) mod krylov;
 mod multigrid;
 mod newton;
@@ -10,6 +10,6 @@ mod precond;
 pub(crate) mod sparse;
 pub(crate) mod spd;
 
-pub use dense::{DenseMatrix, FaerDense, NewtonMatrix};
+pub use dense::{DenseMatrix, FactorizeError, FaerDense, NewtonMatrix, SolveError};
 pub use krylov::{Krylov, KrylovCounts, LinearSolver, Preconditioner};
 pub use newton::NewtonOptions;

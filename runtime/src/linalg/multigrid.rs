@@ -30,7 +30,7 @@ use faer::perm::PermRef;
 use faer::sparse::SymbolicSparseColMat;
 use faer::{Conj, Mat, MatMut, Par};
 
-use super::precond::{Column, invert};
+use super::precond::{Column, PrecondError, invert};
 
 /// The coarsest level is solved by a dense LU when it has at most this many unknowns (its
 /// factorization then costs at most about 2·300³/3 ≈ 2·10⁷ flops).
@@ -242,9 +242,10 @@ impl Multigrid {
             .collect()
     }
 
-    /// Computes every level's values from the fine matrix's `values`; false when a diagonal
-    /// block or the coarsest matrix is singular.
-    pub(crate) fn update(&mut self, values: &[f64]) -> bool {
+    /// Computes every level's values from the fine matrix's `values`.
+    ///
+    /// Errors: a [`PrecondError`] when a diagonal block or the coarsest matrix is singular.
+    pub(crate) fn update(&mut self, values: &[f64]) -> Result<(), PrecondError> {
         let b = self.b;
         let first = match self.levels.first_mut() {
             Some(level) => &mut level.a,
@@ -260,20 +261,20 @@ impl Multigrid {
                 None => &mut self.coarsest,
             };
             // Constant block sizes unroll the block kernels (about 3× faster at b = 2, 3).
-            let updated = match b {
+            match b {
                 1 => this.update(1, &mut self.work, coarse),
                 2 => this.update(2, &mut self.work, coarse),
                 3 => this.update(3, &mut self.work, coarse),
                 _ => this.update(b, &mut self.work, coarse),
-            };
-            if !updated {
-                return false;
-            }
+            }?;
         }
         self.factorize_coarsest()
     }
 
-    fn factorize_coarsest(&mut self) -> bool {
+    /// The coarsest matrix's dense LU.
+    ///
+    /// Errors: [`PrecondError::SingularCoarsest`].
+    fn factorize_coarsest(&mut self) -> Result<(), PrecondError> {
         let b = self.b;
         let a = &self.coarsest;
         self.lu.fill(0.0);
@@ -295,10 +296,15 @@ impl Multigrid {
             MemStack::new(&mut self.lu_stack.buffer),
             Default::default(),
         );
-        (0..self.lu.nrows()).all(|i| {
+        let regular = (0..self.lu.nrows()).all(|i| {
             let pivot = self.lu[(i, i)];
             pivot != 0.0 && pivot.is_finite()
-        })
+        });
+        if regular {
+            Ok(())
+        } else {
+            Err(PrecondError::SingularCoarsest)
+        }
     }
 
     /// Unknowns of level l (the coarsest at l = levels).
@@ -488,17 +494,22 @@ impl Level {
         (level, Blocks::from_rows(&coarse_rows, b))
     }
 
-    /// Block inverses, P, A·P and the coarse matrix's values; false at a singular block. Every
-    /// block kernel is inlined here, so a constant `b` (see [`Multigrid::update`]) unrolls them.
+    /// Block inverses, P, A·P and the coarse matrix's values. Every block kernel is inlined
+    /// here, so a constant `b` (see [`Multigrid::update`]) unrolls them.
+    ///
+    /// Errors: [`PrecondError::SingularBlock`], [`PrecondError::NoSmoothingWeight`].
     #[inline(always)]
-    fn update(&mut self, b: usize, scratch: &mut [f64], coarse: &mut Blocks) -> bool {
+    fn update(
+        &mut self,
+        b: usize,
+        scratch: &mut [f64],
+        coarse: &mut Blocks,
+    ) -> Result<(), PrecondError> {
         let bb = b * b;
         let a = &self.a;
         for (k, inverse) in self.inverse.chunks_mut(bb).enumerate() {
             scratch[..bb].copy_from_slice(a.block(self.diagonal[k], b));
-            if !invert(b, &mut scratch[..bb], inverse) {
-                return false;
-            }
+            invert(b, &mut scratch[..bb], inverse)?;
         }
         // D⁻¹·A, and ρ(D⁻¹A) ≤ its largest absolute row sum.
         let mut rho = 0.0f64;
@@ -520,7 +531,7 @@ impl Level {
             rho = sums.iter().fold(rho, |m, &s| m.max(s));
         }
         if !(rho.is_finite() && rho > 0.0) {
-            return false;
+            return Err(PrecondError::NoSmoothingWeight);
         }
         let omega = 4.0 / 3.0 / rho;
         // P = T − ω·D⁻¹·A·T, T(g, aggregate g) = weight·I; `position` finds a block column
@@ -579,7 +590,7 @@ impl Level {
                 }
             }
         }
-        true
+        Ok(())
     }
 
     /// One block Gauss–Seidel sweep on A·x = f.
@@ -862,7 +873,7 @@ mod tests {
         let n = b * 576;
         let mut multigrid = Multigrid::new(b, (0..n).collect(), &pattern).unwrap();
         assert!(multigrid.sizes().len() >= 2, "{:?}", multigrid.sizes());
-        assert!(multigrid.update(&values));
+        multigrid.update(&values).expect("a regular matrix");
         let a = faer::sparse::SparseColMatRef::new(pattern.as_ref(), &values);
         let r1: Vec<f64> = (0..n).map(|i| ((i * 37) % 11) as f64 - 5.0).collect();
         let r2: Vec<f64> = (0..n).map(|i| ((i * 13) % 7) as f64 - 3.0).collect();

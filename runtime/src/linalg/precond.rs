@@ -20,6 +20,22 @@ use faer::sparse::linalg::cholesky::LltRef;
 use faer::sparse::linalg::lu::LuRef;
 use faer::{Conj, MatMut, MatRef, Par};
 
+/// Why a preconditioner could not be built from a matrix's values; the sparse solver then
+/// factorizes directly, which decides whether the matrix is singular.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum PrecondError {
+    /// A diagonal block (block Jacobi's, or a multigrid level's smoother's) has a zero or
+    /// non-finite pivot.
+    SingularBlock,
+    /// ILU(0) met a zero or non-finite pivot.
+    ZeroPivot,
+    /// Multigrid's coarsest matrix has a zero or non-finite pivot.
+    SingularCoarsest,
+    /// Multigrid's bound on ρ(D⁻¹A) is zero or not finite: there is no weight to smooth the
+    /// prolongator with.
+    NoSmoothingWeight,
+}
+
 /// Block Jacobi: z = diag(B₁⁻¹, …, B_g⁻¹)·r, with Bₖ the matrix's entries among the unknowns of
 /// group k.
 #[derive(Clone)]
@@ -65,20 +81,20 @@ impl BlockJacobi {
         }
     }
 
-    /// Inverts every block of the matrix with `values`; false when a block is singular.
-    pub(crate) fn update(&mut self, values: &[f64]) -> bool {
+    /// Inverts every block of the matrix with `values`.
+    ///
+    /// Errors: [`PrecondError::SingularBlock`].
+    pub(crate) fn update(&mut self, values: &[f64]) -> Result<(), PrecondError> {
         let b = self.size;
         let (a, inverse) = self.work.split_at_mut(b * b);
         for (slots, out) in self.slots.chunks(b * b).zip(self.inverse.chunks_mut(b * b)) {
             for (entry, &slot) in a.iter_mut().zip(slots) {
                 *entry = values.get(slot).copied().unwrap_or(0.0);
             }
-            if !invert(b, a, inverse) {
-                return false;
-            }
+            invert(b, a, inverse)?;
             out.copy_from_slice(inverse);
         }
-        true
+        Ok(())
     }
 
     /// A view faer's Krylov solvers apply.
@@ -101,8 +117,10 @@ impl BlockJacobi {
 }
 
 /// A⁻¹ of the b × b row-major matrix `a` (overwritten) into `inverse`, by Gauss–Jordan
-/// elimination with partial pivoting; false when a pivot is zero or not finite.
-pub(crate) fn invert(b: usize, a: &mut [f64], inverse: &mut [f64]) -> bool {
+/// elimination with partial pivoting.
+///
+/// Errors: [`PrecondError::SingularBlock`] when a pivot is zero or not finite.
+pub(crate) fn invert(b: usize, a: &mut [f64], inverse: &mut [f64]) -> Result<(), PrecondError> {
     for (k, entry) in inverse.iter_mut().enumerate() {
         *entry = if k % (b + 1) == 0 { 1.0 } else { 0.0 };
     }
@@ -112,7 +130,7 @@ pub(crate) fn invert(b: usize, a: &mut [f64], inverse: &mut [f64]) -> bool {
             .unwrap_or(col);
         let p = a[pivot * b + col];
         if p == 0.0 || !p.is_finite() {
-            return false;
+            return Err(PrecondError::SingularBlock);
         }
         for c in 0..b {
             a.swap(col * b + c, pivot * b + c);
@@ -132,7 +150,7 @@ pub(crate) fn invert(b: usize, a: &mut [f64], inverse: &mut [f64]) -> bool {
             }
         }
     }
-    true
+    Ok(())
 }
 
 /// ILU(0): A ≈ L·U with L unit lower and U upper triangular, both on A's own pattern (no fill),
@@ -186,8 +204,10 @@ impl Ilu0 {
         }
     }
 
-    /// Factorizes the matrix with `values`; false at a zero or non-finite pivot.
-    pub(crate) fn update(&mut self, values: &[f64]) -> bool {
+    /// Factorizes the matrix with `values`.
+    ///
+    /// Errors: [`PrecondError::ZeroPivot`] at a zero or non-finite pivot.
+    pub(crate) fn update(&mut self, values: &[f64]) -> Result<(), PrecondError> {
         for (f, &slot) in self.factors.iter_mut().zip(&self.source) {
             *f = values[slot];
         }
@@ -213,10 +233,10 @@ impl Ilu0 {
             }
             let pivot = self.factors[self.diagonal[i]];
             if pivot == 0.0 || !pivot.is_finite() {
-                return false;
+                return Err(PrecondError::ZeroPivot);
             }
         }
-        true
+        Ok(())
     }
 
     /// out = U⁻¹·L⁻¹·r.
@@ -424,7 +444,7 @@ mod tests {
         let a = [0.0, 2.0, 1.0, 1.0, 1.0, 0.0, 3.0, 0.0, 1.0];
         let mut work = a;
         let mut inverse = [0.0; 9];
-        assert!(invert(3, &mut work, &mut inverse));
+        invert(3, &mut work, &mut inverse).expect("a regular block");
         for r in 0..3 {
             for c in 0..3 {
                 let product: f64 = (0..3).map(|k| a[r * 3 + k] * inverse[k * 3 + c]).sum();
@@ -434,6 +454,9 @@ mod tests {
         }
         let mut singular = [1.0, 2.0, 2.0, 4.0];
         let mut inverse = [0.0; 4];
-        assert!(!invert(2, &mut singular, &mut inverse));
+        assert_eq!(
+            invert(2, &mut singular, &mut inverse),
+            Err(PrecondError::SingularBlock)
+        );
     }
 }

@@ -23,7 +23,10 @@ use faer::sparse::linalg::lu::{
 use faer::sparse::{Pair, SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, MatMut, Par, Side};
 
-use super::krylov::{KrylovCounts, KrylovSolver, LinearSolver, Outcome, Preconditioner, Structure};
+use super::dense::FactorizeError;
+use super::krylov::{
+    KrylovCounts, KrylovSolver, LinearSolver, NoConvergence, Preconditioner, Structure,
+};
 use super::multigrid::{Multigrid, MultigridRef};
 use super::precond::{BlockJacobi, Factors, Ilu0, Ilu0Ref};
 
@@ -221,8 +224,9 @@ impl SparseSolver {
     /// Prepares to solve with the values: for a Krylov run, builds the block Jacobi
     /// preconditioner (or keeps an earlier factorization as the preconditioner until a solve
     /// asks for a fresh one); otherwise, or when a block is singular, factorizes directly.
-    /// False when the matrix is singular.
-    pub(crate) fn factorize(&mut self) -> bool {
+    ///
+    /// Errors: [`FactorizeError::Singular`].
+    pub(crate) fn factorize(&mut self) -> Result<(), FactorizeError> {
         self.iterative = false;
         let Some(krylov) = &mut self.krylov else {
             return self.factorize_direct();
@@ -232,32 +236,37 @@ impl SparseSolver {
         self.symmetric = self.is_symmetric();
         let values = &self.values;
         // The preconditioners built from the values: false when one cannot be (a singular
-        // block or pivot), which the direct factorization then decides.
+        // block or pivot, or none made), which the direct factorization then decides.
         let built = match preconditioner {
-            Preconditioner::BlockJacobi => Some(self.jacobi.update(values)),
-            Preconditioner::Ilu0 => Some(self.ilu.as_mut().is_some_and(|p| p.update(values))),
-            Preconditioner::Multigrid => {
-                Some(self.multigrid.as_mut().is_some_and(|p| p.update(values)))
+            Preconditioner::BlockJacobi => Some(self.jacobi.update(values).is_ok()),
+            Preconditioner::Ilu0 => {
+                Some(self.ilu.as_mut().is_some_and(|p| p.update(values).is_ok()))
             }
+            Preconditioner::Multigrid => Some(
+                self.multigrid
+                    .as_mut()
+                    .is_some_and(|p| p.update(values).is_ok()),
+            ),
             Preconditioner::Factorization { .. } => None,
         };
         match built {
             Some(false) => return self.factorize_direct(),
             Some(true) => self.counts.krylov.preconditioners += 1,
             None => {
-                if (self.factored.is_none() || refresh) && !self.factorize_direct() {
-                    return false;
+                if self.factored.is_none() || refresh {
+                    self.factorize_direct()?;
                 }
             }
         }
         self.iterative = true;
-        true
+        Ok(())
     }
 
     /// Factorizes the values: Cholesky when symmetric and positive definite, else LU (its
-    /// symbolic analysis made the first time; see [`SKIP_CHOLESKY_AFTER_FAILURE`]). False when
-    /// the matrix is singular.
-    fn factorize_direct(&mut self) -> bool {
+    /// symbolic analysis made the first time; see [`SKIP_CHOLESKY_AFTER_FAILURE`]).
+    ///
+    /// Errors: [`FactorizeError::Singular`].
+    fn factorize_direct(&mut self) -> Result<(), FactorizeError> {
         self.factored = None;
         if self.skip_cholesky > 0 {
             self.skip_cholesky -= 1;
@@ -275,7 +284,7 @@ impl SparseSolver {
             if factored.is_ok() {
                 self.counts.cholesky += 1;
                 self.factored = Some(Factored::Cholesky);
-                return true;
+                return Ok(());
             }
             self.counts.cholesky_failed += 1;
             self.skip_cholesky = SKIP_CHOLESKY_AFTER_FAILURE;
@@ -283,7 +292,11 @@ impl SparseSolver {
         self.factorize_lu()
     }
 
-    fn factorize_lu(&mut self) -> bool {
+    /// The LU, its symbolic analysis made the first time.
+    ///
+    /// Errors: [`FactorizeError::Singular`], when the pattern is structurally singular or the
+    /// values numerically.
+    fn factorize_lu(&mut self) -> Result<(), FactorizeError> {
         if self.lu.is_none() {
             // faer's simplicial LU spent 92 % of a 64-particle cloth run (measured with perf);
             // the supernodal one is the fast path for these block-structured matrices.
@@ -291,9 +304,8 @@ impl SparseSolver {
                 supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
                 ..LuSymbolicParams::default()
             };
-            let Ok(symbolic) = factorize_symbolic_lu(self.pattern.as_ref(), params) else {
-                return false;
-            };
+            let symbolic = factorize_symbolic_lu(self.pattern.as_ref(), params)
+                .map_err(|_| FactorizeError::Singular)?;
             let need = symbolic
                 .factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default())
                 .or(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq))
@@ -303,7 +315,7 @@ impl SparseSolver {
             self.counts.symbolic_lu += 1;
         }
         let Some((symbolic, numeric)) = &mut self.lu else {
-            return false;
+            return Err(FactorizeError::Singular);
         };
         let matrix = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
         let factored = symbolic.factorize_numeric_lu(
@@ -313,25 +325,23 @@ impl SparseSolver {
             MemStack::new(&mut self.scratch),
             Default::default(),
         );
-        if factored.is_err() {
-            return false;
-        }
+        factored.map_err(|_| FactorizeError::Singular)?;
         self.counts.lu += 1;
         self.factored = Some(Factored::Lu);
-        true
+        Ok(())
     }
 
     /// Solves the matrix against [`SparseSolver::rhs`], in place: by the Krylov method when
     /// the last factorization prepared one (redone directly if it fails; NaN if the matrix
     /// then turns out singular), else by substitution in the direct factors.
     pub(crate) fn substitute(&mut self) {
-        if self.iterative && self.solve_iteratively() {
+        if self.iterative && self.solve_iteratively().is_ok() {
             return;
         }
         if self.iterative {
             // The Krylov solve failed: the direct solve of the same matrix decides.
             self.iterative = false;
-            if !self.factorize_direct() {
+            if self.factorize_direct().is_err() {
                 self.rhs.fill(f64::NAN);
                 return;
             }
@@ -339,13 +349,15 @@ impl SparseSolver {
         self.substitute_direct();
     }
 
-    /// The Krylov solve; false when it did not converge (rhs unchanged then).
-    fn solve_iteratively(&mut self) -> bool {
+    /// The Krylov solve.
+    ///
+    /// Errors: [`NoConvergence`] (rhs unchanged then), also when the run has no Krylov solver.
+    fn solve_iteratively(&mut self) -> Result<(), NoConvergence> {
         let Some(krylov) = &mut self.krylov else {
-            return false;
+            return Err(NoConvergence);
         };
         if !self.rhs.iter().all(|b| b.is_finite()) {
-            return true; // a non-finite right-hand side stays non-finite: the caller reports it
+            return Ok(()); // a non-finite right-hand side stays non-finite: the caller reports it
         }
         let matrix = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
         let n = self.rhs.len();
@@ -365,7 +377,7 @@ impl SparseSolver {
                     &mut self.rhs,
                     &mut self.counts.krylov,
                 ),
-                None => Outcome::Failed,
+                None => Err(NoConvergence),
             },
             (Preconditioner::Multigrid, ..) => match &self.multigrid {
                 Some(multigrid) => krylov.solve(
@@ -375,7 +387,7 @@ impl SparseSolver {
                     &mut self.rhs,
                     &mut self.counts.krylov,
                 ),
-                None => Outcome::Failed,
+                None => Err(NoConvergence),
             },
             (_, Some(Factored::Cholesky), _) => krylov.solve(
                 matrix,
@@ -391,10 +403,10 @@ impl SparseSolver {
                 &mut self.rhs,
                 &mut self.counts.krylov,
             ),
-            _ => Outcome::Failed,
+            _ => Err(NoConvergence),
         };
         if let Some(limit) = krylov.direct_above
-            && matches!(outcome, Outcome::Converged)
+            && outcome.is_ok()
             && krylov.last_iterations > limit
         {
             // `Auto`: this matrix is too ill-conditioned for block Jacobi to pay. A big one goes
@@ -409,7 +421,7 @@ impl SparseSolver {
                 let built = self
                     .multigrid
                     .as_mut()
-                    .is_some_and(|multigrid| multigrid.update(&self.values));
+                    .is_some_and(|multigrid| multigrid.update(&self.values).is_ok());
                 if built {
                     krylov.options.preconditioner = Preconditioner::Multigrid;
                     self.counts.krylov.switched_to_multigrid = 1;
@@ -423,7 +435,7 @@ impl SparseSolver {
                 self.counts.krylov.switched_to_direct = 1;
             }
         }
-        matches!(outcome, Outcome::Converged)
+        outcome
     }
 
     /// Solves the last direct factorization against [`SparseSolver::rhs`], in place.
@@ -525,7 +537,7 @@ mod tests {
             let b: Vec<f64> = (0..n).map(|i| ((i * 37) % 11) as f64 - 5.0).collect();
             let mut direct = SparseSolver::new(n, &entries);
             fill(&mut direct);
-            assert!(direct.factorize());
+            direct.factorize().expect("the matrix is regular");
             direct.rhs.copy_from_slice(&b);
             direct.substitute();
             for preconditioner in [
@@ -543,7 +555,7 @@ mod tests {
                 krylov.configure(&linear, Structure::Field, false);
                 fill(&mut krylov);
                 for _ in 0..2 {
-                    assert!(krylov.factorize());
+                    krylov.factorize().expect("the matrix is regular");
                     krylov.rhs.copy_from_slice(&b);
                     krylov.substitute();
                     let error = krylov
