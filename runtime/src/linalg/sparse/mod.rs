@@ -10,25 +10,23 @@
 
 use std::sync::Arc;
 
-use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
-use faer::linalg::cholesky::llt::factor::LltRegularization;
-use faer::sparse::linalg::SupernodalThreshold;
+use faer::Side;
+use faer::dyn_stack::MemBuffer;
 use faer::sparse::linalg::cholesky::{
-    CholeskySymbolicParams, LltRef, SymbolicCholesky, SymmetricOrdering,
-    factorize_symbolic_cholesky,
+    CholeskySymbolicParams, SymbolicCholesky, SymmetricOrdering, factorize_symbolic_cholesky,
 };
-use faer::sparse::linalg::lu::{
-    LuRef, LuSymbolicParams, NumericLu, SymbolicLu, factorize_symbolic_lu,
-};
+use faer::sparse::linalg::lu::{NumericLu, SymbolicLu};
 use faer::sparse::{Pair, SparseColMatRef, SymbolicSparseColMat};
-use faer::{Conj, MatMut, Par, Side};
 
 use super::dense::FactorizeError;
-use super::krylov::{
-    KrylovCounts, KrylovSolver, LinearSolver, NoConvergence, Preconditioner, Structure,
-};
-use super::multigrid::{Multigrid, MultigridRef};
-use super::precond::{BlockJacobi, Factors, Ilu0, Ilu0Ref};
+use super::krylov::{KrylovCounts, KrylovSolver, LinearSolver, Preconditioner, Structure};
+use super::multigrid::Multigrid;
+use super::precond::{BlockJacobi, Ilu0};
+
+mod direct;
+mod iterative;
+#[cfg(test)]
+mod tests;
 
 /// How often a sparse Newton matrix has factorized: the symbolic analyses happen once per run,
 /// the numeric factorizations once per Newton iteration (or Rosenbrock step).
@@ -51,12 +49,6 @@ pub struct Factorizations {
 
 /// A sparse LU: the symbolic analysis (shared by clones) and the numeric factors.
 type SparseLu = (Arc<SymbolicLu<usize>>, NumericLu<usize, f64>);
-
-/// After an indefinite matrix, this many factorizations skip the Cholesky attempt: an undamped
-/// 32² cloth hanging in its plane failed Cholesky on 132 of 133 Newton matrices, doing every
-/// factorization twice; retrying every ninth bounds that waste and still returns to Cholesky
-/// when the matrices become definite again.
-const SKIP_CHOLESKY_AFTER_FAILURE: u32 = 8;
 
 /// A sparse matrix of fixed pattern, its values, a right-hand side, and its factorizations.
 pub(crate) struct SparseSolver {
@@ -202,12 +194,6 @@ impl SparseSolver {
         SparseColMatRef::new(self.pattern.as_ref(), &self.values)
     }
 
-    fn cholesky_scratch(symbolic: &SymbolicCholesky<usize>) -> StackReq {
-        symbolic
-            .factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default())
-            .or(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq))
-    }
-
     /// Whether the values are symmetric to rounding: every |aᵢⱼ − aⱼᵢ| within 1e-12 of the
     /// largest entry. (Entry-wise relative tests fail on entries that are differences of nearly
     /// equal terms, such as a spring's k·(1 − L/|d|) near rest.) Cholesky reads the lower
@@ -262,75 +248,6 @@ impl SparseSolver {
         Ok(())
     }
 
-    /// Factorizes the values: Cholesky when symmetric and positive definite, else LU (its
-    /// symbolic analysis made the first time; see [`SKIP_CHOLESKY_AFTER_FAILURE`]).
-    ///
-    /// Errors: [`FactorizeError::Singular`].
-    fn factorize_direct(&mut self) -> Result<(), FactorizeError> {
-        self.factored = None;
-        if self.skip_cholesky > 0 {
-            self.skip_cholesky -= 1;
-        } else if self.is_symmetric() {
-            let matrix = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
-            let factored = self.cholesky.factorize_numeric_llt(
-                &mut self.cholesky_values,
-                matrix,
-                Side::Lower,
-                LltRegularization::default(),
-                Par::Seq,
-                MemStack::new(&mut self.scratch),
-                Default::default(),
-            );
-            if factored.is_ok() {
-                self.counts.cholesky += 1;
-                self.factored = Some(Factored::Cholesky);
-                return Ok(());
-            }
-            self.counts.cholesky_failed += 1;
-            self.skip_cholesky = SKIP_CHOLESKY_AFTER_FAILURE;
-        }
-        self.factorize_lu()
-    }
-
-    /// The LU, its symbolic analysis made the first time.
-    ///
-    /// Errors: [`FactorizeError::Singular`], when the pattern is structurally singular or the
-    /// values numerically.
-    fn factorize_lu(&mut self) -> Result<(), FactorizeError> {
-        if self.lu.is_none() {
-            // faer's simplicial LU spent 92 % of a 64-particle cloth run (measured with perf);
-            // the supernodal one is the fast path for these block-structured matrices.
-            let params = LuSymbolicParams {
-                supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
-                ..LuSymbolicParams::default()
-            };
-            let symbolic = factorize_symbolic_lu(self.pattern.as_ref(), params)
-                .map_err(|_| FactorizeError::Singular)?;
-            let need = symbolic
-                .factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default())
-                .or(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq))
-                .or(Self::cholesky_scratch(&self.cholesky));
-            self.scratch = MemBuffer::new(need);
-            self.lu = Some((Arc::new(symbolic), NumericLu::new()));
-            self.counts.symbolic_lu += 1;
-        }
-        let Some((symbolic, numeric)) = &mut self.lu else {
-            return Err(FactorizeError::Singular);
-        };
-        let matrix = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
-        let factored = symbolic.factorize_numeric_lu(
-            numeric,
-            matrix,
-            Par::Seq,
-            MemStack::new(&mut self.scratch),
-            Default::default(),
-        );
-        factored.map_err(|_| FactorizeError::Singular)?;
-        self.counts.lu += 1;
-        self.factored = Some(Factored::Lu);
-        Ok(())
-    }
-
     /// Solves the matrix against [`SparseSolver::rhs`], in place: by the Krylov method when
     /// the last factorization prepared one (redone directly if it fails; NaN if the matrix
     /// then turns out singular), else by substitution in the direct factors.
@@ -347,121 +264,6 @@ impl SparseSolver {
             }
         }
         self.substitute_direct();
-    }
-
-    /// The Krylov solve.
-    ///
-    /// Errors: [`NoConvergence`] (rhs unchanged then), also when the run has no Krylov solver.
-    fn solve_iteratively(&mut self) -> Result<(), NoConvergence> {
-        let Some(krylov) = &mut self.krylov else {
-            return Err(NoConvergence);
-        };
-        if !self.rhs.iter().all(|b| b.is_finite()) {
-            return Ok(()); // a non-finite right-hand side stays non-finite: the caller reports it
-        }
-        let matrix = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
-        let n = self.rhs.len();
-        let outcome = match (krylov.options.preconditioner, self.factored, &self.lu) {
-            (Preconditioner::BlockJacobi, ..) => krylov.solve(
-                matrix,
-                self.symmetric,
-                self.jacobi.as_precond(n),
-                &mut self.rhs,
-                &mut self.counts.krylov,
-            ),
-            (Preconditioner::Ilu0, ..) => match &self.ilu {
-                Some(ilu) => krylov.solve(
-                    matrix,
-                    self.symmetric,
-                    Ilu0Ref(ilu),
-                    &mut self.rhs,
-                    &mut self.counts.krylov,
-                ),
-                None => Err(NoConvergence),
-            },
-            (Preconditioner::Multigrid, ..) => match &self.multigrid {
-                Some(multigrid) => krylov.solve(
-                    matrix,
-                    self.symmetric,
-                    MultigridRef(multigrid),
-                    &mut self.rhs,
-                    &mut self.counts.krylov,
-                ),
-                None => Err(NoConvergence),
-            },
-            (_, Some(Factored::Cholesky), _) => krylov.solve(
-                matrix,
-                self.symmetric,
-                Factors::Cholesky(LltRef::new(&self.cholesky, &self.cholesky_values)),
-                &mut self.rhs,
-                &mut self.counts.krylov,
-            ),
-            (_, Some(Factored::Lu), Some((symbolic, numeric))) => krylov.solve(
-                matrix,
-                self.symmetric,
-                Factors::Lu(LuRef::new_unchecked(symbolic, numeric)),
-                &mut self.rhs,
-                &mut self.counts.krylov,
-            ),
-            _ => Err(NoConvergence),
-        };
-        if let Some(limit) = krylov.direct_above
-            && outcome.is_ok()
-            && krylov.last_iterations > limit
-        {
-            // `Auto`: this matrix is too ill-conditioned for block Jacobi to pay. A big one goes
-            // on with multigrid, a small one (or one multigrid does not tame) factorizes.
-            if krylov.options.preconditioner == Preconditioner::BlockJacobi
-                && n >= LinearSolver::MULTIGRID_FROM
-            {
-                let (size, index) = &self.blocks;
-                if self.multigrid.is_none() {
-                    self.multigrid = Multigrid::new(*size, index.clone(), &self.pattern);
-                }
-                let built = self
-                    .multigrid
-                    .as_mut()
-                    .is_some_and(|multigrid| multigrid.update(&self.values).is_ok());
-                if built {
-                    krylov.options.preconditioner = Preconditioner::Multigrid;
-                    self.counts.krylov.switched_to_multigrid = 1;
-                    self.counts.krylov.preconditioners += 1;
-                } else {
-                    self.krylov = None;
-                    self.counts.krylov.switched_to_direct = 1;
-                }
-            } else {
-                self.krylov = None;
-                self.counts.krylov.switched_to_direct = 1;
-            }
-        }
-        outcome
-    }
-
-    /// Solves the last direct factorization against [`SparseSolver::rhs`], in place.
-    fn substitute_direct(&mut self) {
-        let n = self.rhs.len();
-        let rhs = MatMut::from_column_major_slice_mut(&mut self.rhs, n, 1);
-        let stack = MemStack::new(&mut self.scratch);
-        match (&self.factored, &self.lu) {
-            (Some(Factored::Cholesky), _) => LltRef::new(&self.cholesky, &self.cholesky_values)
-                .solve_in_place_with_conj(Conj::No, rhs, Par::Seq, stack),
-            (Some(Factored::Lu), Some((symbolic, numeric))) => LuRef::new_unchecked(
-                symbolic, numeric,
-            )
-            .solve_in_place_with_conj(Conj::No, rhs, Par::Seq, stack),
-            _ => {}
-        }
-    }
-
-    fn scratch_size(&self) -> StackReq {
-        let cholesky = Self::cholesky_scratch(&self.cholesky);
-        match &self.lu {
-            None => cholesky,
-            Some((lu, _)) => cholesky
-                .or(lu.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default()))
-                .or(lu.solve_in_place_scratch::<f64>(1, Par::Seq)),
-        }
     }
 }
 
@@ -495,80 +297,6 @@ impl Clone for SparseSolver {
             jacobi: self.jacobi.clone(),
             symmetric: self.symmetric,
             iterative: self.iterative,
-        }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::{Krylov, LinearSolver, Preconditioner};
-
-    /// A 2-D Laplacian-like SPD matrix, and an unsymmetric one, solved directly and by each
-    /// Krylov configuration: same answer to the Krylov tolerance.
-    #[test]
-    fn krylov_solves_agree_with_the_direct_solve() {
-        let m = 12;
-        let n = m * m;
-        let mut entries = Vec::new();
-        for i in 0..m {
-            for j in 0..m {
-                let k = i * m + j;
-                if j + 1 < m {
-                    entries.push((k, k + 1));
-                }
-                if i + 1 < m {
-                    entries.push((k, k + m));
-                }
-            }
-        }
-        for skew in [0.0, 0.3] {
-            let fill = |s: &mut SparseSolver| {
-                for &(r, c) in &entries {
-                    let (a, b) = (s.slot(r, c), s.slot(c, r));
-                    s.values[a] = -1.0 + skew;
-                    s.values[b] = -1.0 - skew;
-                }
-                for i in 0..n {
-                    let d = s.slot(i, i);
-                    s.values[d] = 4.5 + (i % 7) as f64 * 0.1;
-                }
-            };
-            let b: Vec<f64> = (0..n).map(|i| ((i * 37) % 11) as f64 - 5.0).collect();
-            let mut direct = SparseSolver::new(n, &entries);
-            fill(&mut direct);
-            direct.factorize().expect("the matrix is regular");
-            direct.rhs.copy_from_slice(&b);
-            direct.substitute();
-            for preconditioner in [
-                Preconditioner::BlockJacobi,
-                Preconditioner::Ilu0,
-                Preconditioner::Factorization { refresh_above: 5 },
-            ] {
-                let mut krylov = SparseSolver::new(n, &entries);
-                krylov.set_blocks(2, (0..n).collect());
-                let linear = LinearSolver::Krylov(Krylov {
-                    preconditioner,
-                    rtol: 1e-12,
-                    ..Krylov::default()
-                });
-                krylov.configure(&linear, Structure::Field, false);
-                fill(&mut krylov);
-                for _ in 0..2 {
-                    krylov.factorize().expect("the matrix is regular");
-                    krylov.rhs.copy_from_slice(&b);
-                    krylov.substitute();
-                    let error = krylov
-                        .rhs
-                        .iter()
-                        .zip(&direct.rhs)
-                        .map(|(x, y)| (x - y).abs())
-                        .fold(0.0, f64::max);
-                    assert!(error < 1e-10, "{skew} {preconditioner:?}: {error:e}");
-                }
-                assert_eq!(krylov.counts.krylov.fallbacks, 0, "{:?}", krylov.counts);
-                assert_eq!(krylov.counts.krylov.solves, 2);
-            }
         }
     }
 }
