@@ -12,7 +12,6 @@
 
 mod checks;
 pub mod clock;
-mod dense;
 pub mod drive;
 pub mod ensemble;
 mod error;
@@ -22,7 +21,6 @@ pub mod integrators;
 mod linalg;
 mod method;
 mod model;
-mod newton;
 pub mod output;
 pub mod particles;
 #[cfg(feature = "plot")]
@@ -40,18 +38,19 @@ pub mod work_precision;
 pub mod xpbd;
 
 pub use clock::{FixedTimestep, Tick};
-pub use dense::{DenseMatrix, FaerDense, NewtonMatrix};
 pub use drive::{
     Action, Atol, Controller, Direction, Event, EventRecord, Progress, Stats, StepControl,
     Tolerances,
 };
 pub use error::{Error, NewtonFailure, Result};
 pub use integrators::Integrator;
-pub use linalg::{Krylov, KrylovCounts, LinearSolver, Preconditioner};
+pub use linalg::{
+    DenseMatrix, FactorizeError, FaerDense, Krylov, KrylovCounts, LinearSolver, NewtonMatrix,
+    NewtonOptions, Preconditioner, SolveError,
+};
 pub use method::{Method, MethodInfo};
 pub use model::{Jacobian, Model, SecondOrder, State, Unavailable};
 pub use nalgebra;
-pub use newton::NewtonOptions;
 /// The `rand` crate, for ensemble members' generators ([`ensemble::MemberRng`] implements its
 /// `Rng`).
 pub use rand;

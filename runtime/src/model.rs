@@ -8,7 +8,7 @@ use std::convert::Infallible;
 use std::fmt::Debug;
 use std::marker::PhantomData;
 
-use crate::dense::NewtonMatrix;
+use crate::linalg::NewtonMatrix;
 use crate::{Method, Result, Simulation};
 
 /// A model's state: a list of `f64` components with names.

@@ -53,9 +53,9 @@ fn solve<M: Jacobian>(
     matrix.configure(newton, false);
     model.jacobian(0.0, state, &mut matrix);
     let mut factors = matrix.factors();
-    assert!(matrix.factorize(c, &mut factors));
+    matrix.factorize(c, &mut factors).expect("W is regular");
     let mut x = b.to_vec();
-    assert!(matrix.solve(&mut factors, &mut x));
+    matrix.solve(&mut factors, &mut x).expect("x is finite");
     x
 }
 

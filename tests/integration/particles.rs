@@ -424,8 +424,8 @@ fn sparse_velocity_solve_equals_the_dense_first_order_newton_solve_every_time() 
     for state in [&at_rest, &moving, &at_rest, &moving, &moving] {
         model.jacobian(0.0, state, &mut jacobian);
         let mut sparse = b.clone();
-        assert!(NewtonMatrix::factorize(&mut jacobian, h, &mut ()));
-        assert!(jacobian.solve(&mut (), &mut sparse));
+        NewtonMatrix::factorize(&mut jacobian, h, &mut ()).expect("W is regular");
+        jacobian.solve(&mut (), &mut sparse).expect("x is finite");
         let dense = dense_newton_solve(&model, state, h, &b);
         let scale = dense.iter().fold(0.0f64, |m, x| m.max(x.abs()));
         for (k, (s, d)) in sparse.iter().zip(&dense).enumerate() {

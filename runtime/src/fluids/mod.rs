@@ -11,7 +11,6 @@
 //!
 //! [`StableFluids`] is that solver on a staggered (MAC) grid.
 
-mod spd;
 mod stable;
 
 pub use stable::{FluidOptions, StableFluids};

@@ -6,8 +6,9 @@ use faer::sparse::SparseColMatRef;
 
 use super::stencil::neighbour;
 use super::{Block, Boundary, NEIGHBOURS};
-use crate::NewtonMatrix;
+use crate::linalg::dense::finite;
 use crate::linalg::sparse::{Factorizations, SparseSolver};
+use crate::{FactorizeError, NewtonMatrix, SolveError};
 
 /// The Jacobian ∂f/∂y of a field model, assembled from its cells' blocks, and the sparse
 /// matrix I − c·J the implicit methods solve with.
@@ -153,21 +154,28 @@ impl GridJacobian {
     }
 
     /// Factorizes the assembled I − c·J numerically (Cholesky, else LU): the "factorization"
-    /// of a step's cost. False when it is singular.
-    pub fn factorize(&mut self) -> bool {
+    /// of a step's cost.
+    ///
+    /// Errors: [`FactorizeError::Singular`].
+    pub fn factorize(&mut self) -> Result<(), FactorizeError> {
         self.solver.factorize()
     }
 
-    /// Solves the last factorization against `b` in place: the "solve" of a step's cost. False
-    /// when `b` has the wrong length or the solution is not finite.
-    pub fn substitute(&mut self, b: &mut [f64]) -> bool {
-        if b.len() != self.solver.rhs.len() {
-            return false;
+    /// Solves the last factorization against `b` in place: the "solve" of a step's cost.
+    ///
+    /// Errors: [`SolveError::WrongLength`], [`SolveError::NotFinite`].
+    pub fn substitute(&mut self, b: &mut [f64]) -> Result<(), SolveError> {
+        let expected = self.solver.rhs.len();
+        if b.len() != expected {
+            return Err(SolveError::WrongLength {
+                expected,
+                found: b.len(),
+            });
         }
         self.solver.rhs.copy_from_slice(b);
         self.solver.substitute();
         b.copy_from_slice(&self.solver.rhs);
-        b.iter().all(|x| x.is_finite())
+        finite(b)
     }
 }
 
@@ -186,12 +194,12 @@ impl NewtonMatrix for GridJacobian {
     fn factors(&self) {}
 
     /// Assembles I − c·J and factorizes it.
-    fn factorize(&mut self, c: f64, _: &mut ()) -> bool {
+    fn factorize(&mut self, c: f64, _: &mut ()) -> Result<(), FactorizeError> {
         self.assemble(c);
         GridJacobian::factorize(self)
     }
 
-    fn solve(&mut self, _: &mut (), b: &mut [f64]) -> bool {
+    fn solve(&mut self, _: &mut (), b: &mut [f64]) -> Result<(), SolveError> {
         self.substitute(b)
     }
 }

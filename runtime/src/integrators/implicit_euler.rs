@@ -94,9 +94,9 @@ impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
             s.stats.linear_solves += 1;
             // A non-finite residual makes a non-finite update, which `solve` reports; the
             // residual itself is measured only for the error, off the hot path.
-            if !(self.jacobian.factorize(h, &mut self.factors)
-                && self.jacobian.solve(&mut self.factors, rhs))
-            {
+            let solved = self.jacobian.factorize(h, &mut self.factors).is_ok()
+                && self.jacobian.solve(&mut self.factors, rhs).is_ok();
+            if !solved {
                 let residual = residual_of(model, t1, h, s.y, y, &mut self.force);
                 let cause = if residual.is_finite() && rhs.iter().all(|x| x.is_finite()) {
                     NewtonFailure::Singular

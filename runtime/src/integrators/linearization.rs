@@ -60,12 +60,11 @@ impl<M: Jacobian> Linearization<M> {
         }
         self.factored = None;
         stats.factorizations += 1;
-        if self.jacobian.factorize(c, &mut self.factors) {
-            self.factored = Some(c);
-            Ok(())
-        } else {
-            Err(Error::SingularMatrix { t, dt: h })
-        }
+        self.jacobian
+            .factorize(c, &mut self.factors)
+            .map_err(|_| Error::SingularMatrix { t, dt: h })?;
+        self.factored = Some(c);
+        Ok(())
     }
 
     /// Solves W·x = b in place.
@@ -73,11 +72,9 @@ impl<M: Jacobian> Linearization<M> {
     /// Errors: [`Error::SingularMatrix`] when x is not finite.
     pub(super) fn solve(&mut self, b: &mut [f64], t: f64, h: f64, stats: &mut Stats) -> Result<()> {
         stats.linear_solves += 1;
-        if self.jacobian.solve(&mut self.factors, b) {
-            Ok(())
-        } else {
-            Err(Error::SingularMatrix { t, dt: h })
-        }
+        self.jacobian
+            .solve(&mut self.factors, b)
+            .map_err(|_| Error::SingularMatrix { t, dt: h })
     }
 
     /// The step was accepted or the state changed: the next step linearizes afresh.

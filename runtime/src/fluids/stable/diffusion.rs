@@ -2,7 +2,7 @@
 
 use super::{FluidOptions, StableFluids};
 use crate::Result;
-use crate::fluids::spd::SpdSolver;
+use crate::linalg::spd::SpdSolver;
 
 impl StableFluids {
     /// Solves (I − νΔt·L)·u = u for each velocity component, no-slip at the walls.

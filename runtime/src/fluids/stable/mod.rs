@@ -4,7 +4,7 @@ mod advection;
 mod diffusion;
 mod projection;
 
-use crate::fluids::spd::SpdSolver;
+use crate::linalg::spd::SpdSolver;
 use crate::{Error, Result};
 
 use diffusion::diffusion_number;

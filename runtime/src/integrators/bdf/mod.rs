@@ -231,9 +231,9 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
         let iters = loop {
             if !self.factored {
                 s.stats.factorizations += 1;
-                if !self.jacobian.factorize(c, &mut self.factors) {
-                    return Err(Error::SingularMatrix { t, dt: h });
-                }
+                self.jacobian
+                    .factorize(c, &mut self.factors)
+                    .map_err(|_| Error::SingularMatrix { t, dt: h })?;
                 self.factored = true;
                 self.factored_c = c;
             }

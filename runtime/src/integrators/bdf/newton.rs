@@ -53,9 +53,9 @@ impl<M: Jacobian> Bdf<M> {
                 return Err(fail(iter + 1, residual, NewtonFailure::NotFinite));
             }
             stats.linear_solves += 1;
-            if !self.jacobian.solve(&mut self.factors, update) {
-                return Err(fail(iter + 1, residual, NewtonFailure::NotFinite));
-            }
+            self.jacobian
+                .solve(&mut self.factors, update)
+                .map_err(|_| fail(iter + 1, residual, NewtonFailure::NotFinite))?;
             if scale != 1.0 {
                 for u in update.iter_mut() {
                     *u *= scale;

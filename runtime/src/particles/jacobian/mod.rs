@@ -7,9 +7,10 @@ use std::fmt;
 
 use nalgebra::SMatrix;
 
-use crate::NewtonMatrix;
+use crate::linalg::dense::finite;
 use crate::linalg::sparse::{Factorizations, SparseSolver};
 use crate::particles::ParticleSystem;
+use crate::{FactorizeError, NewtonMatrix, SolveError};
 
 use assembly::{Slots, pattern};
 
@@ -101,8 +102,10 @@ impl<const D: usize> ParticleJacobian<D> {
         self.solver.values.len()
     }
 
-    /// Factorizes the assembled matrix numerically (Cholesky, else LU); false when singular.
-    pub fn factorize(&mut self) -> bool {
+    /// Factorizes the assembled matrix numerically (Cholesky, else LU).
+    ///
+    /// Errors: [`FactorizeError::Singular`].
+    pub fn factorize(&mut self) -> Result<(), FactorizeError> {
         self.solver.factorize()
     }
 
@@ -131,16 +134,19 @@ impl<const D: usize> NewtonMatrix for ParticleJacobian<D> {
 
     /// Assembles M − c·∂f/∂v − c²·∂f/∂x and factorizes it: (I − c·J)·x = b for the first-order
     /// system is solved through this velocity form.
-    fn factorize(&mut self, c: f64, _: &mut ()) -> bool {
+    fn factorize(&mut self, c: f64, _: &mut ()) -> Result<(), FactorizeError> {
         self.assemble(c);
         self.scale = c;
         self.solver.factorize()
     }
 
-    fn solve(&mut self, _: &mut (), b: &mut [f64]) -> bool {
+    fn solve(&mut self, _: &mut (), b: &mut [f64]) -> Result<(), SolveError> {
         let n = D * self.particles;
         if b.len() != 2 * n {
-            return false;
+            return Err(SolveError::WrongLength {
+                expected: 2 * n,
+                found: b.len(),
+            });
         }
         let c = self.scale;
         let (bx, bv) = b.split_at_mut(n);
@@ -150,7 +156,7 @@ impl<const D: usize> NewtonMatrix for ParticleJacobian<D> {
             *v = *dv;
             *x += c * dv;
         }
-        b.iter().all(|x| x.is_finite())
+        finite(b)
     }
 }
 

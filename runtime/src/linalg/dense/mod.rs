@@ -36,11 +36,16 @@ pub trait NewtonMatrix: Clone + fmt::Debug {
     fn factors(&self) -> Self::Factors;
 
     /// Forms W = I − c·J from the Jacobian last written into `self`, which stays as it was, and
-    /// factorizes it into `factors`; false when W is singular.
-    fn factorize(&mut self, c: f64, factors: &mut Self::Factors) -> bool;
+    /// factorizes it into `factors`.
+    ///
+    /// Errors: [`FactorizeError::Singular`] when W is singular.
+    fn factorize(&mut self, c: f64, factors: &mut Self::Factors) -> Result<(), FactorizeError>;
 
-    /// Solves W·x = b in place with the last factorization; false when x is not finite.
-    fn solve(&mut self, factors: &mut Self::Factors, b: &mut [f64]) -> bool;
+    /// Solves W·x = b in place with the last factorization.
+    ///
+    /// Errors: [`SolveError::NotFinite`] when x is not finite, [`SolveError::WrongLength`] when
+    /// b is not as long as the system.
+    fn solve(&mut self, factors: &mut Self::Factors, b: &mut [f64]) -> Result<(), SolveError>;
 
     /// Takes the options of the run that will solve with this matrix (dense matrices have none
     /// to take; particle Jacobians read [`crate::NewtonOptions::definite`]). `in_newton`: the
@@ -48,6 +53,50 @@ pub trait NewtonMatrix: Clone + fmt::Debug {
     /// implicit Euler), so an iterative solve may stop at [`crate::Krylov::newton_rtol`].
     fn configure(&mut self, newton: &crate::NewtonOptions, in_newton: bool) {
         let _ = (newton, in_newton);
+    }
+}
+
+/// Why [`NewtonMatrix::factorize`] failed. The integrators take it as a failed attempt: a
+/// linearly implicit step is retried smaller ([`crate::Error::SingularMatrix`] past the
+/// smallest), a Newton iteration fails and its step is halved.
+///
+/// (Errors here and in [`SolveError`] are a byte or a few words, not [`crate::Error`]: the
+/// matrix knows neither t nor the step, and a dense 2×2 solve is a few nanoseconds.)
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum FactorizeError {
+    /// W = I − c·J is singular: a zero or non-finite determinant or pivot; for a sparse W,
+    /// neither Cholesky nor LU could factorize it.
+    #[error("the matrix I − c·J is singular")]
+    Singular,
+}
+
+/// Why [`NewtonMatrix::solve`] failed; the integrators take it as a failed attempt, as a
+/// [`FactorizeError`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum SolveError {
+    /// The solution x has a NaN or infinite component: b was not finite, or W is singular to
+    /// working precision.
+    #[error("the solution of W·x = b is not finite")]
+    NotFinite,
+    /// b does not have one entry per unknown of the system.
+    #[error("the right-hand side has {found} entries, the system {expected} unknowns")]
+    WrongLength {
+        /// The system's unknowns.
+        expected: usize,
+        /// b's entries.
+        found: usize,
+    },
+}
+
+/// Ok when every entry of the solution `x` is finite.
+#[inline]
+pub(crate) fn finite(x: &[f64]) -> Result<(), SolveError> {
+    if x.iter().all(|x| x.is_finite()) {
+        Ok(())
+    } else {
+        Err(SolveError::NotFinite)
     }
 }
 
@@ -132,9 +181,13 @@ macro_rules! dense_matrix {
             }
 
             #[inline]
-            fn factorize(&mut self, c: f64, factors: &mut Self::Factors) -> bool {
+            fn factorize(
+                &mut self,
+                c: f64,
+                factors: &mut Self::Factors,
+            ) -> Result<(), FactorizeError> {
                 let w = nalgebra::SMatrix::<f64, $n, $n>::identity() - *self * c;
-                match adjugate(&w) {
+                let regular = match adjugate(&w) {
                     Some((adj, det)) => {
                         *factors = SmallFactors::Adjugate(adj, det);
                         // A non-finite adjugate makes a non-finite solution, which `solve`
@@ -143,15 +196,24 @@ macro_rules! dense_matrix {
                     }
                     None => {
                         let lu = w.lu();
-                        let ok = lu.is_invertible();
+                        let regular = lu.is_invertible();
                         *factors = SmallFactors::Lu(lu);
-                        ok
+                        regular
                     }
+                };
+                if regular {
+                    Ok(())
+                } else {
+                    Err(FactorizeError::Singular)
                 }
             }
 
             #[inline]
-            fn solve(&mut self, factors: &mut Self::Factors, b: &mut [f64]) -> bool {
+            fn solve(
+                &mut self,
+                factors: &mut Self::Factors,
+                b: &mut [f64],
+            ) -> Result<(), SolveError> {
                 let mut rhs = nalgebra::SVector::<f64, $n>::from_column_slice(b);
                 let solved = match factors {
                     SmallFactors::Adjugate(adj, det) => {
@@ -161,7 +223,8 @@ macro_rules! dense_matrix {
                     SmallFactors::Lu(lu) => lu.solve_mut(&mut rhs),
                 };
                 b.copy_from_slice(rhs.as_slice());
-                solved && b.iter().all(|x| x.is_finite())
+                // nalgebra's LU reports a singular U; its solution is not finite then.
+                if solved { finite(b) } else { Err(SolveError::NotFinite) }
             }
         }
     )*};
@@ -184,11 +247,11 @@ impl DenseMatrix for nalgebra::SMatrix<f64, 0, 0> {
 impl NewtonMatrix for nalgebra::SMatrix<f64, 0, 0> {
     type Factors = ();
     fn factors(&self) {}
-    fn factorize(&mut self, _: f64, _: &mut ()) -> bool {
-        true
+    fn factorize(&mut self, _: f64, _: &mut ()) -> Result<(), FactorizeError> {
+        Ok(())
     }
-    fn solve(&mut self, _: &mut (), _: &mut [f64]) -> bool {
-        true
+    fn solve(&mut self, _: &mut (), _: &mut [f64]) -> Result<(), SolveError> {
+        Ok(())
     }
 }
 
@@ -288,7 +351,7 @@ impl<const N: usize> NewtonMatrix for FaerDense<N> {
         }
     }
 
-    fn factorize(&mut self, c: f64, f: &mut FaerLu<N>) -> bool {
+    fn factorize(&mut self, c: f64, f: &mut FaerLu<N>) -> Result<(), FactorizeError> {
         for column in 0..N {
             for row in 0..N {
                 let identity = if row == column { 1.0 } else { 0.0 };
@@ -304,78 +367,21 @@ impl<const N: usize> NewtonMatrix for FaerDense<N> {
             Default::default(),
         );
         // A zero pivot leaves U singular: the solve would produce infinities.
-        (0..N).all(|i| f.lu[(i, i)] != 0.0 && f.lu[(i, i)].is_finite())
+        if (0..N).all(|i| f.lu[(i, i)] != 0.0 && f.lu[(i, i)].is_finite()) {
+            Ok(())
+        } else {
+            Err(FactorizeError::Singular)
+        }
     }
 
-    fn solve(&mut self, f: &mut FaerLu<N>, b: &mut [f64]) -> bool {
+    fn solve(&mut self, f: &mut FaerLu<N>, b: &mut [f64]) -> Result<(), SolveError> {
         let perm = faer::perm::PermRef::new_checked(&f.perm, &f.perm_inv, N);
         let rhs = MatMut::from_column_major_slice_mut(b, N, 1);
         let lu = f.lu.as_ref();
         solve::solve_in_place(lu, lu, perm, rhs, Par::Seq, MemStack::new(&mut f.scratch));
-        b.iter().all(|x| x.is_finite())
+        finite(b)
     }
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Cramer's rule (1×1 to 3×3) against nalgebra's pivoted LU on the same W = I − c·J, and
-    /// adj(W)·W = det W·I, which defines the adjugate; a singular W is reported.
-    fn check<const N: usize>(jacobian: nalgebra::SMatrix<f64, N, N>)
-    where
-        nalgebra::SMatrix<f64, N, N>: NewtonMatrix,
-    {
-        let c = 0.3;
-        let w = nalgebra::SMatrix::<f64, N, N>::identity() - jacobian * c;
-        let (adj, det) = adjugate(&w).expect("up to 3×3");
-        let dynamic = nalgebra::DMatrix::from_column_slice(N, N, w.as_slice());
-        assert!((det - dynamic.clone().determinant()).abs() <= 1e-14 * det.abs().max(1.0));
-        let identity = adj * w / det;
-        assert!((identity - nalgebra::SMatrix::<f64, N, N>::identity()).amax() <= 1e-14);
-
-        let b: Vec<f64> = (0..N).map(|i| 1.0 - 0.7 * i as f64).collect();
-        let reference = dynamic
-            .lu()
-            .solve(&nalgebra::DVector::from_column_slice(&b));
-        let mut matrix = jacobian;
-        let mut factors = matrix.factors();
-        assert!(matrix.factorize(c, &mut factors));
-        let mut x = b.clone();
-        assert!(matrix.solve(&mut factors, &mut x));
-        let reference = reference.expect("W is regular");
-        for (xi, ri) in x.iter().zip(reference.iter()) {
-            assert!((xi - ri).abs() <= 1e-13 * ri.abs().max(1.0), "{xi} vs {ri}");
-        }
-    }
-
-    #[test]
-    fn cramers_rule_solves_like_an_lu() {
-        check(nalgebra::SMatrix::<f64, 1, 1>::new(-4.0));
-        check(nalgebra::SMatrix::<f64, 2, 2>::new(0.0, 1.0, -5.0, -2.5));
-        // The Lorenz Jacobian at (1, 2, 3), σ = 10, ρ = 28, β = 8/3: nonsymmetric, every
-        // entry of the adjugate from a different minor.
-        check(nalgebra::SMatrix::<f64, 3, 3>::new(
-            -10.0,
-            10.0,
-            0.0,
-            25.0,
-            -1.0,
-            -1.0,
-            2.0,
-            1.0,
-            -8.0 / 3.0,
-        ));
-    }
-
-    #[test]
-    fn a_singular_small_matrix_is_reported() {
-        // W = I − 1·J = 0 for J = I: every size's determinant is zero.
-        let mut j = nalgebra::SMatrix::<f64, 3, 3>::identity();
-        let mut factors = j.factors();
-        assert!(!j.factorize(1.0, &mut factors));
-        let mut j = nalgebra::SMatrix::<f64, 2, 2>::identity();
-        let mut factors = j.factors();
-        assert!(!j.factorize(1.0, &mut factors));
-    }
-}
+mod tests;

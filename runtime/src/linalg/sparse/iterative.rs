@@ -1,0 +1,102 @@
+//! The Krylov solve of a sparse Newton matrix with the run's preconditioner, and `Auto`'s move
+//! to multigrid or to the direct solver when block Jacobi converges too slowly.
+
+use faer::sparse::SparseColMatRef;
+use faer::sparse::linalg::cholesky::LltRef;
+use faer::sparse::linalg::lu::LuRef;
+
+use super::{Factored, SparseSolver};
+use crate::linalg::krylov::{LinearSolver, NoConvergence, Preconditioner};
+use crate::linalg::multigrid::{Multigrid, MultigridRef};
+use crate::linalg::precond::{Factors, Ilu0Ref};
+
+impl SparseSolver {
+    /// The Krylov solve.
+    ///
+    /// Errors: [`NoConvergence`] (rhs unchanged then), also when the run has no Krylov solver.
+    pub(super) fn solve_iteratively(&mut self) -> Result<(), NoConvergence> {
+        let Some(krylov) = &mut self.krylov else {
+            return Err(NoConvergence);
+        };
+        if !self.rhs.iter().all(|b| b.is_finite()) {
+            return Ok(()); // a non-finite right-hand side stays non-finite: the caller reports it
+        }
+        let matrix = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
+        let n = self.rhs.len();
+        let outcome = match (krylov.options.preconditioner, self.factored, &self.lu) {
+            (Preconditioner::BlockJacobi, ..) => krylov.solve(
+                matrix,
+                self.symmetric,
+                self.jacobi.as_precond(n),
+                &mut self.rhs,
+                &mut self.counts.krylov,
+            ),
+            (Preconditioner::Ilu0, ..) => match &self.ilu {
+                Some(ilu) => krylov.solve(
+                    matrix,
+                    self.symmetric,
+                    Ilu0Ref(ilu),
+                    &mut self.rhs,
+                    &mut self.counts.krylov,
+                ),
+                None => Err(NoConvergence),
+            },
+            (Preconditioner::Multigrid, ..) => match &self.multigrid {
+                Some(multigrid) => krylov.solve(
+                    matrix,
+                    self.symmetric,
+                    MultigridRef(multigrid),
+                    &mut self.rhs,
+                    &mut self.counts.krylov,
+                ),
+                None => Err(NoConvergence),
+            },
+            (_, Some(Factored::Cholesky), _) => krylov.solve(
+                matrix,
+                self.symmetric,
+                Factors::Cholesky(LltRef::new(&self.cholesky, &self.cholesky_values)),
+                &mut self.rhs,
+                &mut self.counts.krylov,
+            ),
+            (_, Some(Factored::Lu), Some((symbolic, numeric))) => krylov.solve(
+                matrix,
+                self.symmetric,
+                Factors::Lu(LuRef::new_unchecked(symbolic, numeric)),
+                &mut self.rhs,
+                &mut self.counts.krylov,
+            ),
+            _ => Err(NoConvergence),
+        };
+        if let Some(limit) = krylov.direct_above
+            && outcome.is_ok()
+            && krylov.last_iterations > limit
+        {
+            // `Auto`: this matrix is too ill-conditioned for block Jacobi to pay. A big one goes
+            // on with multigrid, a small one (or one multigrid does not tame) factorizes.
+            if krylov.options.preconditioner == Preconditioner::BlockJacobi
+                && n >= LinearSolver::MULTIGRID_FROM
+            {
+                let (size, index) = &self.blocks;
+                if self.multigrid.is_none() {
+                    self.multigrid = Multigrid::new(*size, index.clone(), &self.pattern);
+                }
+                let built = self
+                    .multigrid
+                    .as_mut()
+                    .is_some_and(|multigrid| multigrid.update(&self.values).is_ok());
+                if built {
+                    krylov.options.preconditioner = Preconditioner::Multigrid;
+                    self.counts.krylov.switched_to_multigrid = 1;
+                    self.counts.krylov.preconditioners += 1;
+                } else {
+                    self.krylov = None;
+                    self.counts.krylov.switched_to_direct = 1;
+                }
+            } else {
+                self.krylov = None;
+                self.counts.krylov.switched_to_direct = 1;
+            }
+        }
+        outcome
+    }
+}

@@ -1,0 +1,302 @@
+//! A sparse square matrix with a fixed pattern and its factorizations: Cholesky (LLᵀ) when the
+//! values are symmetric and positive definite, else LU — the linear algebra of the particle and
+//! grid Newton matrices.
+//!
+//! The pattern is given once ([`SparseSolver::new`]), made structurally symmetric, and analysed
+//! symbolically once (AMD ordering, elimination tree); each solve then refills the values,
+//! factorizes numerically and substitutes, with no allocation. When the values are not
+//! symmetric, or Cholesky meets a non-positive pivot, the solve falls back to LU, whose symbolic
+//! analysis is made the first time it is needed and kept.
+
+use std::sync::Arc;
+
+use faer::Side;
+use faer::dyn_stack::MemBuffer;
+use faer::sparse::linalg::cholesky::{
+    CholeskySymbolicParams, SymbolicCholesky, SymmetricOrdering, factorize_symbolic_cholesky,
+};
+use faer::sparse::linalg::lu::{NumericLu, SymbolicLu};
+use faer::sparse::{Pair, SparseColMatRef, SymbolicSparseColMat};
+
+use super::dense::FactorizeError;
+use super::krylov::{KrylovCounts, KrylovSolver, LinearSolver, Preconditioner, Structure};
+use super::multigrid::Multigrid;
+use super::precond::{BlockJacobi, Ilu0};
+
+mod direct;
+mod iterative;
+#[cfg(test)]
+mod tests;
+
+/// How often a sparse Newton matrix has factorized: the symbolic analyses happen once per run,
+/// the numeric factorizations once per Newton iteration (or Rosenbrock step).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Factorizations {
+    /// Symbolic Cholesky analyses (fill-reducing ordering and elimination tree).
+    pub symbolic_cholesky: u64,
+    /// Symbolic LU analyses (made only if a Newton matrix is unsymmetric or indefinite).
+    pub symbolic_lu: u64,
+    /// Numeric Cholesky factorizations that succeeded.
+    pub cholesky: u64,
+    /// Numeric Cholesky factorizations abandoned at a non-positive pivot (a symmetric but
+    /// indefinite matrix), each followed by an LU: work done twice.
+    pub cholesky_failed: u64,
+    /// Numeric LU factorizations.
+    pub lu: u64,
+    /// The Krylov solves, when [`crate::LinearSolver`] chose them.
+    pub krylov: KrylovCounts,
+}
+
+/// A sparse LU: the symbolic analysis (shared by clones) and the numeric factors.
+type SparseLu = (Arc<SymbolicLu<usize>>, NumericLu<usize, f64>);
+
+/// A sparse matrix of fixed pattern, its values, a right-hand side, and its factorizations.
+pub(crate) struct SparseSolver {
+    pattern: SymbolicSparseColMat<usize>,
+    /// The matrix's values, in the pattern's column-major order (see [`SparseSolver::slot`]).
+    pub(crate) values: Vec<f64>,
+    /// Slot of each entry's transpose.
+    transpose: Vec<usize>,
+    /// The right-hand side [`SparseSolver::substitute`] solves in place.
+    pub(crate) rhs: Vec<f64>,
+    cholesky: Arc<SymbolicCholesky<usize>>,
+    cholesky_values: Vec<f64>,
+    lu: Option<SparseLu>,
+    scratch: MemBuffer,
+    pub(crate) counts: Factorizations,
+    factored: Option<Factored>,
+    /// Factorizations left to go straight to LU after a Cholesky failed.
+    skip_cholesky: u32,
+    /// The Krylov solver, when the run chose one ([`SparseSolver::configure`]).
+    krylov: Option<KrylovSolver>,
+    /// The diagonal blocks block Jacobi inverts (points until [`SparseSolver::set_blocks`]).
+    jacobi: BlockJacobi,
+    /// ILU(0)'s structure and factors, made when a run first asks for them.
+    ilu: Option<Ilu0>,
+    /// The multigrid hierarchy, made when a run first asks for it.
+    multigrid: Option<Multigrid>,
+    /// The groups of unknowns ([`SparseSolver::set_blocks`]): their size and the unknowns.
+    blocks: (usize, Vec<usize>),
+    /// The values were symmetric at the last factorization.
+    symmetric: bool,
+    /// The last factorization prepared a Krylov solve (else [`SparseSolver::substitute`]
+    /// substitutes in the direct factors).
+    iterative: bool,
+}
+
+/// Which factorization [`SparseSolver::factorize`] made last.
+#[derive(Clone, Copy, Debug)]
+enum Factored {
+    Cholesky,
+    Lu,
+}
+
+impl SparseSolver {
+    /// An n × n matrix whose structural non-zeros are `entries` (row, column), their transposes
+    /// and the diagonal; every value zero. Duplicates are merged.
+    ///
+    /// The caller guarantees every index is below `n` (checked topology or grid).
+    pub(crate) fn new(n: usize, entries: &[(usize, usize)]) -> Self {
+        let pairs: Vec<Pair<usize, usize>> = entries
+            .iter()
+            .flat_map(|&(r, c)| [Pair::new(r, c), Pair::new(c, r)])
+            .chain((0..n).map(|i| Pair::new(i, i)))
+            .collect();
+        let (pattern, _) = SymbolicSparseColMat::try_new_from_indices(n, n, &pairs)
+            .expect("indices are in range: the caller checked them");
+        let mut solver_transpose = vec![0; pattern.compute_nnz()];
+        for col in 0..n {
+            let start = pattern.col_ptr()[col];
+            for (k, &row) in pattern.row_idx_of_col_raw(col).iter().enumerate() {
+                solver_transpose[start + k] = slot_in(&pattern, col, row);
+            }
+        }
+        let cholesky = factorize_symbolic_cholesky(
+            pattern.as_ref(),
+            Side::Lower,
+            SymmetricOrdering::Amd,
+            CholeskySymbolicParams::default(),
+        )
+        .expect("a symmetric pattern of checked size always has a symbolic Cholesky factor");
+        let scratch = MemBuffer::new(Self::cholesky_scratch(&cholesky));
+        let jacobi = BlockJacobi::new(1, (0..n).collect(), &pattern);
+        SparseSolver {
+            values: vec![0.0; pattern.compute_nnz()],
+            cholesky_values: vec![0.0; cholesky.len_val()],
+            cholesky: Arc::new(cholesky),
+            pattern,
+            transpose: solver_transpose,
+            rhs: vec![0.0; n],
+            lu: None,
+            scratch,
+            counts: Factorizations {
+                symbolic_cholesky: 1,
+                ..Factorizations::default()
+            },
+            factored: None,
+            skip_cholesky: 0,
+            krylov: None,
+            ilu: None,
+            multigrid: None,
+            blocks: (1, (0..n).collect()),
+            jacobi,
+            symmetric: false,
+            iterative: false,
+        }
+    }
+
+    /// Groups the unknowns into blocks of `size` for block Jacobi: group k is
+    /// `index[k·size..(k+1)·size]` (every unknown once).
+    pub(crate) fn set_blocks(&mut self, size: usize, index: Vec<usize>) {
+        self.jacobi = BlockJacobi::new(size, index.clone(), &self.pattern);
+        self.blocks = (size, index);
+    }
+
+    /// Chooses how the systems of this run are solved: direct, or the Krylov method `linear`
+    /// gives for this size (its buffers allocated here).
+    pub(crate) fn configure(
+        &mut self,
+        linear: &LinearSolver,
+        structure: Structure,
+        in_newton: bool,
+    ) {
+        let n = self.rhs.len();
+        self.krylov = linear.krylov_for(n, structure);
+        if let Some(krylov) = &mut self.krylov {
+            krylov.in_newton = in_newton;
+        }
+        if let Some(krylov) = &self.krylov
+            && krylov.options.preconditioner == Preconditioner::Ilu0
+            && self.ilu.is_none()
+        {
+            self.ilu = Some(Ilu0::new(&self.pattern));
+        }
+        if let Some(krylov) = &mut self.krylov
+            && krylov.options.preconditioner == Preconditioner::Multigrid
+            && self.multigrid.is_none()
+        {
+            let (size, index) = &self.blocks;
+            self.multigrid = Multigrid::new(*size, index.clone(), &self.pattern);
+            if self.multigrid.is_none() {
+                // A matrix that does not coarsen: block Jacobi instead (see `Multigrid`).
+                krylov.options.preconditioner = Preconditioner::BlockJacobi;
+            }
+        }
+    }
+
+    /// The index in [`SparseSolver::values`] of entry (row, column), which must be structural.
+    pub(crate) fn slot(&self, row: usize, col: usize) -> usize {
+        slot_in(&self.pattern, row, col)
+    }
+
+    /// The matrix as faer sees it.
+    pub(crate) fn matrix(&self) -> SparseColMatRef<'_, usize, f64> {
+        SparseColMatRef::new(self.pattern.as_ref(), &self.values)
+    }
+
+    /// Whether the values are symmetric to rounding: every |aᵢⱼ − aⱼᵢ| within 1e-12 of the
+    /// largest entry. (Entry-wise relative tests fail on entries that are differences of nearly
+    /// equal terms, such as a spring's k·(1 − L/|d|) near rest.) Cholesky reads the lower
+    /// triangle, so what it ignores is a perturbation of that size.
+    fn is_symmetric(&self) -> bool {
+        let largest = self.values.iter().fold(0.0f64, |m, a| m.max(a.abs()));
+        let tolerance = 1e-12 * largest;
+        self.values
+            .iter()
+            .zip(&self.transpose)
+            .all(|(&a, &t)| (a - self.values[t]).abs() <= tolerance)
+    }
+
+    /// Prepares to solve with the values: for a Krylov run, builds the block Jacobi
+    /// preconditioner (or keeps an earlier factorization as the preconditioner until a solve
+    /// asks for a fresh one); otherwise, or when a block is singular, factorizes directly.
+    ///
+    /// Errors: [`FactorizeError::Singular`].
+    pub(crate) fn factorize(&mut self) -> Result<(), FactorizeError> {
+        self.iterative = false;
+        let Some(krylov) = &mut self.krylov else {
+            return self.factorize_direct();
+        };
+        let refresh = std::mem::take(&mut krylov.refresh);
+        let preconditioner = krylov.options.preconditioner;
+        self.symmetric = self.is_symmetric();
+        let values = &self.values;
+        // The preconditioners built from the values: false when one cannot be (a singular
+        // block or pivot, or none made), which the direct factorization then decides.
+        let built = match preconditioner {
+            Preconditioner::BlockJacobi => Some(self.jacobi.update(values).is_ok()),
+            Preconditioner::Ilu0 => {
+                Some(self.ilu.as_mut().is_some_and(|p| p.update(values).is_ok()))
+            }
+            Preconditioner::Multigrid => Some(
+                self.multigrid
+                    .as_mut()
+                    .is_some_and(|p| p.update(values).is_ok()),
+            ),
+            Preconditioner::Factorization { .. } => None,
+        };
+        match built {
+            Some(false) => return self.factorize_direct(),
+            Some(true) => self.counts.krylov.preconditioners += 1,
+            None => {
+                if self.factored.is_none() || refresh {
+                    self.factorize_direct()?;
+                }
+            }
+        }
+        self.iterative = true;
+        Ok(())
+    }
+
+    /// Solves the matrix against [`SparseSolver::rhs`], in place: by the Krylov method when
+    /// the last factorization prepared one (redone directly if it fails; NaN if the matrix
+    /// then turns out singular), else by substitution in the direct factors.
+    pub(crate) fn substitute(&mut self) {
+        if self.iterative && self.solve_iteratively().is_ok() {
+            return;
+        }
+        if self.iterative {
+            // The Krylov solve failed: the direct solve of the same matrix decides.
+            self.iterative = false;
+            if self.factorize_direct().is_err() {
+                self.rhs.fill(f64::NAN);
+                return;
+            }
+        }
+        self.substitute_direct();
+    }
+}
+
+fn slot_in(pattern: &SymbolicSparseColMat<usize>, row: usize, col: usize) -> usize {
+    let start = pattern.col_ptr()[col];
+    let rows = pattern.row_idx_of_col_raw(col);
+    start
+        + rows
+            .binary_search(&row)
+            .expect("every entry asked for is in the pattern")
+}
+
+impl Clone for SparseSolver {
+    fn clone(&self) -> Self {
+        SparseSolver {
+            pattern: self.pattern.clone(),
+            values: self.values.clone(),
+            transpose: self.transpose.clone(),
+            rhs: self.rhs.clone(),
+            cholesky: Arc::clone(&self.cholesky),
+            cholesky_values: self.cholesky_values.clone(),
+            lu: self.lu.clone(),
+            scratch: MemBuffer::new(self.scratch_size()),
+            counts: self.counts,
+            factored: self.factored,
+            skip_cholesky: self.skip_cholesky,
+            krylov: self.krylov.clone(),
+            ilu: self.ilu.clone(),
+            multigrid: self.multigrid.clone(),
+            blocks: self.blocks.clone(),
+            jacobi: self.jacobi.clone(),
+            symmetric: self.symmetric,
+            iterative: self.iterative,
+        }
+    }
+}

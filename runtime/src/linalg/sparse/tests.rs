@@ -1,0 +1,72 @@
+//! The Krylov solves against the direct solve, on a symmetric and an unsymmetric matrix.
+
+use super::*;
+use crate::{Krylov, LinearSolver, Preconditioner};
+
+/// A 2-D Laplacian-like SPD matrix, and an unsymmetric one, solved directly and by each
+/// Krylov configuration: same answer to the Krylov tolerance.
+#[test]
+fn krylov_solves_agree_with_the_direct_solve() {
+    let m = 12;
+    let n = m * m;
+    let mut entries = Vec::new();
+    for i in 0..m {
+        for j in 0..m {
+            let k = i * m + j;
+            if j + 1 < m {
+                entries.push((k, k + 1));
+            }
+            if i + 1 < m {
+                entries.push((k, k + m));
+            }
+        }
+    }
+    for skew in [0.0, 0.3] {
+        let fill = |s: &mut SparseSolver| {
+            for &(r, c) in &entries {
+                let (a, b) = (s.slot(r, c), s.slot(c, r));
+                s.values[a] = -1.0 + skew;
+                s.values[b] = -1.0 - skew;
+            }
+            for i in 0..n {
+                let d = s.slot(i, i);
+                s.values[d] = 4.5 + (i % 7) as f64 * 0.1;
+            }
+        };
+        let b: Vec<f64> = (0..n).map(|i| ((i * 37) % 11) as f64 - 5.0).collect();
+        let mut direct = SparseSolver::new(n, &entries);
+        fill(&mut direct);
+        direct.factorize().expect("the matrix is regular");
+        direct.rhs.copy_from_slice(&b);
+        direct.substitute();
+        for preconditioner in [
+            Preconditioner::BlockJacobi,
+            Preconditioner::Ilu0,
+            Preconditioner::Factorization { refresh_above: 5 },
+        ] {
+            let mut krylov = SparseSolver::new(n, &entries);
+            krylov.set_blocks(2, (0..n).collect());
+            let linear = LinearSolver::Krylov(Krylov {
+                preconditioner,
+                rtol: 1e-12,
+                ..Krylov::default()
+            });
+            krylov.configure(&linear, Structure::Field, false);
+            fill(&mut krylov);
+            for _ in 0..2 {
+                krylov.factorize().expect("the matrix is regular");
+                krylov.rhs.copy_from_slice(&b);
+                krylov.substitute();
+                let error = krylov
+                    .rhs
+                    .iter()
+                    .zip(&direct.rhs)
+                    .map(|(x, y)| (x - y).abs())
+                    .fold(0.0, f64::max);
+                assert!(error < 1e-10, "{skew} {preconditioner:?}: {error:e}");
+            }
+            assert_eq!(krylov.counts.krylov.fallbacks, 0, "{:?}", krylov.counts);
+            assert_eq!(krylov.counts.krylov.solves, 2);
+        }
+    }
+}
