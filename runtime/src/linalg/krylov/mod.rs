@@ -117,7 +117,7 @@ pub struct Krylov {
     pub newton_rtol: f64,
     /// Iterations allowed per solve (default 500). A solve that has not converged by then —
     /// or breaks down — is redone by the direct solver and counted
-    /// ([`crate::particles::Factorizations::krylov_fallbacks`]): never a wrong answer.
+    /// ([`KrylovCounts::fallbacks`]): never a wrong answer.
     pub max_iters: usize,
     /// What approximates the matrix's inverse (default [`Preconditioner::BlockJacobi`]).
     pub preconditioner: Preconditioner,
