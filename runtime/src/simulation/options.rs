@@ -1,7 +1,7 @@
 //! [`RunOptions`] and [`Length`]: what a run is asked for, the defaults, and the one check of
 //! them against the run's initial state.
 
-use crate::checks::{check_dt, divergence_limit};
+use crate::checks::{check_dt, check_t0, divergence_limit};
 use crate::drive::StepControl;
 use crate::{Error, Method, NewtonOptions, Result, State, Stepping, Tolerances};
 
@@ -134,12 +134,7 @@ impl RunOptions {
                 "no run length given: call `.steps(..)` or `.duration(..)`",
             )
         })?;
-        if !o.t0.is_finite() {
-            return Err(Error::invalid(
-                "t0",
-                format!("start time must be finite, got {:?}", o.t0),
-            ));
-        }
+        check_t0(o.t0)?;
         let dense = o
             .dense_output
             .unwrap_or(matches!(stepping, Stepping::Adaptive(_)));
@@ -150,6 +145,7 @@ impl RunOptions {
                 steps: steps_for(d, dt)?,
             },
             (Stepping::Adaptive(tolerances), Length::Duration(d)) => {
+                tolerances.check_against(initial)?;
                 let t_end = o.t0 + checked_duration(d)?;
                 if d > 0.0 && t_end == o.t0 {
                     return Err(Error::invalid(
@@ -199,7 +195,20 @@ impl RunOptions {
             ));
         }
         o.step_control.check()?;
-        o.newton.check()?;
+        if let Span::Adaptive { t_end, .. } = &span
+            && o.step_control.dt_min > t_end - o.t0
+        {
+            return Err(Error::invalid(
+                "dt_min",
+                format!(
+                    "{:e} is longer than the run ({:e}): no step could be taken; lower it",
+                    o.step_control.dt_min,
+                    t_end - o.t0
+                ),
+            ));
+        }
+        // `newton` is checked by `Integrator::start`, where every run, stepper and hand-driven
+        // integrator begins.
         Ok(Checked { span, limit, dense })
     }
 }
