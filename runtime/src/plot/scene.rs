@@ -37,7 +37,8 @@ pub struct View {
 /// and writes the image atomically to `path` (`.png` or `.svg`).
 ///
 /// Errors: [`Error::InvalidInput`] for no views, a view whose bounds are not a finite range, a
-/// segment or point that is not finite, or a path or size [`Chart::write`] would refuse.
+/// segment or point that is not finite, or a path or size
+/// [`Chart::write`](super::Chart::write) would refuse.
 pub fn views(path: impl AsRef<Path>, title: &str, views: &[View], size: (u32, u32)) -> Result<()> {
     let path = path.as_ref();
     draw::image_kind(path)?;
