@@ -6,7 +6,8 @@ use super::*;
 impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
     /// Steps adaptively until `t_end`, keeping the error estimate of every step within
     /// `tolerances`; `order` is the method's, for the first step. The tolerances and `control`
-    /// come checked against the run (`RunOptions::check`).
+    /// come checked against the run (`RunOptions::check`); here the tolerances are checked
+    /// against the state, once it is known to be finite.
     pub(crate) fn run_adaptive(
         &mut self,
         t_end: f64,
@@ -15,6 +16,7 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
         controller: Controller,
         order: u32,
     ) -> Result<()> {
+        tolerances.check_against(&self.y)?;
         let mut control_state = Control::new(control.controller.unwrap_or(controller));
         let mut h = match control.dt_initial {
             Some(h) => h,

@@ -145,7 +145,6 @@ impl RunOptions {
                 steps: steps_for(d, dt)?,
             },
             (Stepping::Adaptive(tolerances), Length::Duration(d)) => {
-                tolerances.check_against(initial)?;
                 let t_end = o.t0 + checked_duration(d)?;
                 if d > 0.0 && t_end == o.t0 {
                     return Err(Error::invalid(
