@@ -1,5 +1,5 @@
-//! Checks shared by the runners, the stepper and the integrators: a step size, the divergence
-//! limit, a state's first bad component. One home, so none of them imports another for these.
+//! Checks shared by the runners, the stepper and the integrators: a step size, a start time,
+//! the divergence limit, a state's first bad component. One home, so none of them imports another for these.
 
 use crate::{Error, Result, State};
 
@@ -13,6 +13,20 @@ pub(crate) fn check_dt(dt: f64) -> Result<()> {
         Err(Error::invalid(
             "dt",
             format!("must be finite and positive, got {dt:?}"),
+        ))
+    }
+}
+
+/// A start time: finite.
+///
+/// Errors: [`Error::InvalidInput`] otherwise.
+pub(crate) fn check_t0(t0: f64) -> Result<()> {
+    if t0.is_finite() {
+        Ok(())
+    } else {
+        Err(Error::invalid(
+            "t0",
+            format!("start time must be finite, got {t0:?}"),
         ))
     }
 }

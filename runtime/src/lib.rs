@@ -10,6 +10,7 @@
 //! liquid as particles with neighbours found every step, and [`fluids`] a grid fluid (Stable
 //! Fluids). Each module's docs say how it fits beside the `#[system]` models.
 
+mod analysis;
 mod checks;
 pub mod clock;
 pub mod drive;
@@ -29,14 +30,13 @@ pub mod reference;
 mod simulation;
 
 pub mod sph;
-pub mod stability;
 mod stack;
 mod stepper;
 mod stepping;
 mod trajectory;
-pub mod work_precision;
 pub mod xpbd;
 
+pub use analysis::{stability, work_precision};
 pub use clock::{FixedTimestep, Tick};
 pub use drive::{
     Action, Atol, Controller, Direction, Event, EventRecord, Progress, Stats, StepControl,

@@ -60,6 +60,7 @@ impl<'m, M: Model, I: Integrator<M>> Stepper<'m, M, I> {
     ) -> Result<Self> {
         check_dt(dt)?;
         let limit = crate::checks::divergence_limit(divergence_limit, &state)?;
+        crate::checks::check_t0(t0)?;
         let quiet = Recording {
             every: 0,
             save_at: None,

@@ -5,7 +5,9 @@ use super::*;
 
 impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
     /// Steps adaptively until `t_end`, keeping the error estimate of every step within
-    /// `tolerances`; `order` is the method's, for the first step.
+    /// `tolerances`; `order` is the method's, for the first step. The tolerances and `control`
+    /// come checked against the run (`RunOptions::check`); here the tolerances are checked
+    /// against the state, once it is known to be finite.
     pub(crate) fn run_adaptive(
         &mut self,
         t_end: f64,
@@ -14,19 +16,7 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
         controller: Controller,
         order: u32,
     ) -> Result<()> {
-        tolerances.check(self.y.as_slice().len())?;
         tolerances.check_against(&self.y)?;
-        control.check()?;
-        if control.dt_min > t_end - self.t {
-            return Err(Error::invalid(
-                "dt_min",
-                format!(
-                    "{:e} is longer than the run ({:e}): no step could be taken; lower it",
-                    control.dt_min,
-                    t_end - self.t
-                ),
-            ));
-        }
         let mut control_state = ControllerState::new(control.controller.unwrap_or(controller));
         let mut h = match control.dt_initial {
             Some(h) => h,

@@ -131,7 +131,8 @@ pub(crate) struct Driver<'a, 'm, M: Model, I> {
 impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
     /// Starts a run of `model` from (`t0`, `y0`): checks the state and the model, starts the
     /// method and records the initial sample.
-    // Called only from `Simulation::run` and `Stepper`, which pass their own option fields.
+    // Called only from `Simulation::run` and `Stepper`, which pass their own option fields,
+    // checked (`t0` included).
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn new(
         model: &'m M,
@@ -143,12 +144,6 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
         (event_tolerance, max_events): (f64, u64),
         recording: Recording<'a>,
     ) -> Result<Self> {
-        if !t0.is_finite() {
-            return Err(Error::invalid(
-                "t0",
-                format!("start time must be finite, got {t0:?}"),
-            ));
-        }
         if let Some((index, value)) = first_outside(&y0, limit)
             && value.is_finite()
         {

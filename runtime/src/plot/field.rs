@@ -6,7 +6,8 @@ use std::path::Path;
 
 use plotters::prelude::*;
 
-use super::{axis_label, draw};
+use super::chart::axis_label;
+use super::draw;
 use crate::{Error, Result};
 
 /// A scalar field on a `width`×`height` grid, row by row from the bottom (y up): value

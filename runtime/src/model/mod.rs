@@ -1,0 +1,158 @@
+//! The traits `#[system]` implements for a model and the integrators are generic over.
+//!
+//! A [`Model`] is first-order, y′ = f(t, y). A model with `#[position]`/`#[velocity]` fields is
+//! also [`SecondOrder`], q̈ = a(t, q, q̇): its state lays out every position, then every velocity,
+//! so the split methods see the two halves of [`State::as_slice`].
+
+pub mod flat;
+mod unavailable;
+
+pub use unavailable::Unavailable;
+
+use std::fmt::Debug;
+
+use crate::linalg::NewtonMatrix;
+use crate::{Method, Result, Simulation};
+
+/// A model's state: a list of `f64` components with names.
+pub trait State: Clone + PartialEq + Debug {
+    /// The components, positions before velocities for second-order models.
+    fn as_slice(&self) -> &[f64];
+    /// The components, mutably, in the order of [`State::as_slice`].
+    fn as_mut_slice(&mut self) -> &mut [f64];
+    /// The name of component `index` as CSV headers and errors show it (`x`, `r[1]`).
+    fn component_name(&self, index: usize) -> String;
+
+    /// A copy, allocated fallibly: how a run makes its copies of the state (the method's stages,
+    /// the driver's buffers, the first sample), so that a state too large for the machine's
+    /// memory ends the run with an error rather than aborting the process. Steps copy into
+    /// these buffers with `clone_from` and allocate nothing.
+    ///
+    /// The default clones: a fixed-size state has no heap memory. [`crate::grid::GridState`]
+    /// and [`crate::particles::ParticleState`] reserve their values with `try_reserve_exact`.
+    ///
+    /// Errors: [`crate::Error::InvalidInput`] naming the state's size when the copy cannot be
+    /// allocated.
+    fn try_clone(&self) -> Result<Self> {
+        Ok(self.clone())
+    }
+}
+
+/// A system of ordinary differential equations, y′ = f(t, y), with optional energy.
+///
+/// Implemented by `#[system]`; the runtime never asks a user to write it by hand. What a model
+/// can do beyond f(t, y) shows as two capabilities, each an associated type that is `Self` when
+/// the model has it and [`Unavailable`] when it does not: [`SecondOrder`] (a position/velocity
+/// split, needed by the symplectic methods) and [`Jacobian`] (∂f/∂y, needed by implicit Euler).
+pub trait Model {
+    /// The typed state (`<Model>State`).
+    type State: State;
+    /// This model as a [`SecondOrder`] one.
+    type SecondOrder: SecondOrder<State = Self::State>;
+    /// This model as one with a [`Jacobian`].
+    type Jacobian: Jacobian<State = Self::State>;
+    /// The model's type name, for errors.
+    const NAME: &'static str;
+    /// The method named by `#[system(integrator = ...)]`, else [`Method::Rk4`].
+    const DEFAULT_METHOD: Method;
+    /// The step named by `#[system(dt = ...)]`.
+    const DEFAULT_DT: Option<f64>;
+    /// The relative tolerance named by `#[system(rtol = ...)]`.
+    const DEFAULT_RTOL: Option<f64> = None;
+    /// The absolute tolerance named by `#[system(atol = ...)]`.
+    const DEFAULT_ATOL: Option<f64> = None;
+
+    /// The state held in the model's own fields: the usual initial state.
+    fn state(&self) -> Self::State;
+
+    /// Writes f(t, y) into `dydt`.
+    fn derivative(&self, t: f64, y: &Self::State, dydt: &mut Self::State);
+
+    /// The model's energy at `state`, if it defines `fn energy`.
+    fn energy(&self, state: &Self::State) -> Option<f64>;
+
+    /// The model as a [`SecondOrder`] one, if it is.
+    fn as_second_order(&self) -> Option<&Self::SecondOrder>;
+
+    /// The model as one with a [`Jacobian`], if it has one.
+    fn as_jacobian(&self) -> Option<&Self::Jacobian>;
+
+    /// Checks that the model and `state` can be integrated at all, before any step: particle
+    /// models check their topology and masses here. Fixed-size models have nothing to check.
+    ///
+    /// Errors: [`crate::Error::BadModel`] naming what is wrong.
+    fn check(&self, state: &Self::State) -> Result<()> {
+        let _ = state;
+        Ok(())
+    }
+
+    /// Starts configuring a run from the model's own state, method and dt.
+    fn simulate(&self) -> Simulation<'_, Self>
+    where
+        Self: Sized,
+    {
+        Simulation::new(self)
+    }
+}
+
+/// A model with a position/velocity split, q̈ = a(t, q, q̇).
+pub trait SecondOrder: Model {
+    /// Whether `fn acceleration` reads a velocity field (determined by the macro from the body).
+    const READS_VELOCITY: bool;
+
+    /// Writes a(t, q, q̇) into the velocity components of `accel`; its position components are
+    /// left as they were.
+    fn acceleration(&self, t: f64, state: &Self::State, accel: &mut Self::State);
+}
+
+/// A model whose Jacobian ∂f/∂y the macro derived exactly from the body of its force function.
+pub trait Jacobian: Model {
+    /// The Jacobian's type: `SMatrix<f64, N, N>` for a state of N ≤ 32 components,
+    /// [`crate::FaerDense`] above that, [`crate::particles::ParticleJacobian`] (sparse, sized at
+    /// run time) for particle models.
+    type Matrix: NewtonMatrix;
+    /// The structural non-zeros (row, column), known at compile time; every other entry of the
+    /// Jacobian is zero at every state. Empty for particle models, whose pattern comes from
+    /// their topology at run time.
+    const NONZEROS: &'static [(usize, usize)];
+
+    /// A Jacobian for states like `state`, every buffer allocated: called once per run.
+    fn jacobian_matrix(&self, state: &Self::State) -> Self::Matrix;
+
+    /// Writes ∂f/∂y at (t, y) into `jacobian`, every entry.
+    fn jacobian(&self, t: f64, y: &Self::State, jacobian: &mut Self::Matrix);
+
+    /// Whether f reads the time, so ∂f/∂t may be non-zero (false for autonomous models: then
+    /// methods that need ∂f/∂t skip it at no cost).
+    const TIME_DEPENDENT: bool = true;
+
+    /// Writes ∂f/∂t at (t, y) into `dfdt`.
+    ///
+    /// `#[system]` generates it exactly from the model's code, or as zero for an autonomous model.
+    /// When the time reaches f through code it cannot differentiate (a call of the user's own
+    /// function of `t`), this default is used: a central difference
+    /// (f(t + h) − f(t − h))/(2h) with h = ε^⅓·max(1, |t|), accurate to about 1e-10 relative,
+    /// which allocates one state per call.
+    fn time_derivative(&self, t: f64, y: &Self::State, dfdt: &mut Self::State) {
+        let h = f64::EPSILON.cbrt() * t.abs().max(1.0);
+        let mut minus = y.clone();
+        self.derivative(t + h, y, dfdt);
+        self.derivative(t - h, y, &mut minus);
+        for (d, m) in dfdt.as_mut_slice().iter_mut().zip(minus.as_slice()) {
+            *d = (*d - m) / (2.0 * h);
+        }
+    }
+}
+
+/// Positions and velocities of a second-order state: the two halves of its components.
+#[inline(always)]
+pub(crate) fn split(s: &[f64]) -> (&[f64], &[f64]) {
+    s.split_at(s.len() / 2)
+}
+
+/// Mutable [`split`].
+#[inline(always)]
+pub(crate) fn split_mut(s: &mut [f64]) -> (&mut [f64], &mut [f64]) {
+    let half = s.len() / 2;
+    s.split_at_mut(half)
+}
