@@ -143,12 +143,12 @@ pub enum Error {
         t: f64,
         /// The step it would have needed.
         dt: f64,
-        /// `StepControl::dt_min` in force.
+        /// `AdaptiveOptions::dt_min` in force.
         dt_min: f64,
         /// The smallest step t can take there: ten spacings of floats at t.
         resolution: f64,
     },
-    /// An adaptive run used up its step budget (`StepControl::max_steps`).
+    /// An adaptive run used up its step budget (`AdaptiveOptions::max_steps`).
     #[error(
         "{steps} steps were not enough to reach the end (stopped at t = {t:?}): the problem is \
          probably stiff for this method (use an implicit one), or raise `max_steps`"

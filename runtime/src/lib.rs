@@ -39,7 +39,7 @@ pub mod xpbd;
 pub use analysis::{stability, work_precision};
 pub use clock::{FixedTimestep, Tick};
 pub use drive::{
-    Action, Atol, Controller, Direction, Event, EventRecord, Progress, Stats, StepControl,
+    Action, AdaptiveOptions, Atol, Controller, Direction, Event, EventRecord, Progress, Stats,
     Tolerances,
 };
 pub use error::{Error, NewtonFailure, Result};

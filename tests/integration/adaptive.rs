@@ -7,7 +7,7 @@ use crate::common;
 use common::{Kepler, KeplerState, Robertson, Spring, SpringState, slope};
 use odyn::prelude::*;
 use odyn::reference::{DampedOscillator, KeplerOrbit};
-use odyn::{Error, StepControl, Stepping};
+use odyn::{AdaptiveOptions, Error, Stepping};
 
 fn damped() -> (Spring, DampedOscillator) {
     let spring = Spring {
@@ -307,16 +307,16 @@ fn events_are_handled_in_time_order() {
         g,
     };
     // With one large step, both crossings (y = 8 then y = 5) fall in the same step.
-    let control = StepControl {
+    let control = AdaptiveOptions {
         dt_initial: Some(1.4),
         dt_max: 1.4,
-        ..StepControl::default()
+        ..AdaptiveOptions::default()
     };
     let run = ball
         .simulate()
         .integrator(Method::Tsit5)
         .tolerances(1e-3, 1e-3)
-        .step_control(control)
+        .adaptive(control)
         .duration(1.35)
         .event(Event::crossing("five", |_, s: &common::BallState| s.y - 5.0).record())
         .event(Event::crossing("eight", |_, s: &common::BallState| s.y - 8.0).record())
@@ -379,15 +379,15 @@ fn a_stiff_problem_under_tsit5_hits_the_step_budget() {
         b: 0.0,
         c: 0.0,
     };
-    let control = StepControl {
+    let control = AdaptiveOptions {
         max_steps: 20_000,
-        ..StepControl::default()
+        ..AdaptiveOptions::default()
     };
     let error = model
         .simulate()
         .integrator(Method::Tsit5)
         .tolerances(1e-6, 1e-10)
-        .step_control(control)
+        .adaptive(control)
         .duration(1e5)
         .run()
         .unwrap_err();
@@ -397,14 +397,14 @@ fn a_stiff_problem_under_tsit5_hits_the_step_budget() {
     );
     assert!(error.to_string().contains("stiff"), "{error}");
     // dt_min turns the same collapse into StepSizeTooSmall.
-    let control = StepControl {
+    let control = AdaptiveOptions {
         dt_min: 1e-3,
-        ..StepControl::default()
+        ..AdaptiveOptions::default()
     };
     let error = model
         .simulate()
         .integrator(Method::Dop853)
-        .step_control(control)
+        .adaptive(control)
         .duration(1e5)
         .run()
         .unwrap_err();
@@ -431,25 +431,25 @@ fn bad_tolerances_and_step_options_are_typed_errors() {
         ),
         "atol"
     );
-    let control = |c: StepControl| sim().step_control(c).run();
+    let control = |c: AdaptiveOptions| sim().adaptive(c).run();
     assert_eq!(
-        field(control(StepControl {
+        field(control(AdaptiveOptions {
             dt_initial: Some(0.0),
-            ..StepControl::default()
+            ..AdaptiveOptions::default()
         })),
         "dt_initial"
     );
     assert_eq!(
-        field(control(StepControl {
+        field(control(AdaptiveOptions {
             max_steps: 0,
-            ..StepControl::default()
+            ..AdaptiveOptions::default()
         })),
         "max_steps"
     );
     assert_eq!(
-        field(control(StepControl {
+        field(control(AdaptiveOptions {
             dt_max: f64::NAN,
-            ..StepControl::default()
+            ..AdaptiveOptions::default()
         })),
         "dt_max"
     );

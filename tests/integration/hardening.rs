@@ -10,7 +10,7 @@ use odyn::integrators::{ImplicitEuler, SymplecticEuler};
 use odyn::plot::{Chart, Series, View, views};
 use odyn::prelude::*;
 use odyn::stability::{StabilityProbe, measured_limit};
-use odyn::{FixedTimestep, NewtonOptions, StepControl, Stepper};
+use odyn::{AdaptiveOptions, FixedTimestep, NewtonOptions, Stepper};
 
 fn spring() -> Spring {
     Spring {
@@ -878,16 +878,13 @@ fn bad_parameters_and_impossible_bounds_say_what_is_wrong() {
             .unwrap_err(),
     );
 
-    let control = StepControl {
+    let control = AdaptiveOptions {
         dt_min: 10.0,
-        ..StepControl::default()
+        ..AdaptiveOptions::default()
     };
     let model = spring();
     let sim = model.simulate().integrator(Method::Tsit5).duration(1.0);
-    assert_eq!(
-        invalid_field(sim.clone().step_control(control).run()),
-        "dt_min"
-    );
+    assert_eq!(invalid_field(sim.clone().adaptive(control).run()), "dt_min");
     assert_eq!(
         invalid_field(sim.clone().tolerances(0.0, 1e-300).run()),
         "tolerances"

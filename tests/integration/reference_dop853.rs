@@ -9,7 +9,7 @@ use crate::common;
 
 use common::{Arenstorf, Lorenz};
 use odyn::prelude::*;
-use odyn::{Controller, StepControl};
+use odyn::{AdaptiveOptions, Controller};
 
 /// One row of the script's table: tolerance (rtol = atol), SciPy's first step h₀, accepted and
 /// rejected attempts.
@@ -62,11 +62,11 @@ const LORENZ: [Row; 3] = [
     },
 ];
 
-fn scipy_control(h0: f64) -> StepControl {
-    StepControl {
+fn scipy_control(h0: f64) -> AdaptiveOptions {
+    AdaptiveOptions {
         dt_initial: Some(h0),
         controller: Some(Controller::scipy(7)),
-        ..StepControl::default()
+        ..AdaptiveOptions::default()
     }
 }
 
@@ -91,7 +91,7 @@ fn arenstorf_steps_match_scipy() {
             .simulate()
             .integrator(Method::Dop853)
             .tolerances(row.tol, row.tol)
-            .step_control(scipy_control(row.h0))
+            .adaptive(scipy_control(row.h0))
             .duration(Arenstorf::PERIOD)
             .record_every(u64::MAX)
             .run()
@@ -126,7 +126,7 @@ fn lorenz_steps_match_scipy() {
             .simulate()
             .integrator(Method::Dop853)
             .tolerances(row.tol, row.tol)
-            .step_control(scipy_control(row.h0))
+            .adaptive(scipy_control(row.h0))
             .duration(20.0)
             .record_every(u64::MAX)
             .run()

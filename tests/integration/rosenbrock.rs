@@ -7,7 +7,7 @@ use crate::common;
 use common::{Kepler, KeplerState, Oscillator, Robertson, slope};
 use odyn::prelude::*;
 use odyn::reference::KeplerOrbit;
-use odyn::{NewtonOptions, StepControl};
+use odyn::{AdaptiveOptions, NewtonOptions};
 
 /// A forced oscillator, ẍ = −x + cos 2t: linear, but it reads the time. From x = 1, ẋ = 0 its
 /// solution is x = (4/3)cos t − (1/3)cos 2t (undetermined coefficients: the particular solution
@@ -225,14 +225,14 @@ fn a_singular_matrix_is_a_typed_error() {
         matches!(error, Error::SingularMatrix { t: 0.0, dt: 0.5 }),
         "{error}"
     );
-    let control = StepControl {
+    let control = AdaptiveOptions {
         dt_initial: Some(0.5),
-        ..StepControl::default()
+        ..AdaptiveOptions::default()
     };
     let run = model
         .simulate()
         .integrator(Method::Rosenbrock23)
-        .step_control(control)
+        .adaptive(control)
         .duration(0.01)
         .run()
         .unwrap();
@@ -282,7 +282,7 @@ fn step_counts_match_the_reference_implementation() {
         (Method::Rodas5P, 4, 99, 2),
         (Method::Rosenbrock23, 2, 663, 0),
     ] {
-        let control = StepControl {
+        let control = AdaptiveOptions {
             dt_initial: Some(1e-6),
             controller: Some(odyn::Controller {
                 alpha: 1.0 / f64::from(q + 1),
@@ -291,13 +291,13 @@ fn step_counts_match_the_reference_implementation() {
                 min_factor: 0.2,
                 max_factor: 6.0,
             }),
-            ..StepControl::default()
+            ..AdaptiveOptions::default()
         };
         let run = model
             .simulate()
             .integrator(method)
             .tolerances(1e-6, 1e-10)
-            .step_control(control)
+            .adaptive(control)
             .duration(1e5)
             .record_every(u64::MAX)
             .run()

@@ -12,7 +12,7 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
         &mut self,
         t_end: f64,
         tolerances: &super::Tolerances,
-        control: &StepControl,
+        control: &AdaptiveOptions,
         controller: Controller,
         order: u32,
     ) -> Result<()> {

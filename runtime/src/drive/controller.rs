@@ -6,7 +6,7 @@ use crate::{Error, Model, Result, State, Tolerances};
 /// Options of an adaptive run beyond its tolerances. Every field has a documented default, and
 /// [`Controller`] settings default per method (each integrator's `Integrator::CONTROLLER`).
 #[derive(Clone, Debug, PartialEq)]
-pub struct StepControl {
+pub struct AdaptiveOptions {
     /// The first step; `None` (the default) picks one by Hairer's algorithm (see
     /// `initial_step`).
     pub dt_initial: Option<f64>,
@@ -24,9 +24,9 @@ pub struct StepControl {
     pub controller: Option<Controller>,
 }
 
-impl Default for StepControl {
+impl Default for AdaptiveOptions {
     fn default() -> Self {
-        StepControl {
+        AdaptiveOptions {
             dt_initial: None,
             dt_min: 0.0,
             dt_max: f64::INFINITY,
@@ -36,7 +36,7 @@ impl Default for StepControl {
     }
 }
 
-impl StepControl {
+impl AdaptiveOptions {
     /// Checks every option.
     ///
     /// Errors: [`Error::InvalidInput`] naming the first option out of range.

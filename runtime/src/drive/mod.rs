@@ -25,7 +25,7 @@ mod step;
 mod tolerances;
 
 pub use crate::integrators::DenseStep;
-pub use controller::{Controller, StepControl};
+pub use controller::{AdaptiveOptions, Controller};
 pub use dense::DenseOutput;
 pub use events::{Action, Direction, Event, EventRecord, StateChange};
 pub use stats::Stats;

@@ -8,7 +8,7 @@ mod plan;
 
 pub use options::{Length, RunOptions};
 
-use crate::drive::{Progress, StepControl};
+use crate::drive::{AdaptiveOptions, Progress};
 use crate::{Error, Event, Method, Model, NewtonOptions, Result, Stepping, Tolerances, Trajectory};
 
 /// A progress callback (see [`Simulation::progress`]).
@@ -99,8 +99,8 @@ impl<'m, M: Model> Simulation<'m, M> {
     }
 
     /// Uses `control` for the first step, step bounds, budget and controller of adaptive runs.
-    pub fn step_control(mut self, control: StepControl) -> Self {
-        self.options.step_control = control;
+    pub fn adaptive(mut self, control: AdaptiveOptions) -> Self {
+        self.options.adaptive = control;
         self
     }
 

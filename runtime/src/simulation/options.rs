@@ -2,7 +2,7 @@
 //! them against the run's initial state.
 
 use crate::checks::{check_dt, check_t0, divergence_limit};
-use crate::drive::StepControl;
+use crate::drive::AdaptiveOptions;
 use crate::{Error, Method, NewtonOptions, Result, State, Stepping, Tolerances};
 
 /// How long a run lasts.
@@ -48,7 +48,7 @@ pub struct RunOptions {
     /// Newton's method in implicit steps (see [`NewtonOptions`] for the defaults).
     pub newton: NewtonOptions,
     /// First step, step bounds, step budget and controller of adaptive runs.
-    pub step_control: StepControl,
+    pub adaptive: AdaptiveOptions,
     /// Events are located to within this time (default 1e-12, or the resolution of t if
     /// coarser). Crossings within it of each other are one instant (see [`Event`](crate::Event)).
     pub event_tolerance: f64,
@@ -69,7 +69,7 @@ impl Default for RunOptions {
             dense_output: None,
             divergence_limit: None,
             newton: NewtonOptions::default(),
-            step_control: StepControl::default(),
+            adaptive: AdaptiveOptions::default(),
             event_tolerance: 1e-12,
             max_events: 100_000,
         }
@@ -193,15 +193,15 @@ impl RunOptions {
                 ),
             ));
         }
-        o.step_control.check()?;
+        o.adaptive.check()?;
         if let Span::Adaptive { t_end, .. } = &span
-            && o.step_control.dt_min > t_end - o.t0
+            && o.adaptive.dt_min > t_end - o.t0
         {
             return Err(Error::invalid(
                 "dt_min",
                 format!(
                     "{:e} is longer than the run ({:e}): no step could be taken; lower it",
-                    o.step_control.dt_min,
+                    o.adaptive.dt_min,
                     t_end - o.t0
                 ),
             ));

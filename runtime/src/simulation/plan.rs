@@ -137,7 +137,7 @@ impl<M: Model> Plan<'_, '_, M> {
             Span::Adaptive { tolerances, t_end } => driver.run_adaptive(
                 *t_end,
                 tolerances,
-                &o.step_control,
+                &o.adaptive,
                 I::CONTROLLER,
                 I::START_ORDER,
             ),

@@ -59,7 +59,7 @@ use crate::{
 ///   starts it again there.
 ///
 /// The method chooses its own step sizes ([`Integrator::next_step`]; a
-/// [`crate::StepControl::controller`] is not used); the adaptive driver still caps them at
+/// [`crate::AdaptiveOptions::controller`] is not used); the adaptive driver still caps them at
 /// `dt_max` and shortens them to land on the end and on time events.
 ///
 /// **Fixed-step runs** have no error estimate to choose the order by: the order rises by one
