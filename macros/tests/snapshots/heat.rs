@@ -125,7 +125,7 @@ impl ::odyn::Model for Heat {
     const DEFAULT_RTOL: ::core::option::Option<f64> = ::core::option::Option::None;
     const DEFAULT_ATOL: ::core::option::Option<f64> = ::core::option::Option::None;
     fn state(&self) -> HeatState {
-        ::odyn::grid::GridState::from_grids(&[&self.u], &["u"])
+        ::odyn::__private::grid::state(&[&self.u], &["u"])
     }
     #[inline]
     fn derivative(&self, t: f64, y: &HeatState, dydt: &mut HeatState) {

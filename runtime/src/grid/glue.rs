@@ -136,3 +136,10 @@ pub fn check<M: GridSystem<F>, const F: usize>(model: &M, state: &GridState) -> 
     }
     Ok(())
 }
+
+/// [`Model::state`](crate::Model::state) of a field model: its grids' values one after another,
+/// named `names`.
+#[inline]
+pub fn state(grids: &[&Grid], names: &'static [&'static str]) -> GridState {
+    GridState::from_grids(grids, names)
+}

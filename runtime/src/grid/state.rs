@@ -16,8 +16,7 @@ pub struct GridState {
 
 impl GridState {
     /// The state of a model's grids (their sizes checked by [`Model::check`](crate::Model::check)).
-    #[doc(hidden)]
-    pub fn from_grids(grids: &[&Grid], names: &'static [&'static str]) -> Self {
+    pub(crate) fn from_grids(grids: &[&Grid], names: &'static [&'static str]) -> Self {
         let (nx, ny) = grids.first().map_or((0, 0), |g| (g.nx, g.ny));
         GridState {
             values: grids

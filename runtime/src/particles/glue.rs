@@ -2,7 +2,7 @@
 //! forces, and the `Model` and `Jacobian` methods of every particle model. Reached through
 //! `odyn::__private::particles`; not a stable API.
 
-use nalgebra::SVector;
+use nalgebra::{SMatrix, SVector};
 
 use super::{Link, ParticleJacobian, ParticleState, ParticleSystem};
 use crate::{Error, Result, State};
@@ -175,4 +175,50 @@ pub fn check<M: ParticleSystem<D>, const D: usize>(
         }
     }
     Ok(())
+}
+
+/// [`Model::state`](crate::Model::state) of a particle model: its position and velocity fields,
+/// named `names`.
+#[inline]
+pub fn state<const D: usize>(
+    positions: &[SVector<f64, D>],
+    velocities: &[SVector<f64, D>],
+    names: [&'static str; 2],
+) -> ParticleState<D> {
+    ParticleState::from_fields(positions, velocities, names)
+}
+
+/// Writes the derivative blocks of a pair kernel over `links` into `jacobian`:
+/// `kernel(link, xa, xb, va, vb)` returns ∂fₐ/∂xₐ, ∂fₐ/∂x_b, ∂fₐ/∂vₐ, ∂fₐ/∂v_b.
+#[inline]
+#[allow(
+    clippy::type_complexity,
+    reason = "the kernel's signature is the pair kernel's own"
+)]
+pub fn pair_blocks<L: Link, const D: usize>(
+    jacobian: &mut ParticleJacobian<D>,
+    links: &[L],
+    x: &[SVector<f64, D>],
+    v: &[SVector<f64, D>],
+    kernel: impl Fn(
+        &L,
+        &SVector<f64, D>,
+        &SVector<f64, D>,
+        &SVector<f64, D>,
+        &SVector<f64, D>,
+    ) -> [SMatrix<f64, D, D>; 4],
+) {
+    jacobian.pair_blocks(links, x, v, kernel);
+}
+
+/// Adds the derivative blocks of a per-particle kernel to `jacobian`: `kernel(i, x, v)` returns
+/// ∂fᵢ/∂xᵢ, ∂fᵢ/∂vᵢ.
+#[inline]
+pub fn particle_blocks<const D: usize>(
+    jacobian: &mut ParticleJacobian<D>,
+    x: &[SVector<f64, D>],
+    v: &[SVector<f64, D>],
+    kernel: impl Fn(usize, &SVector<f64, D>, &SVector<f64, D>) -> [SMatrix<f64, D, D>; 2],
+) {
+    jacobian.particle_blocks(x, v, kernel);
 }

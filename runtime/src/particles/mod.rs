@@ -56,8 +56,7 @@ impl<const D: usize> ParticleState<D> {
     }
 
     /// The state of a model's fields; lengths are checked by [`Model::check`].
-    #[doc(hidden)]
-    pub fn from_fields(
+    pub(crate) fn from_fields(
         positions: &[SVector<f64, D>],
         velocities: &[SVector<f64, D>],
         names: [&'static str; 2],

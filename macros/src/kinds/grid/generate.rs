@@ -126,7 +126,7 @@ pub(super) fn impls(
     let model_impl = ModelImpl {
         methods: quote! {
             fn state(&self) -> #state {
-                ::odyn::grid::GridState::from_grids(&[#(&self.#grids),*], &[#(#names),*])
+                ::odyn::__private::grid::state(&[#(&self.#grids),*], &[#(#names),*])
             }
             #[inline]
             fn derivative(&self, t: f64, y: &#state, dydt: &mut #state) {

@@ -170,7 +170,7 @@ pub(super) fn generate(
     let model_impl = ModelImpl {
         methods: quote! {
             fn state(&self) -> #state {
-                ::odyn::particles::ParticleState::from_fields(&self.#x, &self.#v, [#x_name, #v_name])
+                ::odyn::__private::particles::state(&self.#x, &self.#v, [#x_name, #v_name])
             }
             #[inline]
             fn derivative(&self, t: f64, y: &#state, dydt: &mut #state) {
@@ -272,7 +272,7 @@ fn kernel_jacobian(
                     [dxa, dxb, #zero, #zero]
                 }}
             };
-            quote!(jacobian.pair_blocks(&self.#field, x, v, |link, xa, xb, va, vb| #body);)
+            quote!(::odyn::__private::particles::pair_blocks(jacobian, &self.#field, x, v, |link, xa, xb, va, vb| #body);)
         }
         Over::Particles => {
             let index = kernel.index.then(|| quote!(i,));
@@ -284,7 +284,7 @@ fn kernel_jacobian(
                     [dx, #zero]
                 }}
             };
-            quote!(jacobian.particle_blocks(x, v, |i, x, v| #body);)
+            quote!(::odyn::__private::particles::particle_blocks(jacobian, x, v, |i, x, v| #body);)
         }
     };
     (function, call)

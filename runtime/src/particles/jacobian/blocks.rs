@@ -15,10 +15,12 @@ impl<const D: usize> ParticleJacobian<D> {
 
     /// Writes the blocks of a pair kernel over `links` (the next links in kernel order):
     /// `kernel(link, xa, xb, va, vb)` returns ∂fₐ/∂xₐ, ∂fₐ/∂x_b, ∂fₐ/∂vₐ, ∂fₐ/∂v_b.
-    #[doc(hidden)]
     #[inline]
-    #[allow(clippy::type_complexity)]
-    pub fn pair_blocks<L: Link>(
+    #[allow(
+        clippy::type_complexity,
+        reason = "the kernel's signature is the pair kernel's own"
+    )]
+    pub(crate) fn pair_blocks<L: Link>(
         &mut self,
         links: &[L],
         x: &[SVector<f64, D>],
@@ -40,9 +42,8 @@ impl<const D: usize> ParticleJacobian<D> {
     }
 
     /// Adds the blocks of a per-particle kernel: `kernel(i, x, v)` returns ∂fᵢ/∂xᵢ, ∂fᵢ/∂vᵢ.
-    #[doc(hidden)]
     #[inline]
-    pub fn particle_blocks(
+    pub(crate) fn particle_blocks(
         &mut self,
         x: &[SVector<f64, D>],
         v: &[SVector<f64, D>],
