@@ -23,7 +23,7 @@
 //! ```
 //!
 //! `stability` names the rule the stability explorer predicts limits by: `RungeKutta` reads
-//! `stability_polynomial()` from the integrator's module, `Composition` its `Weights` type,
+//! `tableau_polynomial()` from the integrator's module, `Composition` its `Weights` type,
 //! `Verlet` is ω·dt < 2 and `AStable` any dt on a spectrum in the left half-plane.
 
 #![no_std]

@@ -9,7 +9,7 @@ use crate::{Controller, Method, Model, State, Tolerances};
 const KEPT: usize = 16;
 
 /// R(z) from the tableau: the stability polynomial the stability explorer reads.
-pub(crate) fn stability_polynomial() -> Vec<f64> {
+pub(crate) fn tableau_polynomial() -> Vec<f64> {
     super::polynomial_from_tableau(&A, &B)
 }
 

@@ -4,7 +4,7 @@ use super::{Integrator, Step, set_axpy};
 use crate::{Method, Model, NewtonOptions, Result, State, Stats};
 
 /// R(z) = 1 + z: the stability polynomial the stability explorer reads.
-pub(crate) fn stability_polynomial() -> Vec<f64> {
+pub(crate) fn tableau_polynomial() -> Vec<f64> {
     vec![1.0, 1.0]
 }
 

@@ -94,10 +94,10 @@ macro_rules! declare_integrators {
         }
 
         /// The coefficients γⱼ of the stability polynomial R(z) = Σⱼ γⱼ zʲ of an explicit
-        /// Runge–Kutta method, from its module's `stability_polynomial()` (Hairer & Wanner,
+        /// Runge–Kutta method, from its module's `tableau_polynomial()` (Hairer & Wanner,
         /// *Solving ODEs II*, §IV.2, eq. (2.4)); empty for methods that are not explicit
         /// Runge–Kutta methods.
-        pub(crate) fn stability_polynomial(method: Method) -> Vec<f64> {
+        pub(crate) fn tableau_polynomial(method: Method) -> Vec<f64> {
             match method {
                 $(Method::$variant => declare_integrators!(@polynomial $stability $module),)*
             }
@@ -111,7 +111,7 @@ macro_rules! declare_integrators {
             }
         }
     };
-    (@polynomial RungeKutta $module:ident) => { $module::stability_polynomial() };
+    (@polynomial RungeKutta $module:ident) => { $module::tableau_polynomial() };
     (@polynomial $other:ident $module:ident) => { Vec::new() };
     (@composition Composition $module:ident) => {
         composition::oscillator_limit(<$module::Substeps as Weights>::WEIGHTS)

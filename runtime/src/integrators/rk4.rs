@@ -5,7 +5,7 @@ use crate::{Method, Model, NewtonOptions, Result, State, Stats};
 
 /// R(z) = 1 + z + z²/2 + z³/6 + z⁴/24 (the Taylor polynomial of eᶻ): the stability
 /// polynomial the stability explorer reads.
-pub(crate) fn stability_polynomial() -> Vec<f64> {
+pub(crate) fn tableau_polynomial() -> Vec<f64> {
     vec![1.0, 1.0, 0.5, 1.0 / 6.0, 1.0 / 24.0]
 }
 

@@ -6,7 +6,7 @@ use super::{DenseStep, Step, axpy};
 use crate::{Controller, Method, Model, State, Tolerances};
 
 /// R(z) from the tableau: the stability polynomial the stability explorer reads.
-pub(crate) fn stability_polynomial() -> Vec<f64> {
+pub(crate) fn tableau_polynomial() -> Vec<f64> {
     super::polynomial_from_tableau(&A, &B)
 }
 

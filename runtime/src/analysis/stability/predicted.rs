@@ -81,7 +81,7 @@ fn limit_on(points: &[Complex<f64>], fastest: f64, method: Method) -> f64 {
         StabilityRule::Verlet => 2.0 / fastest,
         StabilityRule::Composition => crate::integrators::composition_limit(method) / fastest,
         StabilityRule::RungeKutta => {
-            let polynomial = crate::integrators::stability_polynomial(method);
+            let polynomial = crate::integrators::tableau_polynomial(method);
             points
                 .iter()
                 .map(|l| ray_limit(*l, &polynomial))
@@ -166,7 +166,7 @@ pub fn disc_limit(discs: &[(f64, f64)], method: Method) -> f64 {
 /// Runge–Kutta method (explicit Euler, RK4, Tsit5, DOP853), computed from its tableau; `None`
 /// for other methods. On y′ = λy a step multiplies y by R(h·λ).
 pub fn stability_polynomial(method: Method) -> Option<Vec<f64>> {
-    let polynomial = crate::integrators::stability_polynomial(method);
+    let polynomial = crate::integrators::tableau_polynomial(method);
     (!polynomial.is_empty()).then_some(polynomial)
 }
 
