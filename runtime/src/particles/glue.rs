@@ -188,7 +188,8 @@ pub fn state<const D: usize>(
     ParticleState::from_fields(positions, velocities, names)
 }
 
-/// Writes the derivative blocks of a pair kernel over `links` into `jacobian`:
+/// Writes the derivative blocks of a pair kernel over `links` (the next links in kernel order)
+/// into `jacobian`:
 /// `kernel(link, xa, xb, va, vb)` returns ∂fₐ/∂xₐ, ∂fₐ/∂x_b, ∂fₐ/∂vₐ, ∂fₐ/∂v_b.
 #[inline]
 #[allow(
@@ -208,7 +209,13 @@ pub fn pair_blocks<L: Link, const D: usize>(
         &SVector<f64, D>,
     ) -> [SMatrix<f64, D, D>; 4],
 ) {
-    jacobian.pair_blocks(links, x, v, kernel);
+    let start = jacobian.cursor;
+    let blocks = &mut jacobian.pairs[start..start + links.len()];
+    for (link, out) in links.iter().zip(blocks) {
+        let [a, b] = link.ends();
+        *out = kernel(link, &x[a], &x[b], &v[a], &v[b]);
+    }
+    jacobian.cursor += links.len();
 }
 
 /// Adds the derivative blocks of a per-particle kernel to `jacobian`: `kernel(i, x, v)` returns
@@ -220,5 +227,9 @@ pub fn particle_blocks<const D: usize>(
     v: &[SVector<f64, D>],
     kernel: impl Fn(usize, &SVector<f64, D>, &SVector<f64, D>) -> [SMatrix<f64, D, D>; 2],
 ) {
-    jacobian.particle_blocks(x, v, kernel);
+    for (i, ((x, v), out)) in x.iter().zip(v).zip(&mut jacobian.diagonal).enumerate() {
+        let [dx, dv] = kernel(i, x, v);
+        out[0] += dx;
+        out[1] += dv;
+    }
 }

@@ -342,8 +342,8 @@ pub trait ParticleSystem<const D: usize>: Model<State = ParticleState<D>> {
         force: &mut [SVector<f64, D>],
     );
 
-    /// Writes every kernel's derivative blocks at (x, v) into `jacobian` (see
-    /// [`ParticleJacobian::pair_blocks`] and [`ParticleJacobian::particle_blocks`]).
+    /// Writes every kernel's derivative blocks at (x, v) into `jacobian`: the pair kernels' in
+    /// link order, then the per-particle kernels' added on the diagonal.
     fn add_force_jacobian(
         &self,
         t: f64,

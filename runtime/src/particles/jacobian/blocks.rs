@@ -1,59 +1,15 @@
 //! The D×D blocks of ∂f/∂x and ∂f/∂v: written by the kernels' generated derivatives, read
 //! densely for tests, and projected to definite stiffness.
 
-use nalgebra::{SMatrix, SVector};
+use nalgebra::SMatrix;
 
 use super::ParticleJacobian;
-use crate::particles::Link;
 
 impl<const D: usize> ParticleJacobian<D> {
     /// Starts a new evaluation: per-particle blocks to zero, the link cursor to the first link.
     pub(crate) fn begin(&mut self) {
         self.cursor = 0;
         self.diagonal.fill([SMatrix::zeros(); 2]);
-    }
-
-    /// Writes the blocks of a pair kernel over `links` (the next links in kernel order):
-    /// `kernel(link, xa, xb, va, vb)` returns ∂fₐ/∂xₐ, ∂fₐ/∂x_b, ∂fₐ/∂vₐ, ∂fₐ/∂v_b.
-    #[inline]
-    #[allow(
-        clippy::type_complexity,
-        reason = "the kernel's signature is the pair kernel's own"
-    )]
-    pub(crate) fn pair_blocks<L: Link>(
-        &mut self,
-        links: &[L],
-        x: &[SVector<f64, D>],
-        v: &[SVector<f64, D>],
-        kernel: impl Fn(
-            &L,
-            &SVector<f64, D>,
-            &SVector<f64, D>,
-            &SVector<f64, D>,
-            &SVector<f64, D>,
-        ) -> [SMatrix<f64, D, D>; 4],
-    ) {
-        let blocks = &mut self.pairs[self.cursor..self.cursor + links.len()];
-        for (link, out) in links.iter().zip(blocks) {
-            let [a, b] = link.ends();
-            *out = kernel(link, &x[a], &x[b], &v[a], &v[b]);
-        }
-        self.cursor += links.len();
-    }
-
-    /// Adds the blocks of a per-particle kernel: `kernel(i, x, v)` returns ∂fᵢ/∂xᵢ, ∂fᵢ/∂vᵢ.
-    #[inline]
-    pub(crate) fn particle_blocks(
-        &mut self,
-        x: &[SVector<f64, D>],
-        v: &[SVector<f64, D>],
-        kernel: impl Fn(usize, &SVector<f64, D>, &SVector<f64, D>) -> [SMatrix<f64, D, D>; 2],
-    ) {
-        for (i, ((x, v), out)) in x.iter().zip(v).zip(&mut self.diagonal).enumerate() {
-            let [dx, dv] = kernel(i, x, v);
-            out[0] += dx;
-            out[1] += dv;
-        }
     }
 
     /// ∂f/∂x and ∂f/∂v as dense D·n × D·n matrices (row = force component), pinned rows

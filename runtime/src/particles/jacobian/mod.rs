@@ -41,11 +41,11 @@ pub struct ParticleJacobian<const D: usize> {
     pinned: Vec<bool>,
     ends: Vec<[usize; 2]>,
     /// Per link: ∂fₐ/∂xₐ, ∂fₐ/∂x_b, ∂fₐ/∂vₐ, ∂fₐ/∂v_b.
-    pairs: Vec<[SMatrix<f64, D, D>; 4]>,
+    pub(in crate::particles) pairs: Vec<[SMatrix<f64, D, D>; 4]>,
     /// Per particle: ∂fᵢ/∂xᵢ, ∂fᵢ/∂vᵢ of the per-particle kernels.
-    diagonal: Vec<[SMatrix<f64, D, D>; 2]>,
+    pub(in crate::particles) diagonal: Vec<[SMatrix<f64, D, D>; 2]>,
     /// Links written so far in this evaluation.
-    cursor: usize,
+    pub(in crate::particles) cursor: usize,
     /// Project the blocks to definite stiffness before assembly ([`crate::NewtonOptions::definite`]).
     definite: bool,
     /// The c of the last factorization of I − c·J.
