@@ -268,4 +268,37 @@ mod tests {
             },
         );
     }
+    #[test]
+    fn pleiades_expansion() {
+        snapshot(
+            "pleiades",
+            quote! {
+                [jacobian = false]
+                pub struct Pleiades {
+                    #[position] pub x: [f64; 7], #[position] pub y: [f64; 7],
+                    #[velocity] pub u: [f64; 7], #[velocity] pub v: [f64; 7],
+                    pub m: [f64; 7],
+                }
+                impl Pleiades {
+                    fn acceleration(&self) -> ([f64; 7], [f64; 7]) {
+                        let mut ax = [0.0; 7];
+                        let mut ay = [0.0; 7];
+                        for i in 0..7 {
+                            for j in (i + 1)..7 {
+                                let dx = self.x[j] - self.x[i];
+                                let dy = self.y[j] - self.y[i];
+                                let r2 = dx * dx + dy * dy;
+                                let w = 1.0 / (r2 * r2.sqrt());
+                                ax[i] += self.m[j] * w * dx;
+                                ay[i] += self.m[j] * w * dy;
+                                ax[j] -= self.m[i] * w * dx;
+                                ay[j] -= self.m[i] * w * dy;
+                            }
+                        }
+                        (ax, ay)
+                    }
+                }
+            },
+        );
+    }
 }

@@ -13,7 +13,7 @@ use syn::visit_mut::{self, VisitMut};
 use syn::{Block, Expr, Ident, Member};
 
 use crate::errors::Errors;
-use crate::model::Model;
+use crate::model::{Model, Shape};
 use crate::syntax::is_self;
 
 /// The local a state field `x` is bound to inside a rewritten body.
@@ -23,15 +23,21 @@ pub(crate) fn state_local(field: &Ident) -> Ident {
 
 /// `block` with every `self.<state field>` of `model` replaced by the field's local and every other
 /// use of `self` reported; also the state fields read, with the tokens of the first read.
+///
+/// With `borrowed`, the locals of array and vector fields are references (`&[f64; N]`, so a call
+/// copies no state) and a read becomes `(*local)`: indexing it copies one component, a method
+/// call auto-references, a use by value copies as `self.x` did.
 pub(crate) fn rewrite(
     block: &Block,
     model: &Model<'_>,
     function: &Ident,
+    borrowed: bool,
     errors: &mut Errors,
 ) -> (Block, BTreeMap<String, TokenStream>) {
     let mut rewriter = Rewriter {
         model,
         function,
+        borrowed,
         reads: BTreeMap::new(),
         errors,
     };
@@ -44,6 +50,7 @@ pub(crate) fn rewrite(
 struct Rewriter<'m, 'e> {
     model: &'m Model<'m>,
     function: &'m Ident,
+    borrowed: bool,
     reads: BTreeMap<String, TokenStream>,
     errors: &'e mut Errors,
 }
@@ -73,7 +80,11 @@ impl VisitMut for Rewriter<'_, '_> {
                     .entry(name.to_string())
                     .or_insert_with(|| field.to_token_stream());
                 let local = state_local(state.ident);
-                *expr = syn::parse_quote_spanned!(name.span() => #local);
+                *expr = if self.borrowed && state.shape != Shape::Scalar {
+                    syn::parse_quote_spanned!(name.span() => (*#local))
+                } else {
+                    syn::parse_quote_spanned!(name.span() => #local)
+                };
             }
             return;
         }

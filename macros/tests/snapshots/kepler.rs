@@ -8,14 +8,14 @@ impl Kepler {
 impl Kepler {
     #[doc(hidden)]
     #[inline(always)]
-    #[allow(unused_variables, non_snake_case, clippy::too_many_arguments)]
+    #[allow(unused_variables, unused_parens, non_snake_case, clippy::all)]
     fn __odyn_acceleration(
         &self,
         _: f64,
-        __odyn_r: ::odyn::__private::nalgebra::SVector<f64, 2>,
-        __odyn_v: ::odyn::__private::nalgebra::SVector<f64, 2>,
+        __odyn_r: &::odyn::__private::nalgebra::SVector<f64, 2>,
+        __odyn_v: &::odyn::__private::nalgebra::SVector<f64, 2>,
     ) -> Vector2<f64> {
-        let r = __odyn_r;
+        let r = (*__odyn_r);
         -self.gm * r / r.norm().powi(3)
     }
 }
@@ -64,7 +64,7 @@ impl ::odyn::SecondOrder for Kepler {
     const READS_VELOCITY: bool = false;
     #[inline(always)]
     fn acceleration(&self, t: f64, y: &KeplerState, accel: &mut KeplerState) {
-        let a = self.__odyn_acceleration(t, y.r, y.v);
+        let a = self.__odyn_acceleration(t, &y.r, &y.v);
         accel.v = a;
     }
 }
@@ -86,8 +86,8 @@ impl Kepler {
     fn __odyn_jacobian(
         &self,
         _: f64,
-        __odyn_r: ::odyn::__private::nalgebra::SVector<f64, 2>,
-        __odyn_v: ::odyn::__private::nalgebra::SVector<f64, 2>,
+        __odyn_r: &::odyn::__private::nalgebra::SVector<f64, 2>,
+        __odyn_v: &::odyn::__private::nalgebra::SVector<f64, 2>,
         __odyn_jac: &mut ::odyn::__private::nalgebra::SMatrix<f64, 4, 4>,
     ) {
         let __odyn_p0: f64 = self.gm;
@@ -159,7 +159,7 @@ impl ::odyn::Jacobian for Kepler {
         y: &KeplerState,
         jacobian: &mut ::odyn::__private::nalgebra::SMatrix<f64, 4, 4>,
     ) {
-        self.__odyn_jacobian(t, y.r, y.v, jacobian)
+        self.__odyn_jacobian(t, &y.r, &y.v, jacobian)
     }
     /// The model's function does not read the time: ∂f/∂t = 0.
     const TIME_DEPENDENT: bool = false;

@@ -11,7 +11,7 @@ impl Lorenz {
 impl Lorenz {
     #[doc(hidden)]
     #[inline(always)]
-    #[allow(unused_variables, non_snake_case, clippy::too_many_arguments)]
+    #[allow(unused_variables, unused_parens, non_snake_case, clippy::all)]
     fn __odyn_derivative(
         &self,
         _: f64,

@@ -173,7 +173,7 @@ fn read(
             None
         }
     };
-    let (body, reads) = rewrite(&f.block, model, name, errors);
+    let (body, reads) = rewrite(&f.block, model, name, true, errors);
     if errors.len() > before {
         return None;
     }

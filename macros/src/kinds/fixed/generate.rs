@@ -6,7 +6,7 @@ use quote::{format_ident, quote, quote_spanned};
 use syn::ItemImpl;
 
 use super::functions::{Function, Functions};
-use super::layout::{inline_hint, state_params, time_param};
+use super::layout::{inline_hint, state_args, state_params, time_param};
 use crate::args::Args;
 use crate::generate::ModelImpl;
 use crate::model::{Model, Order, Role, Shape};
@@ -73,8 +73,8 @@ pub(crate) fn model_impls(
     let fields: Vec<_> = model.states.iter().map(|f| f.ident).collect();
     let read = |from: &str| {
         let from = format_ident!("{}", from);
-        let fields = &fields;
-        quote!(#(#from.#fields),*)
+        let args = state_args(model, &from);
+        quote!(#(#args),*)
     };
     let force_fn = format_ident!("__odyn_{}", super::functions::force_name(model.order));
     let hidden_force = hidden_fn(model, &force_fn, force, true);
@@ -184,7 +184,9 @@ fn hidden_fn(model: &Model<'_>, name: &syn::Ident, f: &Function, with_time: bool
     quote_spanned! {Span::call_site()=>
         #[doc(hidden)]
         #inline
-        #[allow(unused_variables, non_snake_case, clippy::too_many_arguments)]
+        // The original, emitted as written, draws the user's lints; its copy reads array fields
+        // as `(*local)`, whose parentheses may be redundant.
+        #[allow(unused_variables, unused_parens, non_snake_case, clippy::all)]
         fn #name(#receiver, #time #(#params),*) -> #output #body
     }
 }

@@ -7,7 +7,9 @@ use quote::{format_ident, quote};
 use syn::ItemImpl;
 
 use super::functions::Function;
-use super::layout::{JacobianBody, SMALL, component_tokens, inline_hint, state_params, time_param};
+use super::layout::{
+    JacobianBody, SMALL, component_tokens, inline_hint, state_args, state_params, time_param,
+};
 use crate::generate::{
     evaluation, hidden_fn, opaques_read, operand, prologue_tokens, straight_line, time_copy,
     time_independent,
@@ -108,7 +110,8 @@ pub(crate) fn jacobian(
         &prologue,
         body,
     );
-    let fields = model.states.iter().map(|f| f.ident);
+    let y = format_ident!("y");
+    let args = state_args(model, &y);
     let doc = format!(
         "The {count} structural non-zeros of ∂f/∂y, derived by `#[system]` from the model's code."
     );
@@ -128,7 +131,7 @@ pub(crate) fn jacobian(
             }
             #[inline]
             fn jacobian(&self, t: f64, y: &#state, jacobian: &mut #matrix) {
-                self.__odyn_jacobian(t, #(y.#fields,)* jacobian)
+                self.__odyn_jacobian(t, #(#args,)* jacobian)
             }
             #time_derivative_impl
         }
@@ -237,7 +240,8 @@ fn time_derivative(
 ) -> (Option<TokenStream>, TokenStream) {
     let (_, time_copy) = time_copy(time_ident(force));
     let state = model.state_ident();
-    let fields: Vec<_> = model.states.iter().map(|f| f.ident).collect();
+    let y = format_ident!("y");
+    let args: Vec<_> = state_args(model, &y).collect();
     if !exact {
         return (
             None,
@@ -280,7 +284,7 @@ fn time_derivative(
             const TIME_DEPENDENT: bool = true;
             #[inline]
             fn time_derivative(&self, t: f64, y: &#state, dfdt: &mut #state) {
-                self.__odyn_time_derivative(t, #(y.#fields,)* dfdt)
+                self.__odyn_time_derivative(t, #(#args,)* dfdt)
             }
         },
     )

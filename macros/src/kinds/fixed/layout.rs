@@ -41,12 +41,31 @@ pub(super) fn time_param(f: &Function) -> TokenStream {
     }
 }
 
-/// The state fields as parameters of a re-emitted function, bound to hygienic locals.
+/// The state fields as parameters of a re-emitted function, bound to hygienic locals: a scalar
+/// by value, an array or vector by reference (the rewritten body reads it as `(*local)`; see
+/// [`crate::rewrite::rewrite`]), so evaluating f copies no state.
 pub(super) fn state_params<'a>(model: &'a Model<'_>) -> impl Iterator<Item = TokenStream> + 'a {
     model.states.iter().map(|s| {
         let local = state_local(s.ident);
         let ty = s.shape.to_type();
-        quote!(#local: #ty)
+        match s.shape {
+            Shape::Scalar => quote!(#local: #ty),
+            Shape::Array(_) | Shape::Vector(_) => quote!(#local: &#ty),
+        }
+    })
+}
+
+/// The arguments matching [`state_params`], read from the state `from`.
+pub(super) fn state_args<'a>(
+    model: &'a Model<'_>,
+    from: &'a syn::Ident,
+) -> impl Iterator<Item = TokenStream> + 'a {
+    model.states.iter().map(move |s| {
+        let field = s.ident;
+        match s.shape {
+            Shape::Scalar => quote!(#from.#field),
+            Shape::Array(_) | Shape::Vector(_) => quote!(&#from.#field),
+        }
     })
 }
 

@@ -166,8 +166,13 @@ impl FrontEnd for Kind {
         let mut misread = false;
         if let Some(cell) = &cell {
             let name = &cell.f.sig.ident;
-            let (_, state_reads) =
-                crate::rewrite::rewrite(&cell.f.block, &fields.rewriter_model(), name, errors);
+            let (_, state_reads) = crate::rewrite::rewrite(
+                &cell.f.block,
+                &fields.rewriter_model(),
+                name,
+                false,
+                errors,
+            );
             if let Some(tokens) = state_reads.values().next() {
                 errors.at(
                     tokens,
