@@ -25,68 +25,8 @@ use std::path::Path;
 use odyn::output::{number, write_table};
 use odyn::plot::{Chart, Frame, Series, View, animation};
 use odyn::prelude::*;
-
-/// A double pendulum.
-#[system]
-#[derive(Clone, Copy)]
-pub struct DoublePendulum {
-    /// Upper angle from the vertical (rad).
-    #[position]
-    pub theta1: f64,
-    /// Lower angle from the vertical (rad).
-    #[position]
-    pub theta2: f64,
-    /// Upper angular velocity (rad/s).
-    #[velocity]
-    pub omega1: f64,
-    /// Lower angular velocity (rad/s).
-    #[velocity]
-    pub omega2: f64,
-    /// Upper mass.
-    pub m1: f64,
-    /// Lower mass.
-    pub m2: f64,
-    /// Upper rod length.
-    pub l1: f64,
-    /// Lower rod length.
-    pub l2: f64,
-    /// Gravity.
-    pub g: f64,
-}
-
-#[system]
-impl DoublePendulum {
-    fn acceleration(&self) -> (f64, f64) {
-        let (m1, m2, l1, l2, g) = (self.m1, self.m2, self.l1, self.l2, self.g);
-        let (w1, w2) = (self.omega1, self.omega2);
-        let d = self.theta1 - self.theta2;
-        let den = 2.0 * m1 + m2 - m2 * (2.0 * d).cos();
-        let a1 = (-g * (2.0 * m1 + m2) * self.theta1.sin()
-            - m2 * g * (self.theta1 - 2.0 * self.theta2).sin()
-            - 2.0 * d.sin() * m2 * (w2 * w2 * l2 + w1 * w1 * l1 * d.cos()))
-            / (l1 * den);
-        let a2 = 2.0
-            * d.sin()
-            * (w1 * w1 * l1 * (m1 + m2)
-                + g * (m1 + m2) * self.theta1.cos()
-                + w2 * w2 * l2 * m2 * d.cos())
-            / (l2 * den);
-        (a1, a2)
-    }
-
-    fn energy(&self) -> f64 {
-        let (m1, m2, l1, l2, g) = (self.m1, self.m2, self.l1, self.l2, self.g);
-        let (w1, w2) = (self.omega1, self.omega2);
-        let kinetic = 0.5 * m1 * l1 * l1 * w1 * w1
-            + 0.5
-                * m2
-                * (l1 * l1 * w1 * w1
-                    + l2 * l2 * w2 * w2
-                    + 2.0 * l1 * l2 * w1 * w2 * (self.theta1 - self.theta2).cos());
-        let potential = -(m1 + m2) * g * l1 * self.theta1.cos() - m2 * g * l2 * self.theta2.cos();
-        kinetic + potential
-    }
-}
+// The model, written once for the examples and checks: `scenes/src/pendulums.rs`.
+use scenes::{DoublePendulum, DoublePendulumState};
 
 /// The separation of two states (Euclidean, over angles and angular velocities).
 fn distance(a: &DoublePendulumState, b: &DoublePendulumState) -> f64 {
@@ -109,17 +49,7 @@ struct Cli {}
 fn main() -> odyn::Result<()> {
     <Cli as clap::Parser>::parse();
     let dir = Path::new("out/double_pendulum");
-    let model = DoublePendulum {
-        theta1: 2.0,
-        theta2: 2.5,
-        omega1: 0.0,
-        omega2: 0.0,
-        m1: 1.0,
-        m2: 1.0,
-        l1: 1.0,
-        l2: 1.0,
-        g: 9.81,
-    };
+    let model = DoublePendulum::released();
     let every = 0.01;
     let times: Vec<f64> = (1..=3000).map(|k| f64::from(k) * every).collect();
     let tight = |state: DoublePendulumState| {

@@ -49,6 +49,7 @@ mod ir;
 mod kinds;
 mod limits;
 mod lower;
+mod math;
 mod model;
 mod rewrite;
 mod sparsity;

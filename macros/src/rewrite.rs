@@ -21,8 +21,9 @@ pub(crate) fn state_local(field: &Ident) -> Ident {
     format_ident!("__odyn_{}", field, span = Span::mixed_site())
 }
 
-/// `block` with every `self.<state field>` of `model` replaced by the field's local and every other
-/// use of `self` reported; also the state fields read, with the tokens of the first read.
+/// `block` with every `self.<state field>` of `model` replaced by the field's local, every other
+/// use of `self` reported and its transcendental calls routed through `odyn::math`
+/// ([`crate::math`]); also the state fields read, with the tokens of the first read.
 ///
 /// With `borrowed`, the locals of array and vector fields are references (`&[f64; N]`, so a call
 /// copies no state) and a read becomes `(*local)`: indexing it copies one component, a method
@@ -43,6 +44,7 @@ pub(crate) fn rewrite(
     };
     let mut body = block.clone();
     rewriter.visit_block_mut(&mut body);
+    crate::math::route_block(&mut body);
     (body, rewriter.reads)
 }
 

@@ -20,6 +20,7 @@ pub mod fluids;
 pub mod grid;
 pub mod integrators;
 mod linalg;
+pub mod math;
 mod method;
 mod model;
 pub mod output;

@@ -6,6 +6,7 @@
 //!
 //! - [`oscillators`] — the tutorial's damped [`Spring`], the [`UndampedSpring`].
 //! - [`chaos`] — [`Lorenz`].
+//! - [`pendulums`] — the [`DoublePendulum`].
 //! - [`orbits`] — [`Kepler`], the [`Arenstorf`] orbit, the [`Pleiades`].
 //! - [`stiff`] — [`VanDerPol`] and four problems of the Bari test set ([`Robertson`], [`Hires`],
 //!   [`Pollu`], [`Orego`]) with their references.
@@ -22,6 +23,7 @@ pub mod cloth;
 pub mod fields;
 pub mod orbits;
 pub mod oscillators;
+pub mod pendulums;
 pub mod stiff;
 
 pub use analysis::slope;
@@ -30,4 +32,5 @@ pub use cloth::{Cloth, Hang, Sheet};
 pub use fields::*;
 pub use orbits::*;
 pub use oscillators::*;
+pub use pendulums::*;
 pub use stiff::*;

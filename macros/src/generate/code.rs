@@ -167,17 +167,25 @@ fn binding(
         }
         Node::Powf(a, b) => {
             let (a, b) = (operand(a), operand(b));
-            quote!(#a.powf(#b))
+            crate::math::call(&format_ident!("powf"), a, &[b])
         }
         Node::Call(f, a) => {
             let a = operand(a);
             let method = format_ident!("{}", f.method());
-            quote!(#a.#method())
+            if crate::math::routed(f.method(), 0) {
+                crate::math::call(&method, a, &[])
+            } else {
+                quote!(#a.#method())
+            }
         }
         Node::Call2(f, a, b) => {
             let (a, b) = (operand(a), operand(b));
             let method = format_ident!("{}", f.method());
-            quote!(#a.#method(#b))
+            if crate::math::routed(f.method(), 1) {
+                crate::math::call(&method, a, &[b])
+            } else {
+                quote!(#a.#method(#b))
+            }
         }
         Node::Select {
             selector,

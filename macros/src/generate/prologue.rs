@@ -62,6 +62,9 @@ pub(crate) fn prologue_tokens(prologue: &[Prologue], read: &HashSet<usize>) -> V
     }
     statements.extend(opaque_run(&run));
     statements
+        .into_iter()
+        .map(crate::math::route_statements)
+        .collect()
 }
 
 /// Collects the selectors and the opaque values (of those `read`) set inside `branch`, and their

@@ -77,26 +77,28 @@ impl Func {
         Func::Signum,
     ];
 
+    /// Its value at `x`, with `libm`'s implementation: a constant the macro folds is the same on
+    /// every host, as the `deterministic` feature's runtime values are on every target.
     pub(crate) fn eval(self, x: f64) -> f64 {
         match self {
             Func::Sqrt => x.sqrt(),
-            Func::Cbrt => x.cbrt(),
-            Func::Exp => x.exp(),
-            Func::Exp2 => x.exp2(),
-            Func::ExpM1 => x.exp_m1(),
-            Func::Ln => x.ln(),
-            Func::Ln1p => x.ln_1p(),
-            Func::Log2 => x.log2(),
-            Func::Log10 => x.log10(),
-            Func::Sin => x.sin(),
-            Func::Cos => x.cos(),
-            Func::Tan => x.tan(),
-            Func::Asin => x.asin(),
-            Func::Acos => x.acos(),
-            Func::Atan => x.atan(),
-            Func::Sinh => x.sinh(),
-            Func::Cosh => x.cosh(),
-            Func::Tanh => x.tanh(),
+            Func::Cbrt => libm::cbrt(x),
+            Func::Exp => libm::exp(x),
+            Func::Exp2 => libm::exp2(x),
+            Func::ExpM1 => libm::expm1(x),
+            Func::Ln => libm::log(x),
+            Func::Ln1p => libm::log1p(x),
+            Func::Log2 => libm::log2(x),
+            Func::Log10 => libm::log10(x),
+            Func::Sin => libm::sin(x),
+            Func::Cos => libm::cos(x),
+            Func::Tan => libm::tan(x),
+            Func::Asin => libm::asin(x),
+            Func::Acos => libm::acos(x),
+            Func::Atan => libm::atan(x),
+            Func::Sinh => libm::sinh(x),
+            Func::Cosh => libm::cosh(x),
+            Func::Tanh => libm::tanh(x),
             Func::Abs => x.abs(),
             Func::Signum => x.signum(),
         }
@@ -108,7 +110,7 @@ impl Func {
 pub(crate) enum Func2 {
     /// `y.atan2(x)`, the angle of (x, y).
     Atan2,
-    /// `a.hypot(b)` = √(a² + b²) without overflow.
+    /// `libm::hypot(a, b)` = √(a² + b²) without overflow.
     Hypot,
 }
 
@@ -122,8 +124,8 @@ impl Func2 {
 
     pub(crate) fn eval(self, a: f64, b: f64) -> f64 {
         match self {
-            Func2::Atan2 => a.atan2(b),
-            Func2::Hypot => a.hypot(b),
+            Func2::Atan2 => libm::atan2(a, b),
+            Func2::Hypot => libm::hypot(a, b),
         }
     }
 }

@@ -199,7 +199,7 @@ impl Graph {
 
     pub(crate) fn powf(&mut self, a: ExprId, b: ExprId) -> ExprId {
         match (self.constant(a), self.constant(b)) {
-            (Some(x), Some(y)) => self.num(x.powf(y)),
+            (Some(x), Some(y)) => self.num(libm::pow(x, y)),
             (_, Some(1.0)) => a,
             (_, Some(0.0)) => self.num(1.0),
             (_, Some(y)) if y.fract() == 0.0 && y.abs() <= 64.0 => self.powi(a, y as i32),
@@ -292,7 +292,7 @@ impl Graph {
             Node::Div(a, b) => e(a) / e(b),
             Node::Neg(a) => -e(a),
             Node::Powi(a, n) => e(a).powi(n),
-            Node::Powf(a, b) => e(a).powf(e(b)),
+            Node::Powf(a, b) => libm::pow(e(a), e(b)),
             Node::Call(f, a) => f.eval(e(a)),
             Node::Call2(f, a, b) => f.eval(e(a), e(b)),
             Node::Select {

@@ -1,6 +1,7 @@
 //! Step-size control: the PI controller that turns error estimates into step sizes, and Hairer's
 //! algorithm for the first step.
 
+use crate::math::Transcendental;
 use crate::{Error, Model, Result, State, Tolerances};
 
 /// Options of an adaptive run beyond its tolerances. Every field has a documented default, and
@@ -205,8 +206,10 @@ impl ControllerState {
         let factor = if err == 0.0 {
             c.max_factor
         } else {
-            (c.safety * err.powf(-c.alpha) * self.previous.powf(c.beta))
-                .clamp(c.min_factor, c.max_factor)
+            (c.safety
+                * Transcendental::powf(err, -c.alpha)
+                * Transcendental::powf(self.previous, c.beta))
+            .clamp(c.min_factor, c.max_factor)
         };
         let mut next = h * factor;
         if self.rejected_last {
@@ -221,7 +224,7 @@ impl ControllerState {
     pub(crate) fn rejected(&mut self, h: f64, err: f64) -> f64 {
         let c = &self.settings;
         let factor = if err.is_finite() {
-            (c.safety * err.powf(-c.alpha)).clamp(c.min_factor, 1.0)
+            (c.safety * Transcendental::powf(err, -c.alpha)).clamp(c.min_factor, 1.0)
         } else {
             c.min_factor
         };
@@ -269,7 +272,7 @@ pub(crate) fn initial_step<M: Model>(
     let h1 = if d1.max(d2) <= 1e-15 {
         (h0 * 1e-3).max(1e-6)
     } else {
-        (0.01 / d1.max(d2)).powf(1.0 / f64::from(order + 1))
+        Transcendental::powf(0.01 / d1.max(d2), 1.0 / f64::from(order + 1))
     };
     (100.0 * h0).min(h1).min(dt_max)
 }

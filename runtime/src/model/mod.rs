@@ -134,7 +134,7 @@ pub trait Jacobian: Model {
     /// (f(t + h) − f(t − h))/(2h) with h = ε^⅓·max(1, |t|), accurate to about 1e-10 relative,
     /// which allocates one state per call.
     fn time_derivative(&self, t: f64, y: &Self::State, dfdt: &mut Self::State) {
-        let h = f64::EPSILON.cbrt() * t.abs().max(1.0);
+        let h = crate::math::Transcendental::cbrt(f64::EPSILON) * t.abs().max(1.0);
         let mut minus = y.clone();
         self.derivative(t + h, y, dfdt);
         self.derivative(t - h, y, &mut minus);

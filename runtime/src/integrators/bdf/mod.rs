@@ -10,6 +10,7 @@ use coefficients::{
     NEWTON_MAXITER, change_d,
 };
 
+use crate::math::Transcendental;
 use super::DenseStep;
 use super::{Integrator, Step, copies};
 use crate::{
@@ -272,7 +273,7 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
         let norm = |e: &dyn Fn(usize) -> f64| tolerances.norm_of(e, y, y);
         let error = norm(&|i| ERROR_CONST[k] * d[i]);
         if error > 1.0 {
-            let factor = MIN_FACTOR.max(safety * error.powf(-1.0 / (k + 1) as f64));
+            let factor = MIN_FACTOR.max(safety * Transcendental::powf(error, -1.0 / (k + 1) as f64));
             self.next = Some(h * factor);
             self.rejected = true;
             return Ok(error);
@@ -296,9 +297,9 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
                 f64::INFINITY
             };
             let factors = [
-                lower.powf(-1.0 / k as f64),
-                error.powf(-1.0 / (k + 1) as f64),
-                higher.powf(-1.0 / (k + 2) as f64),
+                Transcendental::powf(lower, -1.0 / k as f64),
+                Transcendental::powf(error, -1.0 / (k + 1) as f64),
+                Transcendental::powf(higher, -1.0 / (k + 2) as f64),
             ];
             // The first largest, as NumPy's argmax.
             let mut best = 0;
