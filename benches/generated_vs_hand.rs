@@ -353,6 +353,29 @@ mod pleiades {
         }
         state
     }
+    /// DOP853 to t = 3 at rtol = atol = 1.78e-12 (the peers' 1e-9 target, 362 steps),
+    /// recording only the ends, with or without the dense output an adaptive run keeps by
+    /// default (`peers/benches/adaptive.rs` runs without).
+    fn dop853(dense: bool) -> PleiadesState {
+        let run = black_box(Pleiades::start())
+            .simulate()
+            .integrator(Method::Dop853)
+            .tolerances(1.78e-12, 1.78e-12)
+            .duration(3.0)
+            .record_every(u64::MAX)
+            .dense_output(dense)
+            .run()
+            .unwrap();
+        run.last().state
+    }
+    #[divan::bench(sample_count = 20)]
+    fn dop853_dense() -> PleiadesState {
+        dop853(true)
+    }
+    #[divan::bench(sample_count = 20)]
+    fn dop853_no_dense() -> PleiadesState {
+        dop853(false)
+    }
     #[divan::bench]
     fn rk4_hand() -> [f64; 28] {
         let p = black_box(Pleiades::start());

@@ -122,19 +122,31 @@ impl Tableau for Dop853Tableau {
                     .sum::<f64>()
             };
             let r = [y0, r1, r2, r3, d(&D[0]), d(&D[1]), d(&D[2]), d(&D[3])];
-            // Expand from the inside: P ← r₇; then P ← rⱼ + θ·P or rⱼ + (1 − θ)·P alternately.
-            let mut p = [0.0; 8];
-            p[0] = r[7];
-            for j in (0..7).rev() {
-                let by_theta = j % 2 == 0;
-                for i in (0..7).rev() {
-                    p[i + 1] = if by_theta { p[i] } else { p[i + 1] - p[i] };
-                }
-                if by_theta {
-                    p[0] = 0.0;
-                }
-                p[0] += r[j];
-            }
+            // Expand from the inside: P ← r₇; then P ← rⱼ + θ·P or rⱼ + (1 − θ)·P alternately,
+            // in θ's monomials. Written out on values, not as a loop over a stack array: the
+            // loop kept P in memory and made each update wait on the previous store (6.7 µs a
+            // step of 28 components, three times the step itself; perf on the Pleiades).
+            let theta = |p: [f64; 8], rj: f64| [0.0 + rj, p[0], p[1], p[2], p[3], p[4], p[5], p[6]];
+            let one_minus_theta = |p: [f64; 8], rj: f64| {
+                [
+                    p[0] + rj,
+                    p[1] - p[0],
+                    p[2] - p[1],
+                    p[3] - p[2],
+                    p[4] - p[3],
+                    p[5] - p[4],
+                    p[6] - p[5],
+                    p[7] - p[6],
+                ]
+            };
+            let p = [r[7], 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+            let p = theta(p, r[6]);
+            let p = one_minus_theta(p, r[5]);
+            let p = theta(p, r[4]);
+            let p = one_minus_theta(p, r[3]);
+            let p = theta(p, r[2]);
+            let p = one_minus_theta(p, r[1]);
+            let p = theta(p, r[0]);
             for (c, pi) in coefficients.iter_mut().zip(p) {
                 c.as_mut_slice()[m] = pi;
             }
