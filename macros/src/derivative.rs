@@ -1,5 +1,5 @@
 //! Stage 5b: exact differentiation of the expression graph, ∂e/∂yₖ (and ∂e/∂t, the time being
-//! one more variable), by the chain rule.
+//! one more variable; ∂e/∂p through a parameter's opaque reads), by the chain rule.
 //!
 //! Functions with kinks are differentiated almost everywhere, and at the kink take the
 //! derivative of the side Rust's own definition falls on: |x|′ = signum(x), which is ±1 at ±0;
@@ -31,12 +31,24 @@ enum Wrt {
         first_seed: usize,
         components: usize,
     },
+    /// One opaque value: ∂e/∂(opaque `index`), a parameter's read (`self.k`) for ∂f/∂p.
+    Opaque(usize),
 }
 
 impl Differentiator {
     /// ∂`e`/∂(variable `var`): a state component, or the time.
     pub(crate) fn derivative(&mut self, g: &mut Graph, e: ExprId, var: usize) -> ExprId {
         self.differentiate(g, e, Wrt::Var(var))
+    }
+
+    /// ∂`e`/∂(opaque value `index`): with respect to one read of a parameter.
+    pub(crate) fn derivative_by_opaque(
+        &mut self,
+        g: &mut Graph,
+        e: ExprId,
+        index: usize,
+    ) -> ExprId {
+        self.differentiate(g, e, Wrt::Opaque(index))
     }
 
     /// The forward-mode tangent of `e`, Σₖ ∂e/∂yₖ·sₖ, where the seed sₖ of state component
@@ -64,9 +76,11 @@ impl Differentiator {
             return d;
         }
         let d = match g.node(e) {
-            Node::Const(_) | Node::Opaque(_) => g.num(0.0),
+            Node::Opaque(k) => g.num(if var == Wrt::Opaque(k) { 1.0 } else { 0.0 }),
+            Node::Const(_) => g.num(0.0),
             Node::Var(k) => match var {
                 Wrt::Var(v) => g.num(if k == v { 1.0 } else { 0.0 }),
+                Wrt::Opaque(_) => g.num(0.0),
                 Wrt::Direction {
                     first_seed,
                     components,
@@ -104,13 +118,22 @@ impl Differentiator {
                 g.mul(scaled, da)
             }
             Node::Powf(a, b) => {
-                // (aᵇ)′ = b·aᵇ⁻¹·a′ for a state-independent b (the lowering guarantees it).
-                let da = self.differentiate(g, a, var);
+                // (aᵇ)′ = b·aᵇ⁻¹·a′ + aᵇ·ln a·b′. The lowering keeps b free of the state, so b′
+                // is zero but with respect to a parameter (∂f/∂p).
+                let (da, db) = (self.differentiate(g, a, var), self.differentiate(g, b, var));
                 let one = g.num(1.0);
                 let b_minus_one = g.sub(b, one);
                 let lower = g.powf(a, b_minus_one);
                 let scaled = g.mul(b, lower);
-                g.mul(scaled, da)
+                let by_base = g.mul(scaled, da);
+                if g.is_zero(db) {
+                    by_base
+                } else {
+                    let ln_a = g.call(Func::Ln, a);
+                    let by_exponent = g.mul(e, ln_a);
+                    let by_exponent = g.mul(by_exponent, db);
+                    g.add(by_base, by_exponent)
+                }
             }
             Node::Call(f, a) => {
                 let da = self.differentiate(g, a, var);

@@ -12,8 +12,9 @@ use crate::errors::Errors;
 /// odyn's attributes on a model's fields: fixed-size (`state`, `position`, `velocity`), grid
 /// (`field`), particles (`mass`, `pinned`, and `position`/`velocity` of `Vec` type). In this order
 /// in the messages that list them.
-pub(crate) const FIELD_ATTRIBUTES: [&str; 6] =
-    ["state", "position", "velocity", "field", "mass", "pinned"];
+pub(crate) const FIELD_ATTRIBUTES: [&str; 7] = [
+    "state", "position", "velocity", "field", "mass", "pinned", "param",
+];
 
 /// Rust's own attributes that may go on a struct, its fields, or a method.
 pub(crate) const RUST_ATTRIBUTES: [&str; 21] = [

@@ -50,7 +50,7 @@ pub use linalg::{
     NewtonOptions, Preconditioner, SolveError,
 };
 pub use method::{Method, MethodInfo};
-pub use model::{Jacobian, Model, SecondOrder, State, Unavailable};
+pub use model::{Jacobian, Model, Parameters, SecondOrder, State, Unavailable};
 pub use nalgebra;
 /// The `rand` crate, for ensemble members' generators ([`ensemble::MemberRng`] implements its
 /// `Rng`).

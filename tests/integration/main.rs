@@ -28,6 +28,7 @@ mod implicit;
 mod jacobian;
 mod krylov;
 mod output;
+mod parameters;
 mod particles;
 mod reference_dop853;
 mod rosenbrock;

@@ -45,6 +45,11 @@ pub(crate) trait FrontEnd: Sync {
     /// The struct half: the state type and what the model asks of an integrator, when accepted.
     fn expand_struct(&self, item: &ItemStruct, errors: &mut Errors) -> Option<Struct>;
 
+    /// Whether the kind generates ∂f/∂p for `#[param]` fields.
+    fn takes_parameters(&self) -> bool {
+        false
+    }
+
     /// The impl half: the items generated after the impl block, or the rejection.
     fn expand_impl(
         &self,
@@ -109,7 +114,11 @@ pub(crate) fn expand_struct(args_tokens: TokenStream, item: &ItemStruct) -> Toke
         validate::structure(&args, None, &mut errors);
         None
     } else {
-        let accepted = front_end(item).expand_struct(item, &mut errors);
+        let kind = front_end(item);
+        if !kind.takes_parameters() {
+            refuse_parameters(item, &mut errors);
+        }
+        let accepted = kind.expand_struct(item, &mut errors);
         let first_order = accepted.as_ref().and_then(|s| s.first_order.as_ref());
         validate::structure(&args, first_order, &mut errors);
         accepted.map(|s| s.state)
@@ -124,6 +133,19 @@ pub(crate) fn expand_struct(args_tokens: TokenStream, item: &ItemStruct) -> Toke
             let forwarder = generate::forwarder(item, &args_tokens, false);
             let stub = generate::rejected_struct(item);
             quote!(#stripped #error #forwarder #stub)
+        }
+    }
+}
+
+/// Reports each `#[param]` of a model whose kind does not generate ∂f/∂p.
+fn refuse_parameters(item: &ItemStruct, errors: &mut Errors) {
+    for field in &item.fields {
+        if let Some(attr) = fixed::param_attribute(&field.attrs) {
+            errors.at(
+                attr,
+                "`#[param]` (∂f/∂p for sensitivities and fitting) is generated for fixed-size \
+                 models only so far, not for particle or grid models",
+            );
         }
     }
 }

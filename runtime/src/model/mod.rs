@@ -5,8 +5,10 @@
 //! so the split methods see the two halves of [`State::as_slice`].
 
 pub mod flat;
+mod parameters;
 mod unavailable;
 
+pub use parameters::Parameters;
 pub use unavailable::Unavailable;
 
 use std::fmt::Debug;

@@ -218,7 +218,7 @@ fn listed_store(
 }
 
 /// The name of the force's time argument, if it has one.
-fn time_ident(force: &Function) -> Option<&syn::Ident> {
+pub(super) fn time_ident(force: &Function) -> Option<&syn::Ident> {
     force.time.as_ref().and_then(|t| match &*t.pat {
         syn::Pat::Ident(p) => Some(&p.ident),
         _ => None,

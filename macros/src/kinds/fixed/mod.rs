@@ -13,7 +13,10 @@ mod functions;
 mod generate;
 mod jacobian;
 mod layout;
+mod parameters;
 mod tangent;
+
+pub(crate) use parameters::param_attribute;
 
 use proc_macro2::TokenStream;
 use quote::quote;
@@ -39,8 +42,19 @@ impl FrontEnd for Kind {
     }
 
     /// The struct half: the state type, and what the model asks of an integrator, when accepted.
+    fn takes_parameters(&self) -> bool {
+        true
+    }
+
     fn expand_struct(&self, item: &ItemStruct, errors: &mut Errors) -> Option<Struct> {
+        // The `#[param]` fields' errors; the parameters themselves are the impl half's.
+        let before = errors.len();
+        parameters::parse(item, errors);
+        let refused_parameters = errors.len() > before;
         let model = fields::parse(item, errors)?;
+        if refused_parameters {
+            return None;
+        }
         let first_order = (model.order == Order::First).then(|| FirstOrder {
             second_order: "`#[position]`/`#[velocity]` fields",
             model: format!("`{}` is first-order (`#[state]` fields)", item.ident),
@@ -84,6 +98,29 @@ impl FrontEnd for Kind {
             },
             _ => None,
         };
+        let params = parameters::parse(item, errors);
+        if let (Some(first), Some(no_jacobian)) = (params.first(), &args.no_jacobian) {
+            errors.at(
+                no_jacobian,
+                format_args!(
+                    "`jacobian = false` turns off the generated derivatives, ∂f/∂p of \
+                     `#[param]` `{first}` among them"
+                ),
+            );
+        }
+        // ∂f/∂p from a second lowering of the force: the Jacobian consumes the first.
+        let parameters = match (&lowered, &functions.force) {
+            (Some(_), Some(force)) if !params.is_empty() => {
+                match lower::lower(&model, &force.original) {
+                    Ok(again) => parameters::parameters(&model, &params, again, force, imp, errors),
+                    Err(error) => {
+                        errors.push(error);
+                        TokenStream::new()
+                    }
+                }
+            }
+            _ => TokenStream::new(),
+        };
         if !errors.is_empty() {
             return rejected;
         }
@@ -92,6 +129,6 @@ impl FrontEnd for Kind {
             (Some(lowered), Some(force)) => jacobian::jacobian(&model, lowered, force, imp),
             _ => TokenStream::new(),
         };
-        Impl::Accepted(quote!(#generated #jacobian))
+        Impl::Accepted(quote!(#generated #jacobian #parameters))
     }
 }

@@ -1,0 +1,212 @@
+//! ∂f/∂p generated for `#[param]` fields (`odyn::Parameters`): against central differences of f
+//! in each parameter at random states, against the hand-derived values, and the parameter
+//! vector's order, round trip and length check.
+
+use odyn::Parameters;
+use odyn::nalgebra::DMatrix;
+use odyn::prelude::*;
+
+use crate::common::Rng;
+
+/// The damped spring with its stiffness and damping as parameters: ∂a/∂k = −x/m, ∂a/∂b = −v/m.
+#[system]
+#[derive(Clone, Copy, Debug)]
+pub struct FitSpring {
+    #[position]
+    pub x: f64,
+    #[velocity]
+    pub v: f64,
+    #[param]
+    pub k: f64,
+    #[param]
+    pub b: f64,
+    pub m: f64,
+}
+
+#[system]
+impl FitSpring {
+    fn acceleration(&self) -> f64 {
+        (-self.k * self.x - self.b * self.v) / self.m
+    }
+}
+
+/// Lorenz with all three coefficients as parameters.
+#[system]
+#[derive(Clone, Copy, Debug)]
+pub struct FitLorenz {
+    #[state]
+    pub x: f64,
+    #[state]
+    pub y: f64,
+    #[state]
+    pub z: f64,
+    #[param]
+    pub sigma: f64,
+    #[param]
+    pub rho: f64,
+    #[param]
+    pub beta: f64,
+}
+
+#[system]
+impl FitLorenz {
+    fn derivative(&self) -> FitLorenzState {
+        FitLorenzState {
+            x: self.sigma * (self.y - self.x),
+            y: self.x * (self.rho - self.z) - self.y,
+            z: self.x * self.y - self.beta * self.z,
+        }
+    }
+}
+
+/// A reaction of order n with an Arrhenius rate a·exp(−e/T) that switches on at t = 1, the
+/// parameters read through locals, a `powf`, an `exp`, a branch on the time and a branch on a
+/// parameter; T is a plain (unmarked) parameter.
+#[system]
+#[derive(Clone, Copy, Debug)]
+pub struct Arrhenius {
+    #[state]
+    pub c: f64,
+    #[state]
+    pub d: f64,
+    #[param]
+    pub a: f64,
+    #[param]
+    pub e: f64,
+    #[param]
+    pub n: f64,
+    pub temperature: f64,
+}
+
+#[system]
+impl Arrhenius {
+    fn derivative(&self, t: f64) -> ArrheniusState {
+        let rate = self.a * (-self.e / self.temperature).exp();
+        let on = if t >= 1.0 { 1.0 } else { 0.5 };
+        let order = if self.n > 1.0 { self.n } else { 2.0 - self.n };
+        let r = on * rate * self.c.powf(order);
+        ArrheniusState {
+            c: -r,
+            d: r - self.a * self.d,
+        }
+    }
+}
+
+/// ∂f/∂p by central differences in each parameter: h = 1e-6·(1 + |pⱼ|) leaves truncation
+/// (∝ h²) and round-off (∝ ε/h) near 1e-9 relative, so 1e-6 relative to the column's largest
+/// entry is strict but safe (as for ∂f/∂y in `common::check`).
+fn check<M: Parameters + Clone>(model: &M, t: f64, y: &M::State) {
+    let mut exact = DMatrix::zeros(0, 0);
+    model.parameter_jacobian(t, y, &mut exact);
+    let p = model.parameters();
+    let n = y.as_slice().len();
+    assert_eq!(exact.shape(), (n, p.len()));
+    for j in 0..p.len() {
+        let h = 1e-6 * (1.0 + p[j].abs());
+        let at = |delta: f64| {
+            let mut shifted = model.clone();
+            let mut values = p.clone();
+            values[j] += delta;
+            shifted.set_parameters(&values).unwrap();
+            let mut f = y.clone();
+            shifted.derivative(t, y, &mut f);
+            f
+        };
+        let (plus, minus) = (at(h), at(-h));
+        let scale = (0..n).map(|i| exact[(i, j)].abs()).fold(1e-12, f64::max);
+        for i in 0..n {
+            let fd = (plus.as_slice()[i] - minus.as_slice()[i]) / (2.0 * h);
+            assert!(
+                (fd - exact[(i, j)]).abs() <= 1e-6 * scale,
+                "∂f{i}/∂{}: exact {} against central difference {fd}",
+                M::NAMES[j],
+                exact[(i, j)]
+            );
+        }
+    }
+}
+
+#[test]
+fn spring_parameters_match_the_hand_derived_values() {
+    let spring = FitSpring {
+        x: 0.3,
+        v: -1.2,
+        k: 50.0,
+        b: 0.5,
+        m: 2.0,
+    };
+    let mut dfdp = DMatrix::zeros(0, 0);
+    spring.parameter_jacobian(0.0, &spring.state(), &mut dfdp);
+    // Rows x, v (the layout); ẋ = v reads no parameter.
+    assert_eq!(dfdp, DMatrix::from_row_slice(2, 2, &[0.0, 0.0, -0.15, 0.6]));
+    assert_eq!(FitSpring::NAMES, ["k", "b"]);
+    check(&spring, 0.0, &spring.state());
+}
+
+#[test]
+fn lorenz_parameters_match_central_differences() {
+    let mut rng = Rng(7);
+    let model = FitLorenz {
+        x: 1.0,
+        y: 1.0,
+        z: 1.0,
+        sigma: 10.0,
+        rho: 28.0,
+        beta: 8.0 / 3.0,
+    };
+    for _ in 0..20 {
+        let y = FitLorenzState {
+            x: rng.uniform(-20.0, 20.0),
+            y: rng.uniform(-20.0, 20.0),
+            z: rng.uniform(0.0, 50.0),
+        };
+        check(&model, 0.0, &y);
+    }
+    // ∂ẏ/∂ρ = x exactly.
+    let mut dfdp = DMatrix::zeros(3, 3);
+    model.parameter_jacobian(0.0, &model.state(), &mut dfdp);
+    assert_eq!(dfdp[(1, 1)], 1.0);
+}
+
+#[test]
+fn functions_branches_and_locals_of_parameters_are_differentiated() {
+    let mut rng = Rng(11);
+    for n in [0.7, 1.6] {
+        let model = Arrhenius {
+            c: 1.0,
+            d: 0.0,
+            a: 3.0,
+            e: 2.0,
+            n,
+            temperature: 1.5,
+        };
+        for t in [0.5, 2.0] {
+            for _ in 0..10 {
+                let y = ArrheniusState {
+                    c: rng.uniform(0.1, 2.0),
+                    d: rng.uniform(0.0, 1.0),
+                };
+                check(&model, t, &y);
+            }
+        }
+    }
+}
+
+#[test]
+fn parameters_round_trip_and_a_wrong_length_is_an_error() {
+    let mut model = FitLorenz {
+        x: 1.0,
+        y: 2.0,
+        z: 3.0,
+        sigma: 10.0,
+        rho: 28.0,
+        beta: 8.0 / 3.0,
+    };
+    assert_eq!(model.parameters(), [10.0, 28.0, 8.0 / 3.0]);
+    model.set_parameters(&[1.0, 2.0, 3.0]).unwrap();
+    assert_eq!((model.sigma, model.rho, model.beta), (1.0, 2.0, 3.0));
+    assert_eq!((model.x, model.y, model.z), (1.0, 2.0, 3.0));
+    let error = model.set_parameters(&[1.0]).unwrap_err();
+    assert!(matches!(error, odyn::Error::InvalidInput { .. }), "{error}");
+    assert!(error.to_string().contains("sigma, rho, beta"), "{error}");
+}
