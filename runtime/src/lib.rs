@@ -28,6 +28,7 @@ pub mod particles;
 #[cfg(feature = "plot")]
 pub mod plot;
 pub mod reference;
+pub mod sensitivity;
 mod simulation;
 
 pub mod sph;

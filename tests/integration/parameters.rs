@@ -210,3 +210,113 @@ fn parameters_round_trip_and_a_wrong_length_is_an_error() {
     assert!(matches!(error, odyn::Error::InvalidInput { .. }), "{error}");
     assert!(error.to_string().contains("sigma, rho, beta"), "{error}");
 }
+
+/// Exponential decay ċ = −k·c with k and the initial value: c = c₀e^{−kt}, ∂c/∂k = −t·c₀e^{−kt},
+/// ∂c/∂c₀ = e^{−kt} (differentiating the closed form).
+#[system]
+#[derive(Clone, Copy, Debug)]
+pub struct Decay {
+    #[state]
+    pub c: f64,
+    #[param]
+    pub k: f64,
+}
+
+#[system]
+impl Decay {
+    fn derivative(&self) -> DecayState {
+        DecayState {
+            c: -self.k * self.c,
+        }
+    }
+}
+
+#[test]
+fn sensitivities_of_decay_match_the_closed_form() {
+    use odyn::sensitivity::Sensitive;
+    let decay = Decay { c: 2.0, k: 0.7 };
+    let sensitive = Sensitive::with_initial_state(&decay);
+    let run = sensitive
+        .simulate()
+        .integrator(Method::Dop853)
+        .tolerances(1e-12, 1e-14)
+        .duration(3.0)
+        .save_at(&[1.0, 2.0, 3.0])
+        .run()
+        .unwrap();
+    assert_eq!(run.last().state.columns(), ["k", "c(t0)"]);
+    for sample in &run.samples[1..] {
+        let t = sample.t;
+        let e = (-0.7 * t).exp();
+        let s = sample.state.sensitivities();
+        // DOP853 at rtol 1e-12: errors near 1e-12 relative; 1e-9 leaves room.
+        assert!((sample.state.state()[0] - 2.0 * e).abs() < 1e-9 * 2.0 * e);
+        assert!(
+            (s[(0, 0)] + t * 2.0 * e).abs() < 1e-9 * t * 2.0 * e,
+            "t = {t}: {s}"
+        );
+        assert!((s[(0, 1)] - e).abs() < 1e-9 * e, "t = {t}: {s}");
+    }
+    assert_eq!(
+        run.last().state.component_name(2),
+        "dc/dc(t0)",
+        "the CSV header of ∂c/∂c₀"
+    );
+}
+
+/// Lorenz's sensitivities at t = 1 against central differences of whole solutions, each
+/// parameter ±h with h = 1e-5·p: truncation O(h²) ≈ 1e-8 relative (the third derivative of the
+/// solution in p over t ≤ 1 is moderate), the solves at rtol 1e-12 add ~1e-12/h ≈ 1e-8, so 1e-5
+/// relative to the column's largest entry is safe and still far below a wrong term's effect.
+#[test]
+fn lorenz_sensitivities_match_differences_of_solutions() {
+    use odyn::sensitivity::Sensitive;
+    let model = FitLorenz {
+        x: 1.0,
+        y: 1.0,
+        z: 1.0,
+        sigma: 10.0,
+        rho: 28.0,
+        beta: 8.0 / 3.0,
+    };
+    let solve = |m: &FitLorenz| {
+        let run = m
+            .simulate()
+            .integrator(Method::Dop853)
+            .tolerances(1e-12, 1e-12)
+            .duration(1.0)
+            .run()
+            .unwrap();
+        run.last().state
+    };
+    let run = Sensitive::new(&model)
+        .simulate()
+        .integrator(Method::Dop853)
+        .tolerances(1e-12, 1e-12)
+        .duration(1.0)
+        .run()
+        .unwrap();
+    let s = run.last().state.sensitivity_matrix();
+    let p = model.parameters();
+    for j in 0..3 {
+        let h = 1e-5 * p[j];
+        let at = |delta: f64| {
+            let mut m = model;
+            let mut values = p.clone();
+            values[j] += delta;
+            m.set_parameters(&values).unwrap();
+            solve(&m)
+        };
+        let (plus, minus) = (at(h), at(-h));
+        let scale = (0..3).map(|i| s[(i, j)].abs()).fold(0.0, f64::max);
+        for i in 0..3 {
+            let fd = (plus.as_slice()[i] - minus.as_slice()[i]) / (2.0 * h);
+            assert!(
+                (fd - s[(i, j)]).abs() < 1e-5 * scale,
+                "∂y{i}/∂{}: {} against {fd}",
+                FitLorenz::NAMES[j],
+                s[(i, j)]
+            );
+        }
+    }
+}

@@ -1,0 +1,155 @@
+//! Forward sensitivities: s = ∂y/∂p for the `#[param]` parameters of a model (and, if asked,
+//! ∂y/∂y₀), integrated with the solution as the augmented system
+//!
+//! y′ = f(t, y),   sⱼ′ = ∂f/∂y · sⱼ + ∂f/∂pⱼ,   sⱼ(t₀) = 0   (and sᵢ′ = ∂f/∂y · sᵢ, sᵢ(t₀) = eᵢ
+//! for ∂y/∂y₀ᵢ),
+//!
+//! the "simultaneous" forward method (Hairer, Nørsett & Wanner, *Solving ODEs I*, §I.14; SUNDIALS
+//! CVODES, `CV_SIMULTANEOUS`). ∂f/∂y and ∂f/∂p are the ones `#[system]` generated, exact. The
+//! augmented system is an ordinary model, [`Sensitive`], so every explicit method runs it —
+//! RK4 at a fixed step, Tsit5 and DOP853 adaptively with dense output, `save_at` and events —
+//! and its error control includes the sensitivities, as CVODES does by default (`errconS`).
+//! Implicit methods would need the augmented system's Jacobian (second derivatives of f); they
+//! are not offered on it yet.
+
+mod state;
+
+use std::cell::RefCell;
+
+pub use state::SensitivityState;
+
+use nalgebra::DMatrix;
+
+use crate::{DenseMatrix, Jacobian, Method, Model, Parameters, State, Unavailable};
+
+/// What a [`Sensitive`] model evaluates into, allocated once: the state, f, J and ∂f/∂p.
+#[derive(Debug)]
+struct Scratch<M: Jacobian> {
+    y: M::State,
+    f: M::State,
+    jacobian: M::Matrix,
+    dfdp: DMatrix<f64>,
+}
+
+/// A model together with its forward sensitivities, as one model whose state is a
+/// [`SensitivityState`]: `Sensitive::new(&model).simulate()…run()` integrates both.
+#[derive(Debug)]
+pub struct Sensitive<'m, M: Parameters + Jacobian> {
+    model: &'m M,
+    initial_state: bool,
+    scratch: RefCell<Scratch<M>>,
+    template: SensitivityState,
+}
+
+impl<'m, M> Sensitive<'m, M>
+where
+    M: Parameters + Jacobian,
+    M::Matrix: DenseMatrix,
+{
+    /// Sensitivities with respect to the model's `#[param]` parameters, from the model's own
+    /// state.
+    pub fn new(model: &'m M) -> Self {
+        Self::build(model, false)
+    }
+
+    /// Sensitivities with respect to the parameters and to every component of the initial
+    /// state (∂y/∂y₀, the columns after the parameters' ones).
+    pub fn with_initial_state(model: &'m M) -> Self {
+        Self::build(model, true)
+    }
+
+    fn build(model: &'m M, initial_state: bool) -> Self {
+        let y = model.state();
+        let n = y.as_slice().len();
+        let mut columns: Vec<String> = M::NAMES.iter().map(|p| (*p).to_string()).collect();
+        if initial_state {
+            columns.extend((0..n).map(|i| format!("{}(t0)", y.component_name(i))));
+        }
+        let template = SensitivityState::new(&y, columns);
+        let scratch = Scratch {
+            jacobian: model.jacobian_matrix(&y),
+            f: y.clone(),
+            dfdp: DMatrix::zeros(n, M::NAMES.len()),
+            y,
+        };
+        Sensitive {
+            model,
+            initial_state,
+            scratch: RefCell::new(scratch),
+            template,
+        }
+    }
+}
+
+impl<M> Model for Sensitive<'_, M>
+where
+    M: Parameters + Jacobian,
+    M::Matrix: DenseMatrix,
+{
+    type State = SensitivityState;
+    type SecondOrder = Unavailable<Self>;
+    type Jacobian = Unavailable<Self>;
+    const NAME: &'static str = M::NAME;
+    const DEFAULT_METHOD: Method = Method::Dop853;
+    const DEFAULT_DT: Option<f64> = M::DEFAULT_DT;
+    const DEFAULT_RTOL: Option<f64> = M::DEFAULT_RTOL;
+    const DEFAULT_ATOL: Option<f64> = M::DEFAULT_ATOL;
+
+    /// The model's state, the parameters' sensitivities zero and ∂y/∂y₀ the identity.
+    fn state(&self) -> SensitivityState {
+        let mut s = self.template.clone();
+        let y = self.model.state();
+        let n = y.as_slice().len();
+        let values = s.as_mut_slice();
+        values[..n].copy_from_slice(y.as_slice());
+        if self.initial_state {
+            let first = n * (1 + M::NAMES.len());
+            for i in 0..n {
+                values[first + i * n + i] = 1.0;
+            }
+        }
+        s
+    }
+
+    fn derivative(&self, t: f64, y: &SensitivityState, dydt: &mut SensitivityState) {
+        let scratch = &mut *self.scratch.borrow_mut();
+        let values = y.as_slice();
+        let n = scratch.y.as_slice().len();
+        scratch.y.as_mut_slice().copy_from_slice(&values[..n]);
+        self.model.derivative(t, &scratch.y, &mut scratch.f);
+        self.model.jacobian(t, &scratch.y, &mut scratch.jacobian);
+        self.model
+            .parameter_jacobian(t, &scratch.y, &mut scratch.dfdp);
+        let out = dydt.as_mut_slice();
+        out[..n].copy_from_slice(scratch.f.as_slice());
+        let parameters = M::NAMES.len();
+        let columns = (values.len() - n) / n;
+        for c in 0..columns {
+            let s = &values[n * (1 + c)..n * (2 + c)];
+            let ds = &mut out[n * (1 + c)..n * (2 + c)];
+            for (i, d) in ds.iter_mut().enumerate() {
+                let mut sum = if c < parameters {
+                    scratch.dfdp[(i, c)]
+                } else {
+                    0.0
+                };
+                for (k, sk) in s.iter().enumerate() {
+                    sum += scratch.jacobian.entry(i, k) * sk;
+                }
+                *d = sum;
+            }
+        }
+    }
+
+    fn energy(&self, _: &SensitivityState) -> Option<f64> {
+        None
+    }
+
+    fn as_second_order(&self) -> Option<&Unavailable<Self>> {
+        None
+    }
+
+    fn as_jacobian(&self) -> Option<&Unavailable<Self>> {
+        None
+    }
+}
