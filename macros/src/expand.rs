@@ -38,6 +38,27 @@ pub(crate) fn system(args: TokenStream, item: TokenStream) -> TokenStream {
     }
 }
 
+/// `#[odyn::function]` where `#[system]` did not read it (it removes the attribute from the
+/// methods of the impl block it reads): the item unchanged, and the error saying where a helper
+/// goes.
+pub(crate) fn function(args: TokenStream, item: TokenStream) -> TokenStream {
+    let name = match syn::parse2::<syn::ItemFn>(item.clone()) {
+        Ok(f) => f.sig.ident,
+        Err(error) => return with_error(item, error),
+    };
+    let message = format!(
+        "`#[odyn::function]` marks a helper of a model, read by `#[system]`: move `{name}` into \
+         the model's `#[system]` impl block (taking `&self` to read parameters, or no receiver) \
+         and call it as `self.{name}(…)` or `Self::{name}(…)`"
+    );
+    let error = if args.is_empty() {
+        syn::Error::new(name.span(), message)
+    } else {
+        syn::Error::new_spanned(args, "`#[odyn::function]` takes no arguments")
+    };
+    with_error(item, error)
+}
+
 /// The impl half: hand the impl block to the macro the struct's expansion defined.
 fn forward_impl(args: TokenStream, item: &ItemImpl) -> TokenStream {
     let mut errors = Errors::default();

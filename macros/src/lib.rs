@@ -19,6 +19,8 @@
 //! - `validate`: what the attribute's integrator asks of the model (its order, velocity-free
 //!   forces, the Jacobian, tolerances), checked once for every kind;
 //! - `model`: the state description a front-end builds — fields, roles, shapes;
+//! - `helpers`: the model's helper functions, methods marked `#[odyn::function]`, which `lower`
+//!   inlines where they are called;
 //! - `rewrite`: function bodies with every read of state made explicit;
 //! - `lower`: a body to the expression graph `ir` (`lower` for a whole-state function,
 //!   `lower_kernel` for a kernel of its arguments);
@@ -45,6 +47,7 @@ mod derivative;
 mod errors;
 mod expand;
 mod generate;
+mod helpers;
 mod ir;
 mod kinds;
 mod limits;
@@ -64,6 +67,20 @@ use proc_macro::TokenStream;
 #[proc_macro_attribute]
 pub fn system(args: TokenStream, item: TokenStream) -> TokenStream {
     expand::system(args.into(), item.into()).into()
+}
+
+/// Marks a helper function of a model: a method of the model's `#[system]` impl block,
+/// `fn restoring(&self, x: f64) -> f64` (reading parameters as `self.k`) or
+/// `fn restoring(x: f64) -> f64`, whose body `#[system]` reads and differentiates wherever the
+/// force calls it (`self.restoring(self.x)`, `Self::restoring(self.x)`).
+///
+/// `#[system]` reads the attribute and removes it; written anywhere else, on a free function or
+/// in another impl block, it is a compile error asking for the helper to be moved into the
+/// model's impl block (an attribute sees only its own item, so a free function's body would be
+/// out of `#[system]`'s sight). See the `odyn` crate's documentation.
+#[proc_macro_attribute]
+pub fn function(args: TokenStream, item: TokenStream) -> TokenStream {
+    expand::function(args.into(), item.into()).into()
 }
 
 /// The second half of `#[system]`: receives the struct (forwarded by a `macro_rules!` the struct

@@ -291,12 +291,12 @@ impl Lowering<'_> {
         syn::Error::new_spanned(
             target,
             format!(
-                "`{part} = …` in `{}` sets one component of `{name}`, but odyn reads `{name}` as \
+                "`{part} = …` in {} sets one component of `{name}`, but odyn reads `{name}` as \
                  one number: its value came from code odyn does not look into (a call, or an \
                  array whose length is not an integer literal); start `{name}` from components \
                  odyn can see, such as `[0.0; 3]`, `[0.0, 0.0, 0.0]` or `Vector3::zeros()`, or \
                  build it whole from its components: `let {name} = [a, b, c];`",
-                self.function
+                self.place()
             ),
         )
     }

@@ -161,13 +161,20 @@ impl FrontEnd for Kind {
         let Some(fields) = parse_struct(item, errors) else {
             return Impl::Rejected { silenced: None };
         };
+        // Lowered only when nothing was reported, a helper's problem included.
+        let helpers = crate::helpers::parse(imp, &fields.rewriter_model(), errors);
         let cell = parse_cell(imp, &fields, errors);
         let mut lowered = None;
         let mut misread = false;
         if let Some(cell) = &cell {
             let name = &cell.f.sig.ident;
-            let (_, state_reads) =
-                crate::rewrite::rewrite(&cell.f.block, &fields.rewriter_model(), name, errors);
+            let (_, state_reads) = crate::rewrite::rewrite(
+                &cell.f.block,
+                &fields.rewriter_model(),
+                &helpers,
+                name,
+                errors,
+            );
             if let Some(tokens) = state_reads.values().next() {
                 errors.at(
                     tokens,
@@ -188,8 +195,15 @@ impl FrontEnd for Kind {
             if args.no_jacobian.is_none() && errors.is_empty() {
                 let model = Model::parameters(fields.item, Order::First);
                 let outputs = fields.fields.len();
-                match lower::lower_kernel(&model, &renamed, &inputs, 1, outputs, cell.time.clone())
-                {
+                match lower::lower_kernel(
+                    &model,
+                    &helpers,
+                    &renamed,
+                    &inputs,
+                    1,
+                    outputs,
+                    cell.time.clone(),
+                ) {
                     Ok(l) => lowered = Some(l),
                     Err(error) => errors.push(error),
                 }
