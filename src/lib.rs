@@ -44,13 +44,20 @@
 //! - State fields are `f64`, `[f64; N]` or `SVector<f64, N>` (`Vector2<f64>`, `Vector3<f64>`…);
 //!   every other field is a parameter. The struct must come before its impl block, in the same
 //!   module.
-//! - Inside the functions, `self` is read only through its fields (`self.k`, `self.x`): odyn
-//!   evaluates them at states other than the struct's own.
+//! - Inside the functions, `self` is read only through its fields (`self.k`, `self.x`) and to
+//!   call helpers (below): odyn evaluates them at states other than the struct's own.
 //!
 //! - The macro also derives the exact Jacobian ∂f/∂y from the function's body, for implicit
 //!   Euler and the stability explorer. A body it cannot differentiate is a compile error at the
 //!   offending sub-expression; `#[system(jacobian = false)]` opts out and keeps the explicit
 //!   methods.
+//! - **Helper functions**: a method of the model's impl block marked `#[odyn::function]`
+//!   (`fn restoring(&self, x: f64) -> f64` reading parameters, or `fn drag(b: f64, v: f64) -> f64`)
+//!   may be called on the state (`self.restoring(self.x)`, `Self::drag(self.b, self.v)`): the
+//!   macro inlines its body where it differentiates, so the Jacobian stays exact through it. It
+//!   takes and returns numbers (`f64`, arrays and vectors of them, or a tuple), reads the state
+//!   only through its arguments, and may call other helpers but not itself. Marking a function
+//!   anywhere else is a compile error; see [`function`].
 //!
 //! - **Particle models** have `Vec<Vector3<f64>>` (or `Vec<Vector2<f64>>`) `#[position]` and
 //!   `#[velocity]` fields, a `#[mass]` field `Vec<f64>`, optionally `#[pinned]` particles

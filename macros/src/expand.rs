@@ -271,6 +271,29 @@ mod tests {
         );
     }
 
+    /// Helpers inlined: `restoring`'s parameter-only `let` and the state-free argument of
+    /// `drag` run in a block of their own before the Jacobian; the Jacobian is the inlined one.
+    #[test]
+    fn helper_expansion() {
+        snapshot(
+            "duffing",
+            quote! {
+                [integrator = Rodas5P]
+                pub struct Duffing {
+                    #[position] pub x: f64, #[velocity] pub v: f64,
+                    pub k: f64, pub c: f64, pub b: f64,
+                }
+                impl Duffing {
+                    fn acceleration(&self) -> f64 { self.restoring(self.x) + Self::drag(self.b, self.v) }
+                    #[odyn::function]
+                    fn restoring(&self, x: f64) -> f64 { let k = self.k * 2.0; -k * x - self.c * x.powi(3) }
+                    #[odyn::function]
+                    fn drag(b: f64, v: f64) -> f64 { -b * v * v.abs() }
+                }
+            },
+        );
+    }
+
     #[test]
     fn kepler_expansion() {
         snapshot(

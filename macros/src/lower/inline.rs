@@ -105,17 +105,14 @@ impl Lowering<'_> {
             .iter()
             .filter(|(_, _, dependent, _)| !dependent)
             .collect();
-        if !state_free.is_empty() {
-            // One `let` for all, so an argument naming a caller's local that a parameter shares
-            // its name with reads the caller's.
+        // One `let` for all, so an argument naming a caller's local that a parameter shares its
+        // name with reads the caller's; emitted only when the helper leaves code to the prologue.
+        let parameters: Option<syn::Stmt> = (!state_free.is_empty()).then(|| {
             let pats = state_free.iter().map(|(p, ..)| &p.pat);
             let types = state_free.iter().map(|(p, ..)| &p.ty);
             let values = state_free.iter().map(|(.., arg)| arg);
-            let stmt: syn::Stmt = syn::parse_quote!(
-                let (#(#pats,)*): (#(#types,)*) = (#(#values,)*);
-            );
-            self.prologue.push(Prologue::Stmt(Box::new(stmt)));
-        }
+            syn::parse_quote!(let (#(#pats,)*): (#(#types,)*) = (#(#values,)*);)
+        });
         for (param, value, dependent, _) in bound {
             if let Some(name) = &param.name {
                 self.bind(name.clone(), Some(value), dependent);
@@ -127,6 +124,10 @@ impl Lowering<'_> {
         self.scopes = caller.scopes;
         self.time_in_scope = caller.time_in_scope;
         if !own.is_empty() {
+            let mut own = own;
+            if let Some(parameters) = parameters {
+                own.insert(0, Prologue::Stmt(Box::new(parameters)));
+            }
             self.prologue.push(Prologue::Scope(own));
         }
         let value = value?;
