@@ -212,6 +212,29 @@ mod tests {
         );
     }
 
+    /// `#[odyn::function]` where `#[system]` did not read it: the item as written and one error
+    /// naming it, on a free function and on a method of another impl block alike.
+    #[test]
+    fn a_misplaced_helper_attribute_is_one_error_beside_the_item() {
+        for item in [
+            quote!(
+                fn cubic(x: f64) -> f64 {
+                    x * x * x
+                }
+            ),
+            quote!(
+                pub fn cubic(&self, x: f64) -> f64 {
+                    self.k * x * x * x
+                }
+            ),
+        ] {
+            let expanded = super::function(TokenStream::new(), item.clone()).to_string();
+            assert!(expanded.starts_with(&item.to_string()), "{expanded}");
+            assert_eq!(expanded.matches("compile_error").count(), 1, "{expanded}");
+            assert!(expanded.contains("move `cubic` into"), "{expanded}");
+        }
+    }
+
     #[test]
     fn grid_expansion() {
         snapshot(

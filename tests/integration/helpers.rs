@@ -171,6 +171,7 @@ struct Helped {
     gm: f64,
     scale: f64,
     k: f64,
+    soft: bool,
 }
 
 #[system]
@@ -184,20 +185,31 @@ impl Helped {
         let kk = k.floor();
         HelpedState {
             p: soft - kk * self.p + self.drive(t) * angle.cos(),
-            q: radius.sin() - self.q,
+            q: radius.sin() - self.q * Self::stepped(self.a),
             r: self.gravity(self.r),
         }
     }
 
-    /// Smooth (C¹) at 1: x² below, 2x − 1 above.
+    /// Smooth (C¹) at 1: x² below, 2x − 1 above, times a gain chosen by a parameter: a branch
+    /// on parameters and an early `return` on the state inside a helper.
     #[odyn::function]
     fn ramp(&self, x: f64) -> f64 {
-        let k = self.k * self.scale;
-        if x > 1.0 {
-            k * (2.0 * x - 1.0)
+        let k = if self.soft {
+            self.k * self.scale
         } else {
-            k * x * x
+            self.k
+        };
+        if x > 1.0 {
+            return k * (2.0 * x - 1.0);
         }
+        k * x * x
+    }
+
+    /// Not differentiable by odyn (`floor`), and called only on parameters: evaluated by the
+    /// user's code, as any call on parameters.
+    #[odyn::function]
+    fn stepped(x: f64) -> f64 {
+        x.floor()
     }
 
     #[odyn::function]
@@ -226,6 +238,7 @@ fn helpers_with_branches_tuples_vectors_and_the_time_have_exact_derivatives() {
         gm: 2.0,
         scale: 0.5,
         k: 3.0,
+        soft: true,
     };
     for t in [0.0, 0.4, 2.5] {
         check(&model, t, 100, |r| HelpedState {
@@ -258,6 +271,26 @@ fn helpers_with_branches_tuples_vectors_and_the_time_have_exact_derivatives() {
     let mut j = model.jacobian_matrix(&y);
     model.jacobian(0.0, &y, &mut j);
     assert_eq!(j[(0, 0)], 1.0);
+    // The other arm of the helper's branch on `soft`: gain k = 3, so 2·3 − 2; and ∂q̇/∂q =
+    // −floor(a).
+    let hard = Helped {
+        soft: false,
+        ..model
+    };
+    hard.jacobian(0.0, &y, &mut j);
+    assert_eq!(j[(0, 0)], 4.0);
+    let radius = 0.5f64.hypot(2.5);
+    let exact = radius.cos() * 0.5 / radius - 1.0;
+    assert!(
+        (j[(1, 1)] - exact).abs() < 1e-15,
+        "{} vs {exact}",
+        j[(1, 1)]
+    );
+    check(&hard, 0.3, 100, |r| HelpedState {
+        p: r.uniform(-2.0, 3.0),
+        q: r.uniform(0.1, 1.0),
+        r: Vector2::new(r.uniform(0.5, 2.0), r.uniform(-2.0, -0.5)),
+    });
 }
 
 /// Cables that pull only when stretched (as `particles::Cables`), the tension a helper of the
