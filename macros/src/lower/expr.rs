@@ -111,8 +111,12 @@ impl Lowering<'_> {
             Expr::Field(f) => self.field(f),
             Expr::Index(index) => {
                 let base = self.expr(&index.expr)?;
-                let i = int_literal(&index.index).ok_or_else(|| {
-                    self.error(&index.index, "an index that is not an integer literal")
+                let i = self.known_index(&index.index).ok_or_else(|| {
+                    self.error(
+                        &index.index,
+                        "an index that is not an integer literal (or a loop variable of an \
+                         unrolled loop)",
+                    )
                 })?;
                 self.component(&base, i, &index.index)
             }

@@ -20,12 +20,15 @@
 //! - [`methods`]: the one table of supported methods, with their rules and the list the error
 //!   messages print;
 //! - [`inline`]: calls of the model's helper functions ([`crate::helpers`]), lowered by lowering
-//!   the helper's body in a scope of its own.
+//!   the helper's body in a scope of its own;
+//! - [`loops`]: loops whose body reads the state, unrolled when odyn can count their iterations
+//!   at compile time.
 
 mod branches;
 mod conditions;
 mod expr;
 mod inline;
+mod loops;
 mod methods;
 mod scope;
 mod state;
@@ -131,6 +134,8 @@ struct Lowering<'m> {
     too_deep: bool,
     /// Set when the time reaches an opaque value (so ∂f/∂t cannot be exact).
     time_opaque: bool,
+    /// Loop iterations unrolled so far (see [`loops`]).
+    iterations: usize,
 }
 
 /// Lowers the body of `f`, the model's `acceleration` or `derivative`, inlining the `helpers` it
@@ -218,6 +223,7 @@ impl<'m> Lowering<'m> {
             depth: 0,
             too_deep: false,
             time_opaque: false,
+            iterations: 0,
         }
     }
 
