@@ -6,8 +6,10 @@
 //!        ─► kinds: the FrontEnd of the struct's kind (one row of kinds::KINDS) reads the
 //!           struct and the functions, reporting what it rejects at its token
 //!        ─► validate (what the integrator asks: order, velocity-free forces, the Jacobian)
-//!        ─► model (state description) ─► rewrite (self.x → state locals)
-//!        ─► lower (body → expression graph, ir) ─► derivative / sparsity (∂f, pattern)
+//!        ─► model (state description) ─► helpers (#[odyn::function] methods)
+//!        ─► rewrite (self.x → state locals)
+//!        ─► lower (body → expression graph, ir; helpers inlined, loops on the state unrolled)
+//!        ─► derivative / sparsity (∂f, pattern)
 //!        ─► generate: hidden (derivatives → hidden methods: code, prologue), model (the one
 //!           impl Model) ─► the kind's generate (its runtime trait impls)
 //!   rejected anywhere: the item, the errors, and stand-ins (kinds::expand_impl, one path)
