@@ -638,10 +638,11 @@ mod unrolled {
 
     use odyn::prelude::*;
 
-    /// Loops on the state with bounds known at compile time, unrolled by the macro: a `for` over a
-    /// literal range indexing the state by its variable, a `while` on a counter, a nested loop whose
-    /// bound is the outer variable, and a state-free local the loop changes as it goes (`w`), which
-    /// the Jacobian's prologue replays iteration by iteration.
+    /// Loops on the state with bounds known at compile time, unrolled by the macro: a `for` over
+    /// a literal range indexing the state by its variable, with `if`s on the variable (as a
+    /// statement and as a value), a `while` on a counter, a nested loop whose bound is the outer
+    /// variable, and a state-free local the loop changes as it goes (`w`), which the Jacobian's
+    /// prologue replays iteration by iteration.
     #[system]
     #[derive(Clone, Copy, Debug)]
     pub(super) struct Unrolled {
@@ -655,9 +656,18 @@ mod unrolled {
     impl Unrolled {
         fn derivative(&self) -> UnrolledState {
             let mut out = [0.0; 4];
-            out[0] = -self.k * self.x[0];
-            for i in 1..4 {
-                out[i] = self.k * (self.x[i - 1] - self.x[i]);
+            for i in 0..4 {
+                // Known at compile time in each iteration: only the arm taken is lowered, so
+                // `self.x[i - 1]` is never read at i = 0.
+                let mut left = 0.0;
+                if i > 0 {
+                    left = self.x[i - 1];
+                }
+                out[i] = if i == 0 {
+                    -self.k * self.x[0]
+                } else {
+                    self.k * (left - self.x[i])
+                };
             }
             let mut energy = 0.0;
             let mut i = 0;

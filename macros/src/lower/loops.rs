@@ -174,7 +174,7 @@ impl Lowering<'_> {
 
     /// The value of a loop condition at compile time: comparisons of known integers joined by
     /// `&&`, `||` and `!`.
-    fn known_condition(&mut self, e: &Expr) -> Option<bool> {
+    pub(super) fn known_condition(&mut self, e: &Expr) -> Option<bool> {
         match e {
             Expr::Paren(p) => self.known_condition(&p.expr),
             Expr::Group(g) => self.known_condition(&g.expr),
