@@ -467,3 +467,52 @@ fn a_grid_cell_calling_a_helper_has_the_hand_inlined_jacobian() {
     inline.derivative(0.0, &state, &mut g);
     assert_eq!(f.as_slice(), g.as_slice());
 }
+
+/// A helper called in an arm of an `if` on the state, given a parameter, changing a local of its
+/// own that has the name of one of its caller's: the helper's code runs in a block of its own,
+/// so it neither changes the caller's `g` nor counts as the arm changing it.
+#[system]
+#[derive(Clone, Copy, Debug)]
+struct Armed {
+    #[state]
+    x: f64,
+    k: f64,
+}
+
+#[system]
+impl Armed {
+    fn derivative(&self) -> ArmedState {
+        let g = self.k + 1.0;
+        let y = if self.x > 0.0 {
+            self.scaled(self.x, self.k)
+        } else {
+            -self.x
+        };
+        ArmedState {
+            x: y * g.floor() - self.x,
+        }
+    }
+
+    #[odyn::function]
+    fn scaled(&self, x: f64, k: f64) -> f64 {
+        let mut g = k;
+        g *= 2.0;
+        g * x * x
+    }
+}
+
+#[test]
+fn a_helper_in_an_arm_on_the_state_keeps_its_locals_to_itself() {
+    let model = Armed { x: 0.0, k: 1.25 };
+    check(&model, 0.0, 100, |r| ArmedState {
+        x: if r.uniform(0.0, 1.0) < 0.5 {
+            r.uniform(-2.0, -0.01)
+        } else {
+            r.uniform(0.01, 2.0)
+        },
+    });
+    // x > 0: ẋ = 2k·x²·floor(k + 1) − x, so ∂ẋ/∂x = 4k·x·2 − 1 with the caller's g = 2.25.
+    let mut j = model.jacobian_matrix(&model.state());
+    model.jacobian(0.0, &ArmedState { x: 0.5 }, &mut j);
+    assert_eq!(j[(0, 0)], 4.0 * 1.25 * 0.5 * 2.0 - 1.0);
+}
