@@ -38,6 +38,27 @@ pub(crate) fn system(args: TokenStream, item: TokenStream) -> TokenStream {
     }
 }
 
+/// `#[odyn::function]` where `#[system]` did not read it (it removes the attribute from the
+/// methods of the impl block it reads): the item unchanged, and the error saying where a helper
+/// goes.
+pub(crate) fn function(args: TokenStream, item: TokenStream) -> TokenStream {
+    let name = match syn::parse2::<syn::ItemFn>(item.clone()) {
+        Ok(f) => f.sig.ident,
+        Err(error) => return with_error(item, error),
+    };
+    let message = format!(
+        "`#[odyn::function]` marks a helper of a model, read by `#[system]`: move `{name}` into \
+         the model's `#[system]` impl block (taking `&self` to read parameters, or no receiver) \
+         and call it as `self.{name}(…)` or `Self::{name}(…)`"
+    );
+    let error = if args.is_empty() {
+        syn::Error::new(name.span(), message)
+    } else {
+        syn::Error::new_spanned(args, "`#[odyn::function]` takes no arguments")
+    };
+    with_error(item, error)
+}
+
 /// The impl half: hand the impl block to the macro the struct's expansion defined.
 fn forward_impl(args: TokenStream, item: &ItemImpl) -> TokenStream {
     let mut errors = Errors::default();
@@ -191,6 +212,29 @@ mod tests {
         );
     }
 
+    /// `#[odyn::function]` where `#[system]` did not read it: the item as written and one error
+    /// naming it, on a free function and on a method of another impl block alike.
+    #[test]
+    fn a_misplaced_helper_attribute_is_one_error_beside_the_item() {
+        for item in [
+            quote!(
+                fn cubic(x: f64) -> f64 {
+                    x * x * x
+                }
+            ),
+            quote!(
+                pub fn cubic(&self, x: f64) -> f64 {
+                    self.k * x * x * x
+                }
+            ),
+        ] {
+            let expanded = super::function(TokenStream::new(), item.clone()).to_string();
+            assert!(expanded.starts_with(&item.to_string()), "{expanded}");
+            assert_eq!(expanded.matches("compile_error").count(), 1, "{expanded}");
+            assert!(expanded.contains("move `cubic` into"), "{expanded}");
+        }
+    }
+
     #[test]
     fn grid_expansion() {
         snapshot(
@@ -245,6 +289,29 @@ mod tests {
                             z: self.x * self.y - self.beta * self.z,
                         }
                     }
+                }
+            },
+        );
+    }
+
+    /// Helpers inlined: `restoring`'s parameter-only `let` and the state-free argument of
+    /// `drag` run in a block of their own before the Jacobian; the Jacobian is the inlined one.
+    #[test]
+    fn helper_expansion() {
+        snapshot(
+            "duffing",
+            quote! {
+                [integrator = Rodas5P]
+                pub struct Duffing {
+                    #[position] pub x: f64, #[velocity] pub v: f64,
+                    pub k: f64, pub c: f64, pub b: f64,
+                }
+                impl Duffing {
+                    fn acceleration(&self) -> f64 { self.restoring(self.x) + Self::drag(self.b, self.v) }
+                    #[odyn::function]
+                    fn restoring(&self, x: f64) -> f64 { let k = self.k * 2.0; -k * x - self.c * x.powi(3) }
+                    #[odyn::function]
+                    fn drag(b: f64, v: f64) -> f64 { -b * v * v.abs() }
                 }
             },
         );

@@ -6,8 +6,10 @@
 //!        ─► kinds: the FrontEnd of the struct's kind (one row of kinds::KINDS) reads the
 //!           struct and the functions, reporting what it rejects at its token
 //!        ─► validate (what the integrator asks: order, velocity-free forces, the Jacobian)
-//!        ─► model (state description) ─► rewrite (self.x → state locals)
-//!        ─► lower (body → expression graph, ir) ─► derivative / sparsity (∂f, pattern)
+//!        ─► model (state description) ─► helpers (#[odyn::function] methods)
+//!        ─► rewrite (self.x → state locals)
+//!        ─► lower (body → expression graph, ir; helpers inlined, loops on the state unrolled)
+//!        ─► derivative / sparsity (∂f, pattern)
 //!        ─► generate: hidden (derivatives → hidden methods: code, prologue), model (the one
 //!           impl Model) ─► the kind's generate (its runtime trait impls)
 //!   rejected anywhere: the item, the errors, and stand-ins (kinds::expand_impl, one path)
@@ -19,6 +21,8 @@
 //! - `validate`: what the attribute's integrator asks of the model (its order, velocity-free
 //!   forces, the Jacobian, tolerances), checked once for every kind;
 //! - `model`: the state description a front-end builds — fields, roles, shapes;
+//! - `helpers`: the model's helper functions, methods marked `#[odyn::function]`, which `lower`
+//!   inlines where they are called;
 //! - `rewrite`: function bodies with every read of state made explicit;
 //! - `lower`: a body to the expression graph `ir` (`lower` for a whole-state function,
 //!   `lower_kernel` for a kernel of its arguments);
@@ -45,6 +49,7 @@ mod derivative;
 mod errors;
 mod expand;
 mod generate;
+mod helpers;
 mod ir;
 mod kinds;
 mod limits;
@@ -65,6 +70,20 @@ use proc_macro::TokenStream;
 #[proc_macro_attribute]
 pub fn system(args: TokenStream, item: TokenStream) -> TokenStream {
     expand::system(args.into(), item.into()).into()
+}
+
+/// Marks a helper function of a model: a method of the model's `#[system]` impl block,
+/// `fn restoring(&self, x: f64) -> f64` (reading parameters as `self.k`) or
+/// `fn restoring(x: f64) -> f64`, whose body `#[system]` reads and differentiates wherever the
+/// force calls it (`self.restoring(self.x)`, `Self::restoring(self.x)`).
+///
+/// `#[system]` reads the attribute and removes it; written anywhere else, on a free function or
+/// in another impl block, it is a compile error asking for the helper to be moved into the
+/// model's impl block (an attribute sees only its own item, so a free function's body would be
+/// out of `#[system]`'s sight). See the `odyn` crate's documentation.
+#[proc_macro_attribute]
+pub fn function(args: TokenStream, item: TokenStream) -> TokenStream {
+    expand::function(args.into(), item.into()).into()
 }
 
 /// The second half of `#[system]`: receives the struct (forwarded by a `macro_rules!` the struct

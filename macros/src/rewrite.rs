@@ -13,6 +13,7 @@ use syn::visit_mut::{self, VisitMut};
 use syn::{Block, Expr, Ident, Member};
 
 use crate::errors::Errors;
+use crate::helpers::Helpers;
 use crate::model::{Model, Shape};
 use crate::syntax::is_self;
 
@@ -22,7 +23,8 @@ pub(crate) fn state_local(field: &Ident) -> Ident {
 }
 
 /// `block` with every `self.<state field>` of `model` replaced by the field's local, every other
-/// use of `self` reported and its transcendental calls routed through `odyn::math`
+/// use of `self` reported but calls of `helpers` taking `&self` (`self.restoring(self.x)`, whose
+/// arguments are rewritten), and its transcendental calls routed through `odyn::math`
 /// ([`crate::math`]); also the state fields read, with the tokens of the first read.
 ///
 /// With `borrowed`, the locals of array and vector fields are references (`&[f64; N]`, so a call
@@ -31,12 +33,14 @@ pub(crate) fn state_local(field: &Ident) -> Ident {
 pub(crate) fn rewrite(
     block: &Block,
     model: &Model<'_>,
+    helpers: &Helpers,
     function: &Ident,
     borrowed: bool,
     errors: &mut Errors,
 ) -> (Block, BTreeMap<String, TokenStream>) {
     let mut rewriter = Rewriter {
         model,
+        helpers,
         function,
         borrowed,
         reads: BTreeMap::new(),
@@ -51,6 +55,7 @@ pub(crate) fn rewrite(
 /// Replaces `self.<state field>` with the field's local and rejects every other use of `self`.
 struct Rewriter<'m, 'e> {
     model: &'m Model<'m>,
+    helpers: &'m Helpers,
     function: &'m Ident,
     borrowed: bool,
     reads: BTreeMap<String, TokenStream>,
@@ -93,9 +98,23 @@ impl VisitMut for Rewriter<'_, '_> {
         if let Expr::MethodCall(call) = expr
             && is_self(&call.receiver)
         {
-            self.reject_self(
-                call.method.span(),
-                &format!("calling `self.{}()`", call.method),
+            if self.helpers.is_method(&call.method) {
+                for arg in &mut call.args {
+                    self.visit_expr_mut(arg);
+                }
+                return;
+            }
+            let method = &call.method;
+            self.errors.at_span(
+                method.span(),
+                format_args!(
+                    "calling `self.{method}()` is not supported in `{}`: odyn evaluates it at \
+                     states other than the struct's own, so `self` may only be read through its \
+                     fields (`self.k`, `self.x`); to call a helper, write it in the model's \
+                     `#[system]` impl block and mark it `#[odyn::function]` (it reads the state \
+                     only through its arguments: `self.{method}(self.x)`)",
+                    self.function
+                ),
             );
             return;
         }

@@ -127,13 +127,34 @@ pub(crate) fn strip_field_attributes(item: &ItemStruct) -> ItemStruct {
     item
 }
 
-/// The impl block minus the method attributes `names` (odyn's, which rustc does not know).
+/// Whether `attr` marks a helper function: `#[odyn::function]` (or `#[function]`, like the
+/// kernels' `#[cell]`), which `#[system]` reads on the methods of the model's impl block.
+pub(crate) fn is_function_attribute(attr: &Attribute) -> bool {
+    let path = attr.path();
+    let segments: Vec<String> = path.segments.iter().map(|s| s.ident.to_string()).collect();
+    path.segments.iter().all(|s| s.arguments.is_none())
+        && match segments.as_slice() {
+            [f] => f == "function" && path.leading_colon.is_none(),
+            [odyn, f] => odyn == "odyn" && f == "function",
+            _ => false,
+        }
+}
+
+/// The impl block minus the method attributes `names` and `#[odyn::function]` (odyn's, which
+/// `#[system]` has read: the helper attribute of its own would report a misplaced helper).
 pub(crate) fn strip_method_attributes(imp: &ItemImpl, names: &[&str]) -> ItemImpl {
     let mut imp = imp.clone();
     for member in &mut imp.items {
         if let ImplItem::Fn(f) = member {
-            f.attrs
-                .retain(|a| !names.iter().any(|n| a.path().is_ident(n)));
+            let helper = f.attrs.iter().any(is_function_attribute);
+            f.attrs.retain(|a| {
+                !names.iter().any(|n| a.path().is_ident(n)) && !is_function_attribute(a)
+            });
+            // A helper runs inside the derivative: its transcendental calls go through
+            // `odyn::math` as the force's do (the `deterministic` feature).
+            if helper {
+                crate::math::route_block(&mut f.block);
+            }
         }
     }
     imp

@@ -24,6 +24,7 @@ mod extremes;
 mod fluids;
 mod grid;
 mod hardening;
+mod helpers;
 mod implicit;
 mod jacobian;
 mod krylov;

@@ -151,7 +151,33 @@ mod loop_body_reads_state {
         pub x: f64,
         #[velocity]
         pub v: f64,
-        pub k: f64,
+        pub n: usize,
+    }
+
+    #[system]
+    impl Model {
+        fn acceleration(&self) -> f64 {
+            let mut a = 0.0;
+            for _ in 0..self.n {
+                a -= self.x;
+            }
+            a
+        }
+    }
+
+    fn main() {}
+}
+
+mod break_in_loop_on_state {
+    use odyn::prelude::*;
+
+    #[system()]
+    pub struct Model {
+        #[position]
+        pub x: f64,
+        #[velocity]
+        pub v: f64,
+        pub stop: bool,
     }
 
     #[system]
@@ -159,6 +185,34 @@ mod loop_body_reads_state {
         fn acceleration(&self) -> f64 {
             let mut a = 0.0;
             for _ in 0..3 {
+                if self.stop {
+                    break;
+                }
+                a -= self.x;
+            }
+            a
+        }
+    }
+
+    fn main() {}
+}
+
+mod unrolled_too_far {
+    use odyn::prelude::*;
+
+    #[system()]
+    pub struct Model {
+        #[position]
+        pub x: f64,
+        #[velocity]
+        pub v: f64,
+    }
+
+    #[system]
+    impl Model {
+        fn acceleration(&self) -> f64 {
+            let mut a = 0.0;
+            for _ in 0..100_000 {
                 a -= self.x;
             }
             a

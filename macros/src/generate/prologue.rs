@@ -27,8 +27,9 @@ pub(crate) fn opaques_read(graph: &crate::ir::Graph, roots: &[ExprId]) -> HashSe
 }
 
 /// The prologue as statements: the user's state-independent code, the opaque values of `read`
-/// ([`opaques_read`]), and the branches on parameters, each setting its selector to the arm it
-/// took. Opaque values and selectors set inside a branch are declared before it (NaN and
+/// ([`opaques_read`]), the branches on parameters, each setting its selector to the arm it
+/// took, and the blocks of inlined helpers. Opaque values and selectors set inside a branch (or a
+/// helper's block) are declared before it (NaN and
 /// `usize::MAX` until an arm sets them), since the straight-line code that follows reads every
 /// arm's values. Past [`RUN`] declarations, or [`RUN`] opaque values at the top, they are bound
 /// [`RUN`] to a `let` (see the module docs).
@@ -37,8 +38,14 @@ pub(crate) fn prologue_tokens(prologue: &[Prologue], read: &HashSet<usize>) -> V
     let mut values = Vec::new();
     let mut statements = Vec::new();
     for item in prologue {
-        if let Prologue::Branch(branch) = item {
-            declare(branch, read, &mut selectors, &mut values, &mut statements);
+        match item {
+            Prologue::Branch(branch) => {
+                declare(branch, read, &mut selectors, &mut values, &mut statements);
+            }
+            Prologue::Scope(items) => {
+                declare_items(items, read, &mut selectors, &mut values, &mut statements);
+            }
+            Prologue::Stmt(_) | Prologue::Opaque(..) => {}
         }
     }
     if selectors.len() + values.len() > RUN {
@@ -81,7 +88,20 @@ fn declare(
         out.push(quote!(let mut #selector: usize = usize::MAX;));
         selectors.push(selector);
     }
-    for item in branch.arms.iter().flatten() {
+    for arm in &branch.arms {
+        declare_items(arm, read, selectors, values, out);
+    }
+}
+
+/// [`declare`] for the items of a block (a branch's arm, an inlined helper's scope).
+fn declare_items(
+    items: &[Prologue],
+    read: &HashSet<usize>,
+    selectors: &mut Vec<syn::Ident>,
+    values: &mut Vec<syn::Ident>,
+    out: &mut Vec<TokenStream>,
+) {
+    for item in items {
         match item {
             Prologue::Opaque(i, _) if read.contains(i) => {
                 let name = opaque_ident(*i);
@@ -90,6 +110,7 @@ fn declare(
             }
             Prologue::Opaque(..) => {}
             Prologue::Branch(inner) => declare(inner, read, selectors, values, out),
+            Prologue::Scope(inner) => declare_items(inner, read, selectors, values, out),
             Prologue::Stmt(_) => {}
         }
     }
@@ -130,6 +151,10 @@ fn prologue_item(item: &Prologue, read: &HashSet<usize>, top: bool) -> TokenStre
             } else {
                 quote!(#name = #tokens;)
             }
+        }
+        Prologue::Scope(items) => {
+            let items = items.iter().map(|p| prologue_item(p, read, false));
+            quote!({ #(#items)* })
         }
         Prologue::Branch(branch) => {
             let selector = selector_ident(branch.selector);

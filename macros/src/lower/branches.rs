@@ -208,6 +208,9 @@ impl Lowering<'_> {
 
     /// `if`/`match` as a statement: each arm's changes to locals are selected by the arm taken.
     pub(super) fn branch_statement(&mut self, e: &Expr) -> syn::Result<()> {
+        if let Some(stmts) = self.known_arm(e) {
+            return self.known_arm_lowered(&stmts, Context::Arm).map(|_| ());
+        }
         let arms = self.arms(e)?;
         let (chooser, results) =
             self.lower_arms(arms, |l, stmts| match l.run(stmts, Context::Arm)? {
@@ -220,6 +223,15 @@ impl Lowering<'_> {
     /// `if`/`match` as a value: the arms' values (and changes to locals) selected by the arm
     /// taken.
     pub(super) fn branch_value(&mut self, e: &Expr) -> syn::Result<Value> {
+        if let Some(stmts) = self.known_arm(e) {
+            return match self.known_arm_lowered(&stmts, Context::Block)? {
+                Ending::Value(v) => Ok(v),
+                Ending::Continue => Err(self.error(
+                    e,
+                    "a branch arm without a value (an `if` without `else` used as a value?)",
+                )),
+            };
+        }
         let arms = self.arms(e)?;
         let (chooser, results) =
             self.lower_arms(arms, |l, stmts| match l.run(stmts, Context::Block)? {
@@ -232,6 +244,44 @@ impl Lowering<'_> {
         let (values, scopes): (Vec<Value>, Vec<Scopes>) = results.into_iter().unzip();
         self.merge(&chooser, &scopes, e)?;
         self.select(&chooser, values, e)
+    }
+
+    /// The statements of the arm an `if` takes when its conditions are known at compile time
+    /// (`if k > 0` on the variable of an unrolled loop): only that arm is lowered, so the others
+    /// may do what the iteration could not (`self.x[k - 1]` at k = 0).
+    fn known_arm(&mut self, e: &Expr) -> Option<Vec<Stmt>> {
+        let Expr::If(first) = e else { return None };
+        let mut branch = first;
+        loop {
+            if !self.known_condition(&branch.cond)? {
+                match branch.else_branch.as_ref().map(|(_, e)| &**e) {
+                    Some(Expr::If(next)) => branch = next,
+                    Some(Expr::Block(b)) => return Some(b.block.stmts.clone()),
+                    Some(_) => return None,
+                    None => return Some(Vec::new()),
+                }
+            } else {
+                return Some(branch.then_branch.stmts.clone());
+            }
+        }
+    }
+
+    /// The arm [`Self::known_arm`] chose, in a scope of its own, its prologue in a block.
+    fn known_arm_lowered(&mut self, stmts: &[Stmt], context: Context) -> syn::Result<Ending> {
+        let outer = std::mem::take(&mut self.prologue);
+        self.scopes.push(HashMap::new());
+        let ending = self.run(stmts, context);
+        self.scopes.pop();
+        let own = std::mem::replace(&mut self.prologue, outer);
+        let ending = ending?;
+        if !own.is_empty() {
+            self.prologue.push(Prologue::Branch(Box::new(Branch {
+                selector: u32::MAX,
+                kind: BranchKind::Every,
+                arms: vec![own],
+            })));
+        }
+        Ok(ending)
     }
 
     /// A branch with a `return` among the function's own statements: the rest of the function

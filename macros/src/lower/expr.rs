@@ -101,7 +101,9 @@ impl Lowering<'_> {
                         None => Err(self.error(p, format_args!("`{name}`"))),
                     };
                 }
-                if let Some((_, index)) = self.time.as_ref().filter(|(t, _)| *t == name) {
+                if self.is_time(&name)
+                    && let Some((_, index)) = &self.time
+                {
                     return Ok(Value::Scalar(self.graph.var(*index)));
                 }
                 Err(self.error(p, format_args!("`{name}`")))
@@ -109,8 +111,12 @@ impl Lowering<'_> {
             Expr::Field(f) => self.field(f),
             Expr::Index(index) => {
                 let base = self.expr(&index.expr)?;
-                let i = int_literal(&index.index).ok_or_else(|| {
-                    self.error(&index.index, "an index that is not an integer literal")
+                let i = self.known_index(&index.index).ok_or_else(|| {
+                    self.error(
+                        &index.index,
+                        "an index that is not an integer literal (or a loop variable of an \
+                         unrolled loop)",
+                    )
                 })?;
                 self.component(&base, i, &index.index)
             }
@@ -119,6 +125,9 @@ impl Lowering<'_> {
                 Ok(self.map(value, |g, x| g.neg(x)))
             }
             Expr::Binary(b) => self.binary(b),
+            Expr::MethodCall(_) | Expr::Call(_) if self.helpers.called(e).is_some() => {
+                self.inline_call(e)
+            }
             Expr::MethodCall(m) => {
                 let receiver = self.expr(&m.receiver)?;
                 let args: Vec<&Expr> = m.args.iter().collect();
@@ -322,13 +331,19 @@ impl Lowering<'_> {
                     .ident;
                 self.apply(name, receiver, &args[1..], method)
             }
-            _ => Err(self.error(
-                &c.func,
-                format_args!(
-                    "a call of `{}` (odyn cannot see inside functions; inline it)",
-                    segments.join("::")
-                ),
-            )),
+            _ => {
+                let name = segments.join("::");
+                let last = segments.last().map_or("f", String::as_str);
+                Err(self.error(
+                    &c.func,
+                    format_args!(
+                        "a call of `{name}` (odyn cannot see inside functions; mark it \
+                         `#[odyn::function]` in the model's `#[system]` impl block and call it \
+                         as `Self::{last}(…)`, or `self.{last}(…)` if it takes `&self`; or \
+                         inline it)"
+                    ),
+                ))
+            }
         }
     }
 

@@ -18,11 +18,17 @@
 //! - [`state`]: reads of state fields, parameter shapes, the state literal and the function's
 //!   value in state layout;
 //! - [`methods`]: the one table of supported methods, with their rules and the list the error
-//!   messages print.
+//!   messages print;
+//! - [`inline`]: calls of the model's helper functions ([`crate::helpers`]), lowered by lowering
+//!   the helper's body in a scope of its own;
+//! - [`loops`]: loops whose body reads the state, unrolled when odyn can count their iterations
+//!   at compile time.
 
 mod branches;
 mod conditions;
 mod expr;
+mod inline;
+mod loops;
 mod methods;
 mod scope;
 mod state;
@@ -34,6 +40,7 @@ use proc_macro2::TokenStream;
 use quote::ToTokens;
 use syn::{Expr, Ident, Pat, Stmt};
 
+use crate::helpers::Helpers;
 use crate::ir::{ExprId, Graph};
 use crate::model::Model;
 
@@ -67,6 +74,9 @@ pub(crate) enum Prologue {
     /// A branch on parameters: the same branch runs in the prologue, records which arm it took in
     /// its selector, and computes the arm's own opaque values.
     Branch(Box<Branch>),
+    /// The prologue of an inlined helper function: a block of its own, so its locals (and its
+    /// parameters, bound at its top) stay its own and cannot shadow its caller's.
+    Scope(Vec<Prologue>),
 }
 
 /// A branch of the prologue.
@@ -102,9 +112,17 @@ enum Value {
 
 struct Lowering<'m> {
     model: &'m Model<'m>,
+    /// The model's helper functions, inlined where they are called.
+    helpers: &'m Helpers,
+    /// The function whose body is lowered, for the messages.
     function: String,
+    /// The helpers being inlined, outermost first (the body lowered is the last one's).
+    inlining: Vec<String>,
     /// The time argument's name and its graph variable.
     time: Option<(Ident, usize)>,
+    /// Whether the time argument's name is in scope: not inside a helper, whose own names are
+    /// its parameters.
+    time_in_scope: bool,
     graph: Graph,
     prologue: Vec<Prologue>,
     opaques: usize,
@@ -116,10 +134,17 @@ struct Lowering<'m> {
     too_deep: bool,
     /// Set when the time reaches an opaque value (so ∂f/∂t cannot be exact).
     time_opaque: bool,
+    /// Loop iterations unrolled so far (see [`loops`]).
+    iterations: usize,
 }
 
-/// Lowers the body of `f`, the model's `acceleration` or `derivative`.
-pub(crate) fn lower(model: &Model<'_>, f: &syn::ImplItemFn) -> syn::Result<Lowered> {
+/// Lowers the body of `f`, the model's `acceleration` or `derivative`, inlining the `helpers` it
+/// calls.
+pub(crate) fn lower(
+    model: &Model<'_>,
+    helpers: &Helpers,
+    f: &syn::ImplItemFn,
+) -> syn::Result<Lowered> {
     let time = f.sig.inputs.iter().nth(1).and_then(|arg| match arg {
         syn::FnArg::Typed(t) => match &*t.pat {
             Pat::Ident(p) => Some((p.ident.clone(), model.len())),
@@ -127,7 +152,7 @@ pub(crate) fn lower(model: &Model<'_>, f: &syn::ImplItemFn) -> syn::Result<Lower
         },
         syn::FnArg::Receiver(_) => None,
     });
-    let mut l = Lowering::new(model, f, time);
+    let mut l = Lowering::new(model, helpers, f, time);
     let value = l.body(&f.block)?;
     let outputs = l.outputs(value, f)?;
     Ok(l.finish(outputs))
@@ -142,13 +167,14 @@ pub(crate) fn lower(model: &Model<'_>, f: &syn::ImplItemFn) -> syn::Result<Lower
 /// comes from the same graph.
 pub(crate) fn lower_kernel(
     model: &Model<'_>,
+    helpers: &Helpers,
     f: &syn::ImplItemFn,
     inputs: &[Ident],
     width: usize,
     outputs: usize,
     time: Option<Ident>,
 ) -> syn::Result<Lowered> {
-    let mut l = Lowering::new(model, f, time.map(|t| (t, inputs.len() * width)));
+    let mut l = Lowering::new(model, helpers, f, time.map(|t| (t, inputs.len() * width)));
     for (k, name) in inputs.iter().enumerate() {
         let value = if width == 1 {
             Value::Scalar(l.graph.var(k))
@@ -176,11 +202,19 @@ pub(crate) fn lower_kernel(
 }
 
 impl<'m> Lowering<'m> {
-    fn new(model: &'m Model<'m>, f: &syn::ImplItemFn, time: Option<(Ident, usize)>) -> Self {
+    fn new(
+        model: &'m Model<'m>,
+        helpers: &'m Helpers,
+        f: &syn::ImplItemFn,
+        time: Option<(Ident, usize)>,
+    ) -> Self {
         Lowering {
             model,
+            helpers,
             function: f.sig.ident.to_string(),
+            inlining: Vec::new(),
             time,
+            time_in_scope: true,
             graph: Graph::default(),
             prologue: Vec::new(),
             opaques: 0,
@@ -189,6 +223,7 @@ impl<'m> Lowering<'m> {
             depth: 0,
             too_deep: false,
             time_opaque: false,
+            iterations: 0,
         }
     }
 
@@ -202,14 +237,23 @@ impl<'m> Lowering<'m> {
         }
     }
 
+    /// Where the code lowered is, for the messages: `` `acceleration` ``, or inside a helper
+    /// `` `restoring` (called by `acceleration`) ``.
+    fn place(&self) -> String {
+        match self.inlining.last() {
+            None => format!("`{}`", self.function),
+            Some(helper) => format!("`{helper}` (called by `{}`)", self.function),
+        }
+    }
+
     /// The error for something the differentiation cannot go through, at `tokens`.
     fn error(&self, tokens: impl ToTokens, what: impl std::fmt::Display) -> syn::Error {
         syn::Error::new_spanned(
             tokens,
             format!(
-                "odyn cannot differentiate {what} in `{}`, so it cannot derive the Jacobian; {} \
+                "odyn cannot differentiate {what} in {}, so it cannot derive the Jacobian; {} \
                  (or add `jacobian = false` to `#[system]` to use explicit methods only)",
-                self.function,
+                self.place(),
                 methods::supported()
             ),
         )
@@ -218,7 +262,7 @@ impl<'m> Lowering<'m> {
     /// An error about the code's structure rather than an operation (a `return` in the wrong
     /// place), with its own advice.
     fn refuse(&self, tokens: impl ToTokens, message: impl std::fmt::Display) -> syn::Error {
-        syn::Error::new_spanned(tokens, format!("{message} in `{}`", self.function))
+        syn::Error::new_spanned(tokens, format!("{message} in {}", self.place()))
     }
 }
 

@@ -142,8 +142,10 @@ impl Lowering<'_> {
         })
     }
 
-    fn is_time(&self, name: &str) -> bool {
-        self.time.as_ref().is_some_and(|(t, _)| t == name) && self.lookup(name).is_none()
+    pub(super) fn is_time(&self, name: &str) -> bool {
+        self.time_in_scope
+            && self.time.as_ref().is_some_and(|(t, _)| t == name)
+            && self.lookup(name).is_none()
     }
 
     /// Whether `name` is the time, or a local whose value was computed from it (`let s = t;`):
@@ -349,7 +351,8 @@ pub(super) fn changes_outer<'p>(
                     return Some(found);
                 }
             }
-            Prologue::Opaque(..) => {}
+            // A helper's code changes only its own locals.
+            Prologue::Opaque(..) | Prologue::Scope(_) => {}
         }
     }
     None

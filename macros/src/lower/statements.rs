@@ -135,15 +135,19 @@ impl Lowering<'_> {
             Stmt::Expr(Expr::ForLoop(l), _) if self.depends(&l.expr) => {
                 Err(self.error(&l.expr, "the state in a loop bound (`for`)"))
             }
-            Stmt::Expr(Expr::ForLoop(l), _) => {
-                Err(self.error(l.for_token, "a loop whose body reads the state (`for`)"))
-            }
+            Stmt::Expr(Expr::ForLoop(l), _) if l.label.is_none() => self.unroll_for(l),
             Stmt::Expr(Expr::While(w), _) if self.depends(&w.cond) => {
                 Err(self.error(&w.cond, "the state in a loop condition (`while`)"))
             }
-            Stmt::Expr(Expr::While(w), _) => {
-                Err(self.error(w.while_token, "a loop whose body reads the state (`while`)"))
-            }
+            Stmt::Expr(Expr::While(w), _) if w.label.is_none() => self.unroll_while(w),
+            Stmt::Expr(Expr::ForLoop(l), _) => Err(self.error(
+                l.for_token,
+                "a labelled loop whose body reads the state (`for`)",
+            )),
+            Stmt::Expr(Expr::While(w), _) => Err(self.error(
+                w.while_token,
+                "a labelled loop whose body reads the state (`while`)",
+            )),
             Stmt::Expr(Expr::Loop(l), _) => {
                 Err(self.error(l.loop_token, "a loop that reads the state (`loop`)"))
             }
@@ -196,8 +200,12 @@ impl Lowering<'_> {
         let (base, component) = match target {
             Expr::Index(index) => (
                 &*index.expr,
-                Some(crate::syntax::int_literal(&index.index).ok_or_else(|| {
-                    self.error(&index.index, "an index that is not an integer literal")
+                Some(self.known_index(&index.index).ok_or_else(|| {
+                    self.error(
+                        &index.index,
+                        "an index that is not an integer literal (or a loop variable of an \
+                         unrolled loop)",
+                    )
                 })),
             ),
             Expr::Field(field) => (
@@ -291,12 +299,12 @@ impl Lowering<'_> {
         syn::Error::new_spanned(
             target,
             format!(
-                "`{part} = …` in `{}` sets one component of `{name}`, but odyn reads `{name}` as \
+                "`{part} = …` in {} sets one component of `{name}`, but odyn reads `{name}` as \
                  one number: its value came from code odyn does not look into (a call, or an \
                  array whose length is not an integer literal); start `{name}` from components \
                  odyn can see, such as `[0.0; 3]`, `[0.0, 0.0, 0.0]` or `Vector3::zeros()`, or \
                  build it whole from its components: `let {name} = [a, b, c];`",
-                self.function
+                self.place()
             ),
         )
     }

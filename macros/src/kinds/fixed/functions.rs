@@ -6,6 +6,7 @@ use proc_macro2::TokenStream;
 use syn::{Block, FnArg, Ident, ImplItem, ImplItemFn, ItemImpl, ReturnType, Type};
 
 use crate::errors::Errors;
+use crate::helpers::Helpers;
 use crate::model::{Model, Order, Role};
 use crate::rewrite::rewrite;
 use crate::syntax::{is_f64, is_ref_self};
@@ -43,8 +44,13 @@ pub(crate) fn force_name(order: Order) -> &'static str {
     }
 }
 
-/// Reads the force and energy functions of `item` for `model`.
-pub(crate) fn parse(item: &ItemImpl, model: &Model<'_>, errors: &mut Errors) -> Functions {
+/// Reads the force and energy functions of `item` for `model`, which may call `helpers`.
+pub(crate) fn parse(
+    item: &ItemImpl,
+    model: &Model<'_>,
+    helpers: &Helpers,
+    errors: &mut Errors,
+) -> Functions {
     let force_name = force_name(model.order);
     let mut functions = Functions {
         force: None,
@@ -53,9 +59,9 @@ pub(crate) fn parse(item: &ItemImpl, model: &Model<'_>, errors: &mut Errors) -> 
     for member in &item.items {
         let ImplItem::Fn(f) = member else { continue };
         if f.sig.ident == force_name {
-            functions.force = read(f, model, true, errors);
+            functions.force = read(f, model, helpers, true, errors);
         } else if f.sig.ident == "energy" {
-            functions.energy = read(f, model, false, errors);
+            functions.energy = read(f, model, helpers, false, errors);
         } else if f.sig.ident == force_name_of_other(model.order) {
             errors.at(
                 &f.sig.ident,
@@ -118,6 +124,7 @@ fn describe(order: Order) -> &'static str {
 fn read(
     f: &ImplItemFn,
     model: &Model<'_>,
+    helpers: &Helpers,
     is_force: bool,
     errors: &mut Errors,
 ) -> Option<Function> {
@@ -173,7 +180,7 @@ fn read(
             None
         }
     };
-    let (body, reads) = rewrite(&f.block, model, name, true, errors);
+    let (body, reads) = rewrite(&f.block, model, helpers, name, true, errors);
     if errors.len() > before {
         return None;
     }

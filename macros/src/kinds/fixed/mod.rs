@@ -25,9 +25,9 @@ use syn::{ItemImpl, ItemStruct};
 use crate::args::Args;
 use crate::errors::Errors;
 use crate::kinds::{FrontEnd, Impl, Struct};
-use crate::lower;
 use crate::model::Order;
 use crate::validate::{self, FirstOrder, VelocityRead};
+use crate::{helpers, lower};
 
 /// The fixed-size front-end: any struct no other kind recognises.
 pub(crate) struct Kind;
@@ -78,7 +78,10 @@ impl FrontEnd for Kind {
         let Some(model) = fields::parse(item, errors) else {
             return rejected;
         };
-        let functions = functions::parse(imp, &model, errors);
+        let before = errors.len();
+        let helpers = helpers::parse(imp, &model, errors);
+        let helpers_ok = errors.len() == before;
+        let functions = functions::parse(imp, &model, &helpers, errors);
         let velocity_read = functions.force.as_ref().and_then(|force| {
             let reads = functions::velocity_reads(force, &model);
             let &(field, tokens) = reads.first()?;
@@ -89,13 +92,16 @@ impl FrontEnd for Kind {
         });
         validate::forces(args, velocity_read, errors);
         let lowered = match (&functions.force, &args.no_jacobian) {
-            (Some(force), None) => match lower::lower(&model, &force.original) {
-                Ok(lowered) => Some(lowered),
-                Err(error) => {
-                    errors.push(error);
-                    None
+            // A helper with a problem has been reported; its calls are not followed.
+            (Some(force), None) if helpers_ok => {
+                match lower::lower(&model, &helpers, &force.original) {
+                    Ok(lowered) => Some(lowered),
+                    Err(error) => {
+                        errors.push(error);
+                        None
+                    }
                 }
-            },
+            }
             _ => None,
         };
         let params = parameters::parse(item, errors);
@@ -111,7 +117,7 @@ impl FrontEnd for Kind {
         // ∂f/∂p from a second lowering of the force: the Jacobian consumes the first.
         let parameters = match (&lowered, &functions.force) {
             (Some(_), Some(force)) if !params.is_empty() => {
-                match lower::lower(&model, &force.original) {
+                match lower::lower(&model, &helpers, &force.original) {
                     Ok(again) => parameters::parameters(&model, &params, again, force, imp, errors),
                     Err(error) => {
                         errors.push(error);

@@ -203,6 +203,7 @@ fn kept_locals(prologue: &[Prologue], names: &[String], out: &mut Vec<(String, S
                     kept_locals(arm, names, out);
                 }
             }
+            Prologue::Scope(inner) => kept_locals(inner, names, out),
             Prologue::Opaque(..) => {}
         }
     }
@@ -250,6 +251,7 @@ fn opaque_reads(
                     opaque_reads(arm, names, tainted, reads, errors);
                 }
             }
+            Prologue::Scope(inner) => opaque_reads(inner, names, tainted, reads, errors),
             Prologue::Stmt(_) => {}
         }
     }

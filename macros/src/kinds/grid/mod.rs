@@ -161,6 +161,8 @@ impl FrontEnd for Kind {
         let Some(fields) = parse_struct(item, errors) else {
             return Impl::Rejected { silenced: None };
         };
+        // Lowered only when nothing was reported, a helper's problem included.
+        let helpers = crate::helpers::parse(imp, &fields.rewriter_model(), errors);
         let cell = parse_cell(imp, &fields, errors);
         let mut lowered = None;
         let mut misread = false;
@@ -169,6 +171,7 @@ impl FrontEnd for Kind {
             let (_, state_reads) = crate::rewrite::rewrite(
                 &cell.f.block,
                 &fields.rewriter_model(),
+                &helpers,
                 name,
                 false,
                 errors,
@@ -193,8 +196,15 @@ impl FrontEnd for Kind {
             if args.no_jacobian.is_none() && errors.is_empty() {
                 let model = Model::parameters(fields.item, Order::First);
                 let outputs = fields.fields.len();
-                match lower::lower_kernel(&model, &renamed, &inputs, 1, outputs, cell.time.clone())
-                {
+                match lower::lower_kernel(
+                    &model,
+                    &helpers,
+                    &renamed,
+                    &inputs,
+                    1,
+                    outputs,
+                    cell.time.clone(),
+                ) {
                     Ok(l) => lowered = Some(l),
                     Err(error) => errors.push(error),
                 }

@@ -50,6 +50,7 @@ fn kernel_attribute(f: &ImplItemFn) -> Option<&Attribute> {
 pub(super) fn parse_kernels(
     imp: &ItemImpl,
     particles: &Particles<'_>,
+    helpers: &crate::helpers::Helpers,
     errors: &mut Errors,
 ) -> Functions {
     let mut functions = Functions {
@@ -62,8 +63,14 @@ pub(super) fn parse_kernels(
         let name = &f.sig.ident;
         if let Some(attr) = kernel_attribute(f) {
             if let Some(kernel) = parse_kernel(f, attr, particles, errors) {
-                let (_, reads) =
-                    crate::rewrite::rewrite(&f.block, &rewriter_model, name, false, errors);
+                let (_, reads) = crate::rewrite::rewrite(
+                    &f.block,
+                    &rewriter_model,
+                    helpers,
+                    name,
+                    false,
+                    errors,
+                );
                 if let Some(tokens) = reads.values().next() {
                     errors.at(
                         tokens,
@@ -78,7 +85,8 @@ pub(super) fn parse_kernels(
             }
         } else if name == "potential" {
             check_receiver_only(f, errors);
-            let (body, _) = crate::rewrite::rewrite(&f.block, &rewriter_model, name, false, errors);
+            let (body, _) =
+                crate::rewrite::rewrite(&f.block, &rewriter_model, helpers, name, false, errors);
             functions.potential = Some((f.clone(), body));
         } else if ["acceleration", "derivative", "energy"].contains(&name.to_string().as_str()) {
             errors.at(

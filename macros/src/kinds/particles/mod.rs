@@ -233,7 +233,10 @@ impl FrontEnd for Kind {
         let Some(particles) = parse_struct(item, errors) else {
             return Impl::Rejected { silenced: None };
         };
-        let functions = kernels::parse_kernels(imp, &particles, errors);
+        let before = errors.len();
+        let helpers = crate::helpers::parse(imp, &particles.rewriter_model(), errors);
+        let helpers_ok = errors.len() == before;
+        let functions = kernels::parse_kernels(imp, &particles, &helpers, errors);
         let velocity_read = functions.kernels.iter().find(|k| k.reads_velocity());
         let velocity_read = velocity_read.map(|kernel| VelocityRead {
             reader: format!("kernel `{}` takes velocities", kernel.f.sig.ident),
@@ -241,11 +244,12 @@ impl FrontEnd for Kind {
         });
         validate::forces(args, velocity_read, errors);
         let mut lowered = Vec::new();
-        if args.no_jacobian.is_none() {
+        if args.no_jacobian.is_none() && helpers_ok {
             let model = Model::parameters(particles.item, Order::Second);
             for kernel in &functions.kernels {
                 match lower::lower_kernel(
                     &model,
+                    &helpers,
                     &kernel.f,
                     &kernel.vectors,
                     particles.dim,
