@@ -69,7 +69,13 @@ impl VisitMut for Router {
                 if m.turbofish.is_none() && routed(&m.method.to_string(), m.args.len()) =>
             {
                 let args: Vec<_> = m.args.iter().map(ToTokens::to_token_stream).collect();
-                Some(call(&m.method, m.receiver.to_token_stream(), &args))
+                // `(2.0 * t).sin()`: an argument needs no parentheses (rustc would warn of them
+                // in the user's own helper methods, which are emitted routed).
+                let receiver = match &*m.receiver {
+                    Expr::Paren(p) => p.expr.to_token_stream(),
+                    other => other.to_token_stream(),
+                };
+                Some(call(&m.method, receiver, &args))
             }
             Expr::Call(c) => float_function(&c.func).and_then(|method| {
                 let mut args = c.args.iter().map(ToTokens::to_token_stream);
@@ -118,7 +124,7 @@ mod tests {
         })
         .to_string();
         let expected = quote! {
-            let a = ::odyn::math::Transcendental::sin((x + 1.0))
+            let a = ::odyn::math::Transcendental::sin(x + 1.0)
                 * ::odyn::math::Transcendental::powf(y, 2.5)
                 + ::odyn::math::Transcendental::atan2(y, x);
             let b = x.sqrt() + x.powi(3) + x.abs() + x.norm() + x.sin_cos().0 + x.powf(1.0, 2.0);
