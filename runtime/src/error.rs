@@ -11,6 +11,17 @@ pub type Result<T, E = Error> = std::result::Result<T, E>;
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum Error {
+    /// A fit ([`crate::fit::fit`]) used up its iterations without meeting its tolerances.
+    #[error(
+        "the fit did not converge in {iterations} iterations (cost {cost:e}); give a closer \
+         initial guess, fit log-parameters, or allow more iterations"
+    )]
+    FitDidNotConverge {
+        /// The iterations taken.
+        iterations: usize,
+        /// ½ Σ wₖ² rₖ² where it stopped.
+        cost: f64,
+    },
     /// A run-time input was rejected before any step was taken.
     #[error("invalid {field}: {reason}")]
     InvalidInput {

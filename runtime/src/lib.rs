@@ -16,6 +16,7 @@ pub mod clock;
 pub mod drive;
 pub mod ensemble;
 mod error;
+pub mod fit;
 pub mod fluids;
 pub mod grid;
 pub mod integrators;

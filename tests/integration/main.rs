@@ -21,6 +21,7 @@ mod convergence;
 mod energy;
 mod ensemble;
 mod extremes;
+mod fit;
 mod fluids;
 mod grid;
 mod hardening;

@@ -1,0 +1,135 @@
+//! Parameter estimation (`odyn::fit`): exact recovery from noiseless samples, recovery within
+//! the reported standard errors from noisy ones, log-parameters, and the typed errors.
+
+use odyn::Parameters;
+use odyn::fit::{Data, FitOptions, fit};
+use odyn::prelude::*;
+
+use crate::common::Rng;
+use crate::parameters::{Decay, FitSpring};
+
+/// Samples of component `component` of `model`'s solution at `times`, plus uniform noise of
+/// standard deviation `sigma` (uniform on ±√3σ), weights 1/σ.
+fn samples<M: Model>(model: &M, component: usize, times: &[f64], sigma: f64, seed: u64) -> Data {
+    let run = model
+        .simulate()
+        .integrator(Method::Dop853)
+        .tolerances(1e-12, 1e-14)
+        .duration(*times.last().unwrap())
+        .save_at(times)
+        .run()
+        .unwrap();
+    let mut rng = Rng(seed);
+    let half_width = 3f64.sqrt() * sigma;
+    let values = times
+        .iter()
+        .map(|&t| {
+            let exact = run.sample_at(t).unwrap().state.as_slice()[component];
+            exact
+                + if sigma > 0.0 {
+                    rng.uniform(-half_width, half_width)
+                } else {
+                    0.0
+                }
+        })
+        .collect();
+    Data {
+        component,
+        times: times.to_vec(),
+        values,
+        weights: if sigma > 0.0 {
+            vec![1.0 / sigma; times.len()]
+        } else {
+            Vec::new()
+        },
+    }
+}
+
+fn times(count: usize, end: f64) -> Vec<f64> {
+    (1..=count).map(|k| end * k as f64 / count as f64).collect()
+}
+
+#[test]
+fn noiseless_decay_recovers_its_rate() {
+    let truth = Decay { c: 2.0, k: 0.7 };
+    let data = samples(&truth, 0, &times(20, 4.0), 0.0, 1);
+    for log_parameters in [false, true] {
+        let guess = Decay { c: 2.0, k: 0.2 };
+        let options = FitOptions {
+            log_parameters,
+            ..FitOptions::default()
+        };
+        let found = fit(&guess, &data, &options).unwrap();
+        // The data come from solves at rtol 1e-12, the fit's at 1e-10: agreement to ~1e-9.
+        assert!(
+            (found.parameters[0] - 0.7).abs() < 1e-8,
+            "log {log_parameters}: {found:?}"
+        );
+        assert!(found.cost < 1e-16 && found.initial_cost > 1e-2, "{found:?}");
+    }
+}
+
+#[test]
+fn noisy_spring_recovers_stiffness_and_damping_within_their_standard_errors() {
+    let truth = FitSpring {
+        x: 1.0,
+        v: 0.0,
+        k: 50.0,
+        b: 0.5,
+        m: 1.0,
+    };
+    let data = samples(&truth, 0, &times(200, 4.0), 0.01, 42);
+    let guess = FitSpring {
+        k: 45.0,
+        b: 1.0,
+        ..truth
+    };
+    let found = fit(&guess, &data, &FitOptions::default()).unwrap();
+    assert_eq!(FitSpring::NAMES, ["k", "b"]);
+    for (j, truth) in [50.0, 0.5].into_iter().enumerate() {
+        let (value, error) = (found.parameters[j], found.standard_errors[j]);
+        // Four standard errors: a true value outside them has probability < 1e-4 under the
+        // Gauss–Newton model; the errors themselves must be small but non-zero.
+        assert!((value - truth).abs() < 4.0 * error, "{j}: {found:?}");
+        assert!(error > 0.0 && error < 0.05 * truth, "{j}: {found:?}");
+    }
+    // Weighted residuals of noise with σ = 1 each: 2·cost ≈ m − n = 198 (χ² within ±5 of its
+    // standard deviation √(2·198) ≈ 20, for uniform noise smaller still).
+    assert!((2.0 * found.cost - 198.0).abs() < 100.0, "{found:?}");
+}
+
+#[test]
+fn bad_data_and_exhausted_iterations_are_typed_errors() {
+    let model = Decay { c: 2.0, k: 0.7 };
+    let mut data = samples(&model, 0, &times(5, 1.0), 0.0, 1);
+    data.values.pop();
+    let error = fit(&model, &data, &FitOptions::default()).unwrap_err();
+    assert!(matches!(error, odyn::Error::InvalidInput { .. }), "{error}");
+
+    let data = samples(&model, 0, &times(5, 1.0), 0.0, 1);
+    let backwards = Data {
+        times: data.times.iter().rev().copied().collect(),
+        ..data.clone()
+    };
+    let error = fit(&model, &backwards, &FitOptions::default()).unwrap_err();
+    assert!(error.to_string().contains("increasing"), "{error}");
+
+    let far = Decay { c: 2.0, k: 5.0 };
+    let options = FitOptions {
+        max_iterations: 1,
+        ..FitOptions::default()
+    };
+    let error = fit(&far, &data, &options).unwrap_err();
+    assert!(
+        matches!(error, odyn::Error::FitDidNotConverge { iterations: 1, .. }),
+        "{error}"
+    );
+
+    let negative = Decay { c: 2.0, k: -1.0 };
+    let options = FitOptions {
+        log_parameters: true,
+        ..FitOptions::default()
+    };
+    let error = fit(&negative, &data, &options).unwrap_err();
+    assert!(error.to_string().contains("positive"), "{error}");
+}
