@@ -182,7 +182,7 @@ fn check<M: Parameters>(model: &M, data: &Data, options: &FitOptions) -> Result<
             data.times[0]
         ));
     }
-    if options.log_parameters && model.parameters().iter().any(|&p| !(p > 0.0)) {
+    if options.log_parameters && model.parameters().iter().any(|p| p.is_nan() || *p <= 0.0) {
         return reject(format!(
             "log-parameters need positive initial values; got {:?} for {:?}",
             model.parameters(),
