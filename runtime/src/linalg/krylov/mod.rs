@@ -1,7 +1,9 @@
 //! Krylov solvers for the sparse Newton matrices of particle and field models: how a run
 //! chooses them ([`LinearSolver`], [`Krylov`], [`Preconditioner`]), here, and the solve itself,
-//! on faer's conjugate gradient and BiCGSTAB (`faer::matrix_free`), in `solve.rs`.
+//! on faer's conjugate gradient (`faer::matrix_free`) and our BiCGSTAB (`bicgstab.rs`), in
+//! `solve.rs`.
 
+mod bicgstab;
 mod solve;
 
 pub(crate) use solve::{KrylovSolver, NoConvergence};

@@ -74,14 +74,38 @@ impl BlockJacobi {
     }
 
     fn apply(&self, out: &mut [f64], r: &[f64]) {
-        let b = self.size;
-        for (unknowns, inverse) in self.index.chunks(b).zip(self.inverse.chunks(b * b)) {
-            for (i, &row) in unknowns.iter().enumerate() {
-                out[row] = unknowns
-                    .iter()
-                    .zip(&inverse[i * b..(i + 1) * b])
-                    .map(|(&col, m)| m * r[col])
-                    .sum();
+        // Blocks of a size known at compile time keep the loops over a block's entries out of
+        // the code: on Gray–Scott at 256² (2 × 2 blocks) block Jacobi went from 18 % to 11 % of
+        // a Krylov step (perf, one run each).
+        match self.size {
+            1 => self.apply_sized::<1>(out, r),
+            2 => self.apply_sized::<2>(out, r),
+            3 => self.apply_sized::<3>(out, r),
+            4 => self.apply_sized::<4>(out, r),
+            b => {
+                for (unknowns, inverse) in self.index.chunks(b).zip(self.inverse.chunks(b * b)) {
+                    for (&row, inverse) in unknowns.iter().zip(inverse.chunks(b)) {
+                        out[row] = unknowns
+                            .iter()
+                            .zip(inverse)
+                            .map(|(&col, m)| m * r[col])
+                            .sum();
+                    }
+                }
+            }
+        }
+    }
+
+    /// [`BlockJacobi::apply`] for blocks of `B` unknowns.
+    fn apply_sized<const B: usize>(&self, out: &mut [f64], r: &[f64]) {
+        for (unknowns, inverse) in self
+            .index
+            .chunks_exact(B)
+            .zip(self.inverse.chunks_exact(B * B))
+        {
+            let local: [f64; B] = std::array::from_fn(|c| r[unknowns[c]]);
+            for (&row, inverse) in unknowns.iter().zip(inverse.chunks_exact(B)) {
+                out[row] = (0..B).map(|c| inverse[c] * local[c]).sum();
             }
         }
     }

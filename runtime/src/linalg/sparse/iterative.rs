@@ -21,11 +21,15 @@ impl SparseSolver {
         if !self.rhs.iter().all(|b| b.is_finite()) {
             return Ok(()); // a non-finite right-hand side stays non-finite: the caller reports it
         }
+        let Some(rows) = &self.rows else {
+            return Err(NoConvergence);
+        };
         let matrix = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
         let n = self.rhs.len();
         let outcome = match (krylov.options.preconditioner, self.factored, &self.lu) {
             (Preconditioner::BlockJacobi, ..) => krylov.solve(
                 matrix,
+                rows,
                 self.symmetric,
                 self.jacobi.as_precond(n),
                 &mut self.rhs,
@@ -34,6 +38,7 @@ impl SparseSolver {
             (Preconditioner::Ilu0, ..) => match &self.ilu {
                 Some(ilu) => krylov.solve(
                     matrix,
+                    rows,
                     self.symmetric,
                     Ilu0Ref(ilu),
                     &mut self.rhs,
@@ -44,6 +49,7 @@ impl SparseSolver {
             (Preconditioner::Multigrid, ..) => match &self.multigrid {
                 Some(multigrid) => krylov.solve(
                     matrix,
+                    rows,
                     self.symmetric,
                     MultigridRef(multigrid),
                     &mut self.rhs,
@@ -53,6 +59,7 @@ impl SparseSolver {
             },
             (_, Some(Factored::Cholesky), _) => krylov.solve(
                 matrix,
+                rows,
                 self.symmetric,
                 Factors::Cholesky(LltRef::new(&self.cholesky, &self.cholesky_values)),
                 &mut self.rhs,
@@ -60,6 +67,7 @@ impl SparseSolver {
             ),
             (_, Some(Factored::Lu), Some((symbolic, numeric))) => krylov.solve(
                 matrix,
+                rows,
                 self.symmetric,
                 Factors::Lu(LuRef::new_unchecked(symbolic, numeric)),
                 &mut self.rhs,
