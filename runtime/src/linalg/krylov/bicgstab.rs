@@ -18,6 +18,7 @@ use crate::linalg::sparse::RowMatrix;
 /// The vectors of one solve, kept between solves.
 #[derive(Clone, Debug)]
 pub(super) struct Vectors {
+    /// The residual r, and s = r − α·v in its place (r is not needed once s is made).
     r: Vec<f64>,
     /// The shadow residual r̂₀.
     shadow: Vec<f64>,
@@ -26,7 +27,6 @@ pub(super) struct Vectors {
     p_hat: Vec<f64>,
     /// A·K⁻¹·p.
     v: Vec<f64>,
-    s: Vec<f64>,
     /// K⁻¹·s.
     s_hat: Vec<f64>,
     /// A·K⁻¹·s.
@@ -42,7 +42,6 @@ impl Vectors {
             p: zero.clone(),
             p_hat: zero.clone(),
             v: zero.clone(),
-            s: zero.clone(),
             s_hat: zero.clone(),
             t: zero,
         }
@@ -73,7 +72,6 @@ pub(super) fn bicgstab(
         p,
         p_hat,
         v,
-        s,
         s_hat,
         t,
     } = work;
@@ -108,9 +106,11 @@ pub(super) fn bicgstab(
         if !(alpha.is_finite() && alpha != 0.0) {
             return Err(NoConvergence);
         }
+        // s = r − α·v, in r's place.
+        let s = &mut *r;
         let mut ss = 0.0;
-        for ((si, ri), vi) in s.iter_mut().zip(r.iter()).zip(v.iter()) {
-            *si = ri - alpha * vi;
+        for (si, vi) in s.iter_mut().zip(v.iter()) {
+            *si -= alpha * vi;
             ss += *si * *si;
         }
         if ss.sqrt() < threshold {
@@ -127,16 +127,16 @@ pub(super) fn bicgstab(
         }
         let mut rho_next = 0.0;
         rr = 0.0;
-        for (((((xi, ri), pi), si), s_hat_i), (ti, shadow_i)) in x
+        // r = s − ω·t, in s's place.
+        for ((((xi, ri), pi), s_hat_i), (ti, shadow_i)) in x
             .iter_mut()
-            .zip(r.iter_mut())
+            .zip(s.iter_mut())
             .zip(p_hat.iter())
-            .zip(s.iter())
             .zip(s_hat.iter())
             .zip(t.iter().zip(shadow.iter()))
         {
             *xi += alpha * pi + omega * s_hat_i;
-            *ri = si - omega * ti;
+            *ri -= omega * ti;
             rr += *ri * *ri;
             rho_next += shadow_i * *ri;
         }

@@ -93,20 +93,20 @@ impl RowMatrix {
     /// y = A·x, and (w·y, y·y), the dot products summed row by row in order.
     pub(crate) fn product(&self, x: &[f64], y: &mut [f64], w: &[f64]) -> (f64, f64) {
         let (mut wy, mut yy) = (0.0, 0.0);
-        for (c, (&start, &width)) in self.start.iter().zip(&self.width).enumerate() {
+        for ((y, w), (&start, &width)) in y
+            .chunks_mut(CHUNK)
+            .zip(w.chunks(CHUNK))
+            .zip(self.start.iter().zip(&self.width))
+        {
+            let len = y.len() * width;
+            // max(1): chunks_exact(0) panics; a chunk of empty rows (none in the solver's
+            // patterns, which hold the diagonal) then yields no rows, and its y is zeroed here.
+            let columns = self.column[start..start + len].chunks_exact(width.max(1));
+            let values = self.values[start..start + len].chunks_exact(width.max(1));
             if width == 0 {
-                continue;
+                y.fill(0.0);
             }
-            let rows = c * CHUNK..((c + 1) * CHUNK).min(y.len());
-            let len = rows.len() * width;
-            let columns = self.column[start..start + len].chunks_exact(width);
-            let values = self.values[start..start + len].chunks_exact(width);
-            for (((yi, wi), columns), values) in y[rows.clone()]
-                .iter_mut()
-                .zip(&w[rows])
-                .zip(columns)
-                .zip(values)
-            {
+            for (((yi, wi), columns), values) in y.iter_mut().zip(w).zip(columns).zip(values) {
                 let sum: f64 = columns
                     .iter()
                     .zip(values)
