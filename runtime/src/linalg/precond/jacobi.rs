@@ -69,7 +69,19 @@ impl BlockJacobi {
     ///
     /// Errors: [`PrecondError::SingularBlock`].
     pub(crate) fn update(&mut self, values: &[f64]) -> Result<(), PrecondError> {
-        let b = self.size;
+        // A constant block size unrolls the elimination, as in `apply`.
+        match self.size {
+            1 => self.update_sized(1, values),
+            2 => self.update_sized(2, values),
+            3 => self.update_sized(3, values),
+            4 => self.update_sized(4, values),
+            b => self.update_sized(b, values),
+        }
+    }
+
+    /// [`BlockJacobi::update`] with the block size `b`.
+    #[inline(always)]
+    fn update_sized(&mut self, b: usize, values: &[f64]) -> Result<(), PrecondError> {
         let (a, inverse) = self.work.split_at_mut(b * b);
         for (slots, out) in self.slots.chunks(b * b).zip(self.inverse.chunks_mut(b * b)) {
             for (entry, &slot) in a.iter_mut().zip(slots) {
@@ -137,6 +149,7 @@ impl BlockJacobi {
 /// elimination with partial pivoting.
 ///
 /// Errors: [`PrecondError::SingularBlock`] when a pivot is zero or not finite.
+#[inline(always)]
 pub(crate) fn invert(b: usize, a: &mut [f64], inverse: &mut [f64]) -> Result<(), PrecondError> {
     for (k, entry) in inverse.iter_mut().enumerate() {
         *entry = if k % (b + 1) == 0 { 1.0 } else { 0.0 };
