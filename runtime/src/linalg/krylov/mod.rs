@@ -36,7 +36,8 @@ pub enum LinearSolver {
     /// Sparse Cholesky when the matrix is symmetric positive definite, else LU (faer).
     Direct,
     /// A preconditioned Krylov method: conjugate gradient when the matrix is symmetric,
-    /// BiCGSTAB otherwise (and when CG finds the matrix indefinite).
+    /// BiCGSTAB otherwise (and when CG finds the matrix indefinite). A matrix of 2³² stored
+    /// entries or more (its products index columns in 32 bits) is solved directly instead.
     Krylov(Krylov),
 }
 
