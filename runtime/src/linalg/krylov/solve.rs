@@ -1,12 +1,12 @@
-//! The preconditioned Krylov solve: conjugate gradient (faer) or BiCGSTAB (ours, in
-//! `bicgstab.rs`), warm-started from the previous solution, every buffer kept between solves.
+//! The preconditioned Krylov solve: conjugate gradient (faer's, on our products by rows) or
+//! BiCGSTAB (ours, in `bicgstab.rs`), warm-started from the previous solution, every buffer kept
+//! between solves.
 
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::matrix_free::conjugate_gradient::{
     CgParams, conjugate_gradient, conjugate_gradient_scratch,
 };
 use faer::matrix_free::{InitialGuessStatus, Precond};
-use faer::sparse::SparseColMatRef;
 use faer::{MatMut, MatRef, Par};
 
 use super::bicgstab::{Vectors, bicgstab};
@@ -62,14 +62,12 @@ impl KrylovSolver {
 
     /// Solves a·x = b, b given in `x`, preconditioned by `precond`: conjugate gradient when
     /// `symmetric` (falling back to BiCGSTAB if CG meets an indefinite matrix), BiCGSTAB
-    /// otherwise; `rows` is `a` by rows.
+    /// otherwise.
     ///
     /// Errors: [`NoConvergence`], with `x` holding b again.
-    #[allow(clippy::too_many_arguments)] // reason: the matrix in both layouts, its kind and preconditioner, the system and the counts
     pub(crate) fn solve<P: Precond<f64> + Column + Copy>(
         &mut self,
-        a: SparseColMatRef<'_, usize, f64>,
-        rows: &RowMatrix,
+        a: &RowMatrix,
         symmetric: bool,
         precond: P,
         x: &mut [f64],
@@ -88,7 +86,7 @@ impl KrylovSolver {
         let rtol = if self.in_newton { newton_rtol } else { rtol };
         // The warm start's scale, found once (one product) for whichever method runs.
         let scale = if warm_start {
-            warm_scale(rows, &self.guess, &mut self.product, &self.rhs)
+            warm_scale(a, &self.guess, &mut self.product, &self.rhs)
         } else {
             0.0
         };
@@ -118,7 +116,7 @@ impl KrylovSolver {
             start(scale, &self.guess, x);
             let stack = MemStack::new(&mut self.stack);
             if let Ok(iters) = bicgstab(
-                rows,
+                a,
                 &precond,
                 &self.rhs,
                 x,
@@ -156,11 +154,7 @@ impl KrylovSolver {
     /// Makes the stack big enough for both methods with `precond` (allocates only when a
     /// bigger preconditioner appears: the first LU of a run, or multigrid taking over from block
     /// Jacobi under `Auto`, once).
-    fn reserve<P: Precond<f64> + Column + Copy>(
-        &mut self,
-        a: SparseColMatRef<'_, usize, f64>,
-        precond: P,
-    ) {
+    fn reserve<P: Precond<f64> + Column + Copy>(&mut self, a: &RowMatrix, precond: P) {
         let need =
             conjugate_gradient_scratch(precond, a, 1, Par::Seq).or(Column::scratch(&precond));
         if need.size_bytes() > self.scratch.size_bytes()

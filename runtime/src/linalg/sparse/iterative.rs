@@ -1,7 +1,6 @@
 //! The Krylov solve of a sparse Newton matrix with the run's preconditioner, and `Auto`'s move
 //! to multigrid or to the direct solver when block Jacobi converges too slowly.
 
-use faer::sparse::SparseColMatRef;
 use faer::sparse::linalg::cholesky::LltRef;
 use faer::sparse::linalg::lu::LuRef;
 
@@ -24,11 +23,9 @@ impl SparseSolver {
         let Some(rows) = &self.rows else {
             return Err(NoConvergence);
         };
-        let matrix = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
         let n = self.rhs.len();
         let outcome = match (krylov.options.preconditioner, self.factored, &self.lu) {
             (Preconditioner::BlockJacobi, ..) => krylov.solve(
-                matrix,
                 rows,
                 self.symmetric,
                 self.jacobi.as_precond(n),
@@ -37,7 +34,6 @@ impl SparseSolver {
             ),
             (Preconditioner::Ilu0, ..) => match &self.ilu {
                 Some(ilu) => krylov.solve(
-                    matrix,
                     rows,
                     self.symmetric,
                     Ilu0Ref(ilu),
@@ -48,7 +44,6 @@ impl SparseSolver {
             },
             (Preconditioner::Multigrid, ..) => match &self.multigrid {
                 Some(multigrid) => krylov.solve(
-                    matrix,
                     rows,
                     self.symmetric,
                     MultigridRef(multigrid),
@@ -58,7 +53,6 @@ impl SparseSolver {
                 None => Err(NoConvergence),
             },
             (_, Some(Factored::Cholesky), _) => krylov.solve(
-                matrix,
                 rows,
                 self.symmetric,
                 Factors::Cholesky(LltRef::new(&self.cholesky, &self.cholesky_values)),
@@ -66,7 +60,6 @@ impl SparseSolver {
                 &mut self.counts.krylov,
             ),
             (_, Some(Factored::Lu), Some((symbolic, numeric))) => krylov.solve(
-                matrix,
                 rows,
                 self.symmetric,
                 Factors::Lu(LuRef::new_unchecked(symbolic, numeric)),

@@ -9,7 +9,12 @@
 //! compressed-row loop with 32-bit indices and 0.6–1.0 ms with 64-bit ones (standalone loops,
 //! fastest of eight runs each, on the shared machine).
 
+use faer::dyn_stack::{MemStack, StackReq};
+use faer::matrix_free::LinOp;
 use faer::sparse::SymbolicSparseColMat;
+use faer::{MatMut, MatRef, Par};
+
+use crate::linalg::precond::columns;
 
 /// Rows a chunk pads to one width.
 const CHUNK: usize = 64;
@@ -18,6 +23,8 @@ const CHUNK: usize = 64;
 /// values of [`super::SparseSolver`] at every factorization.
 #[derive(Clone, Debug)]
 pub(crate) struct RowMatrix {
+    /// Rows (and columns).
+    n: usize,
     /// Entries of chunk c's rows start at `start[c]`, `width[c]` a row.
     start: Vec<usize>,
     width: Vec<usize>,
@@ -75,6 +82,7 @@ impl RowMatrix {
             }
         }
         Some(RowMatrix {
+            n,
             start,
             width,
             column,
@@ -118,6 +126,33 @@ impl RowMatrix {
             }
         }
         (wy, yy)
+    }
+}
+
+/// faer's operator, for its conjugate gradient: the same products as BiCGSTAB's.
+impl LinOp<f64> for RowMatrix {
+    fn apply_scratch(&self, _: usize, _: Par) -> StackReq {
+        StackReq::EMPTY
+    }
+    fn nrows(&self) -> usize {
+        self.n
+    }
+    fn ncols(&self) -> usize {
+        self.n
+    }
+    fn apply(&self, out: MatMut<'_, f64>, rhs: MatRef<'_, f64>, _: Par, stack: &mut MemStack) {
+        columns(out, rhs, stack, |y, x, _| {
+            self.product(x, y, x);
+        });
+    }
+    fn conj_apply(
+        &self,
+        out: MatMut<'_, f64>,
+        rhs: MatRef<'_, f64>,
+        par: Par,
+        stack: &mut MemStack,
+    ) {
+        self.apply(out, rhs, par, stack);
     }
 }
 
