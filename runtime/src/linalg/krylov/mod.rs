@@ -60,7 +60,7 @@ impl LinearSolver {
     /// the run (for multigrid from [`LinearSolver::MULTIGRID_FROM`] unknowns, else for the
     /// direct solver), and multigrid for the direct solver: 50. Gray–Scott at h = 10 needs 6–12
     /// per full-Newton solve from 64² to 128² (and wins 40–46×), 30 for a linearized step at
-    /// 256² to 1e-8 (and wins 31×).
+    /// 256² to 1e-8 (and wins 28–31×).
     pub const AUTO_DIRECT_ABOVE: usize = 50;
 
     /// Unknowns from which [`LinearSolver::Auto`] answers block Jacobi's slow convergence with
