@@ -1,7 +1,9 @@
 //! Krylov solvers for the sparse Newton matrices of particle and field models: how a run
 //! chooses them ([`LinearSolver`], [`Krylov`], [`Preconditioner`]), here, and the solve itself,
-//! on faer's conjugate gradient and BiCGSTAB (`faer::matrix_free`), in `solve.rs`.
+//! on faer's conjugate gradient (`faer::matrix_free`) and our BiCGSTAB (`bicgstab.rs`), in
+//! `solve.rs`.
 
+mod bicgstab;
 mod solve;
 
 pub(crate) use solve::{KrylovSolver, NoConvergence};
@@ -12,8 +14,8 @@ pub(crate) use solve::{KrylovSolver, NoConvergence};
 /// A direct solve factorizes every new matrix, at a cost growing like N^1.4–N^1.5 (see the
 /// README's tables); a preconditioned Krylov solve costs a few sparse products per iteration,
 /// and its iteration count grows with the matrix's condition. On reaction–diffusion grids
-/// (I − h·J with h·D/Δx² of a few) that count is small and Krylov wins by 20–26× from 32²
-/// cells; on a stiff cloth (M − h²·∂f/∂x with h²k/m ≈ 6·10³ at 32²) block-Jacobi CG needs
+/// (I − h·J with h·D/Δx² of a few) that count is small and Krylov wins by 20× at 32² cells and
+/// 40–46× from 64² to 256² (ten full-Newton Gray–Scott steps); on a stiff cloth (M − h²·∂f/∂x with h²k/m ≈ 6·10³ at 32²) block-Jacobi CG needs
 /// hundreds of iterations and the direct solve wins at every size measured. Set it with
 /// [`crate::NewtonOptions::linear`].
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -34,7 +36,8 @@ pub enum LinearSolver {
     /// Sparse Cholesky when the matrix is symmetric positive definite, else LU (faer).
     Direct,
     /// A preconditioned Krylov method: conjugate gradient when the matrix is symmetric,
-    /// BiCGSTAB otherwise (and when CG finds the matrix indefinite).
+    /// BiCGSTAB otherwise (and when CG finds the matrix indefinite). A matrix of 2³² stored
+    /// entries or more (its products index columns in 32 bits) is solved directly instead.
     Krylov(Krylov),
 }
 
@@ -55,8 +58,9 @@ impl LinearSolver {
 
     /// Iterations of one solve above which [`LinearSolver::Auto`] gives up block Jacobi for
     /// the run (for multigrid from [`LinearSolver::MULTIGRID_FROM`] unknowns, else for the
-    /// direct solver), and multigrid for the direct solver: 50. Gray–Scott at h = 10 needs 6–12 per full-Newton solve from 64² to 128² (and wins
-    /// 24×), 29 for a linearized step at 256² to 1e-8 (and wins 19×).
+    /// direct solver), and multigrid for the direct solver: 50. Gray–Scott at h = 10 needs 6–12
+    /// per full-Newton solve from 64² to 128² (and wins 40–46×), 30 for a linearized step at
+    /// 256² to 1e-8 (and wins 28–31×).
     pub const AUTO_DIRECT_ABOVE: usize = 50;
 
     /// Unknowns from which [`LinearSolver::Auto`] answers block Jacobi's slow convergence with

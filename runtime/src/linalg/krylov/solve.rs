@@ -1,16 +1,18 @@
-//! The preconditioned Krylov solve: conjugate gradient or BiCGSTAB (faer), warm-started from the
-//! previous solution, every buffer kept between solves.
+//! The preconditioned Krylov solve: conjugate gradient (faer's, on our products by rows) or
+//! BiCGSTAB (ours, in `bicgstab.rs`), warm-started from the previous solution, every buffer kept
+//! between solves.
 
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
-use faer::matrix_free::bicgstab::{BicgParams, bicgstab, bicgstab_scratch};
 use faer::matrix_free::conjugate_gradient::{
     CgParams, conjugate_gradient, conjugate_gradient_scratch,
 };
-use faer::matrix_free::{IdentityPrecond, InitialGuessStatus, Precond};
-use faer::sparse::SparseColMatRef;
+use faer::matrix_free::{InitialGuessStatus, Precond};
 use faer::{MatMut, MatRef, Par};
 
+use super::bicgstab::{Vectors, bicgstab};
 use super::{Krylov, KrylovCounts, Preconditioner};
+use crate::linalg::precond::Column;
+use crate::linalg::sparse::RowMatrix;
 
 /// What a Krylov solve keeps between calls: the options, the previous solution for the warm
 /// start, and every buffer, allocated once.
@@ -20,8 +22,10 @@ pub(crate) struct KrylovSolver {
     guess: Vec<f64>,
     /// A·guess, for the warm start's scaling.
     product: Vec<f64>,
-    /// The right-hand side, kept while faer writes the solution.
+    /// The right-hand side, kept while the solution is written.
     rhs: Vec<f64>,
+    /// BiCGSTAB's vectors.
+    vectors: Vectors,
     scratch: StackReq,
     stack: MemBuffer,
     /// The last solve took more than `refresh_above` iterations.
@@ -46,6 +50,7 @@ impl KrylovSolver {
             guess: vec![0.0; n],
             product: vec![0.0; n],
             rhs: vec![0.0; n],
+            vectors: Vectors::new(n),
             scratch: StackReq::EMPTY,
             stack: MemBuffer::new(StackReq::EMPTY),
             refresh: false,
@@ -60,9 +65,9 @@ impl KrylovSolver {
     /// otherwise.
     ///
     /// Errors: [`NoConvergence`], with `x` holding b again.
-    pub(crate) fn solve<P: Precond<f64> + Copy>(
+    pub(crate) fn solve<P: Precond<f64> + Column + Copy>(
         &mut self,
-        a: SparseColMatRef<'_, usize, f64>,
+        a: &RowMatrix,
         symmetric: bool,
         precond: P,
         x: &mut [f64],
@@ -109,27 +114,19 @@ impl KrylovSolver {
         }
         if iterations.is_none() {
             start(scale, &self.guess, x);
-            let params = BicgParams {
-                initial_guess,
-                rel_tolerance: rtol,
-                max_iters,
-                ..BicgParams::default()
-            };
-            let out = MatMut::from_column_major_slice_mut(x, n, 1);
             let stack = MemStack::new(&mut self.stack);
-            let identity = IdentityPrecond { dim: n };
-            if let Ok(info) = bicgstab(
-                out,
-                identity,
-                precond,
+            if let Ok(iters) = bicgstab(
                 a,
-                b,
-                params,
-                |_| {},
-                Par::Seq,
+                &precond,
+                &self.rhs,
+                x,
+                scale == 0.0,
+                rtol,
+                max_iters,
+                &mut self.vectors,
                 stack,
             ) {
-                iterations = Some(info.iter_count);
+                iterations = Some(iters);
             }
         }
         match iterations {
@@ -157,14 +154,9 @@ impl KrylovSolver {
     /// Makes the stack big enough for both methods with `precond` (allocates only when a
     /// bigger preconditioner appears: the first LU of a run, or multigrid taking over from block
     /// Jacobi under `Auto`, once).
-    fn reserve<P: Precond<f64> + Copy>(&mut self, a: SparseColMatRef<'_, usize, f64>, precond: P) {
-        let need = conjugate_gradient_scratch(precond, a, 1, Par::Seq).or(bicgstab_scratch(
-            IdentityPrecond { dim: a.nrows() },
-            precond,
-            a,
-            1,
-            Par::Seq,
-        ));
+    fn reserve<P: Precond<f64> + Column + Copy>(&mut self, a: &RowMatrix, precond: P) {
+        let need =
+            conjugate_gradient_scratch(precond, a, 1, Par::Seq).or(Column::scratch(&precond));
         if need.size_bytes() > self.scratch.size_bytes()
             || need.align_bytes() > self.scratch.align_bytes()
         {
@@ -176,28 +168,11 @@ impl KrylovSolver {
 
 /// The α minimising ‖b − α·A·guess‖₂ (so α·guess never starts worse than zero): 0 when there is
 /// no guess yet or the product says nothing.
-fn warm_scale(
-    a: SparseColMatRef<'_, usize, f64>,
-    guess: &[f64],
-    product: &mut [f64],
-    b: &[f64],
-) -> f64 {
+fn warm_scale(a: &RowMatrix, guess: &[f64], product: &mut [f64], b: &[f64]) -> f64 {
     if guess.iter().all(|&v| v == 0.0) {
         return 0.0;
     }
-    let n = guess.len();
-    faer::sparse::linalg::matmul::sparse_dense_matmul(
-        MatMut::from_column_major_slice_mut(product, n, 1),
-        faer::Accum::Replace,
-        a,
-        MatRef::from_column_major_slice(guess, n, 1),
-        1.0,
-        Par::Seq,
-    );
-    let (bq, qq) = b
-        .iter()
-        .zip(product.iter())
-        .fold((0.0, 0.0), |(bq, qq), (b, q)| (bq + b * q, qq + q * q));
+    let (bq, qq) = a.product(guess, product, b);
     let alpha = bq / qq;
     if alpha.is_finite() { alpha } else { 0.0 }
 }
@@ -220,6 +195,7 @@ impl Clone for KrylovSolver {
             guess: self.guess.clone(),
             product: self.product.clone(),
             rhs: self.rhs.clone(),
+            vectors: self.vectors.clone(),
             scratch: self.scratch,
             stack: MemBuffer::new(self.scratch),
             refresh: self.refresh,

@@ -66,13 +66,12 @@ impl Multigrid {
         {
             *fi = r[unknown];
         }
-        // Down: smooth, restrict the residual.
+        // Down: smooth from zero, restrict the residual.
         let mut rest: &mut [f64] = &mut *vectors;
         for (l, level) in self.levels.iter().enumerate() {
             let (x, f, t, tail) = split(rest, self.unknowns(l));
-            x.fill(0.0);
-            level.smooth(b, x, f, Sweep::Forward, block);
-            level.residual(b, x, f, t);
+            level.smooth_from_zero(b, x, f, block);
+            level.residual_after_sweep(b, x, t);
             level.restrict(b, t, rhs(tail, self.unknowns(l + 1), l + 1 == depth));
             rest = tail;
         }
@@ -94,7 +93,7 @@ impl Multigrid {
             let coarse = &tail[..self.unknowns(l + 1)];
             let level = &self.levels[l];
             level.prolong(b, coarse, x);
-            level.smooth(b, x, f, Sweep::Backward, block);
+            level.smooth_backward(b, x, f, block);
         }
         for (&xi, &unknown) in vectors[..self.unknowns(0)].iter().zip(&self.index) {
             out[unknown] = xi;
@@ -102,23 +101,57 @@ impl Multigrid {
     }
 }
 
-/// The direction of a Gauss–Seidel sweep.
-#[derive(Clone, Copy, PartialEq, Eq)]
-enum Sweep {
-    Forward,
-    Backward,
-}
-
 impl Level {
-    /// One block Gauss–Seidel sweep on A·x = f.
+    /// One forward block Gauss–Seidel sweep on A·x = f from x = 0, x written: the blocks right
+    /// of the diagonal meet only zeros, so they are not read (the same x as [`Level::smooth`]
+    /// from zero, to the bit).
     #[inline(always)]
-    fn smooth(&self, b: usize, x: &mut [f64], f: &[f64], sweep: Sweep, s: &mut [f64]) {
-        let n = self.a.rows();
-        for i in 0..n {
-            let k = match sweep {
-                Sweep::Forward => i,
-                Sweep::Backward => n - 1 - i,
-            };
+    fn smooth_from_zero(&self, b: usize, x: &mut [f64], f: &[f64], s: &mut [f64]) {
+        let bb = b * b;
+        for k in 0..self.a.rows() {
+            s.copy_from_slice(&f[k * b..(k + 1) * b]);
+            // Block columns ascend: those below k come first.
+            for p in self.a.row(k) {
+                let g = self.a.column[p];
+                if g >= k {
+                    break;
+                }
+                subtract_product(b, self.a.block(p, b), &x[g * b..(g + 1) * b], s);
+            }
+            let inverse = &self.inverse[k * bb..(k + 1) * bb];
+            for r in 0..b {
+                x[k * b + r] = inverse[r * b..(r + 1) * b]
+                    .iter()
+                    .zip(s.iter())
+                    .map(|(m, v)| m * v)
+                    .sum();
+            }
+        }
+    }
+
+    /// t = f − A·x right after [`Level::smooth_from_zero`], as −U·x with U the blocks right of
+    /// the diagonal: the sweep left f_k − Σ_{g ≤ k} A_kg·x_g zero (to the rounding of D_k⁻¹),
+    /// so the residual needs neither f nor the blocks left of and on the diagonal — 3 of 5 on a
+    /// 5-point grid.
+    #[inline(always)]
+    fn residual_after_sweep(&self, b: usize, x: &[f64], t: &mut [f64]) {
+        t.fill(0.0);
+        for k in 0..self.a.rows() {
+            let tk = &mut t[k * b..(k + 1) * b];
+            for p in self.a.row(k).rev() {
+                let g = self.a.column[p];
+                if g <= k {
+                    break;
+                }
+                subtract_product(b, self.a.block(p, b), &x[g * b..(g + 1) * b], tk);
+            }
+        }
+    }
+
+    /// One backward block Gauss–Seidel sweep on A·x = f.
+    #[inline(always)]
+    fn smooth_backward(&self, b: usize, x: &mut [f64], f: &[f64], s: &mut [f64]) {
+        for k in (0..self.a.rows()).rev() {
             self.relax(b, k, x, f, s);
         }
     }
@@ -141,19 +174,6 @@ impl Level {
                 .zip(s.iter())
                 .map(|(m, v)| m * v)
                 .sum();
-        }
-    }
-
-    /// t = f − A·x.
-    #[inline(always)]
-    fn residual(&self, b: usize, x: &[f64], f: &[f64], t: &mut [f64]) {
-        t.copy_from_slice(f);
-        for k in 0..self.a.rows() {
-            let tk = &mut t[k * b..(k + 1) * b];
-            for p in self.a.row(k) {
-                let g = self.a.column[p];
-                subtract_product(b, self.a.block(p, b), &x[g * b..(g + 1) * b], tk);
-            }
         }
     }
 

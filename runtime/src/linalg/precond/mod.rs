@@ -86,7 +86,7 @@ impl Column for Factors<'_> {
 }
 
 /// Writes P·rhs into `out` column by column with `apply(out_column, rhs_column, stack)`.
-fn columns(
+pub(crate) fn columns(
     mut out: MatMut<'_, f64>,
     rhs: MatRef<'_, f64>,
     stack: &mut MemStack,

@@ -1,7 +1,6 @@
 //! The Krylov solve of a sparse Newton matrix with the run's preconditioner, and `Auto`'s move
 //! to multigrid or to the direct solver when block Jacobi converges too slowly.
 
-use faer::sparse::SparseColMatRef;
 use faer::sparse::linalg::cholesky::LltRef;
 use faer::sparse::linalg::lu::LuRef;
 
@@ -21,11 +20,13 @@ impl SparseSolver {
         if !self.rhs.iter().all(|b| b.is_finite()) {
             return Ok(()); // a non-finite right-hand side stays non-finite: the caller reports it
         }
-        let matrix = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
+        let Some(rows) = &self.rows else {
+            return Err(NoConvergence);
+        };
         let n = self.rhs.len();
         let outcome = match (krylov.options.preconditioner, self.factored, &self.lu) {
             (Preconditioner::BlockJacobi, ..) => krylov.solve(
-                matrix,
+                rows,
                 self.symmetric,
                 self.jacobi.as_precond(n),
                 &mut self.rhs,
@@ -33,7 +34,7 @@ impl SparseSolver {
             ),
             (Preconditioner::Ilu0, ..) => match &self.ilu {
                 Some(ilu) => krylov.solve(
-                    matrix,
+                    rows,
                     self.symmetric,
                     Ilu0Ref(ilu),
                     &mut self.rhs,
@@ -43,7 +44,7 @@ impl SparseSolver {
             },
             (Preconditioner::Multigrid, ..) => match &self.multigrid {
                 Some(multigrid) => krylov.solve(
-                    matrix,
+                    rows,
                     self.symmetric,
                     MultigridRef(multigrid),
                     &mut self.rhs,
@@ -52,14 +53,14 @@ impl SparseSolver {
                 None => Err(NoConvergence),
             },
             (_, Some(Factored::Cholesky), _) => krylov.solve(
-                matrix,
+                rows,
                 self.symmetric,
                 Factors::Cholesky(LltRef::new(&self.cholesky, &self.cholesky_values)),
                 &mut self.rhs,
                 &mut self.counts.krylov,
             ),
             (_, Some(Factored::Lu), Some((symbolic, numeric))) => krylov.solve(
-                matrix,
+                rows,
                 self.symmetric,
                 Factors::Lu(LuRef::new_unchecked(symbolic, numeric)),
                 &mut self.rhs,

@@ -25,8 +25,11 @@ use super::precond::{BlockJacobi, Ilu0};
 
 mod direct;
 mod iterative;
+mod rows;
 #[cfg(test)]
 mod tests;
+
+pub(crate) use rows::RowMatrix;
 
 /// How often a sparse Newton matrix has factorized: the symbolic analyses happen once per run,
 /// the numeric factorizations once per Newton iteration (or Rosenbrock step).
@@ -69,6 +72,8 @@ pub(crate) struct SparseSolver {
     skip_cholesky: u32,
     /// The Krylov solver, when the run chose one ([`SparseSolver::configure`]).
     krylov: Option<KrylovSolver>,
+    /// The matrix by rows for the Krylov solver's products, made when a run first asks for them.
+    rows: Option<RowMatrix>,
     /// The diagonal blocks block Jacobi inverts (points until [`SparseSolver::set_blocks`]).
     jacobi: BlockJacobi,
     /// ILU(0)'s structure and factors, made when a run first asks for them.
@@ -136,6 +141,7 @@ impl SparseSolver {
             factored: None,
             skip_cholesky: 0,
             krylov: None,
+            rows: None,
             ilu: None,
             multigrid: None,
             blocks: (1, (0..n).collect()),
@@ -164,6 +170,13 @@ impl SparseSolver {
         self.krylov = linear.krylov_for(n, structure);
         if let Some(krylov) = &mut self.krylov {
             krylov.in_newton = in_newton;
+        }
+        if self.krylov.is_some() && self.rows.is_none() {
+            self.rows = RowMatrix::new(&self.pattern);
+            if self.rows.is_none() {
+                // Beyond 32-bit indices (2³² entries): a size no Krylov run here has reached.
+                self.krylov = None;
+            }
         }
         if let Some(krylov) = &self.krylov
             && krylov.options.preconditioner == Preconditioner::Ilu0
@@ -221,6 +234,9 @@ impl SparseSolver {
         let preconditioner = krylov.options.preconditioner;
         self.symmetric = self.is_symmetric();
         let values = &self.values;
+        if let Some(rows) = &mut self.rows {
+            rows.update(values);
+        }
         // The preconditioners built from the values: false when one cannot be (a singular
         // block or pivot, or none made), which the direct factorization then decides.
         let built = match preconditioner {
@@ -291,6 +307,7 @@ impl Clone for SparseSolver {
             factored: self.factored,
             skip_cholesky: self.skip_cholesky,
             krylov: self.krylov.clone(),
+            rows: self.rows.clone(),
             ilu: self.ilu.clone(),
             multigrid: self.multigrid.clone(),
             blocks: self.blocks.clone(),
