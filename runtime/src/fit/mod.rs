@@ -231,6 +231,9 @@ where
     Ok((r, jacobian))
 }
 
+/// r and ∂r/∂q at q.
+type Residuals<'a> = dyn FnMut(&DVector<f64>) -> Result<(DVector<f64>, DMatrix<f64>)> + 'a;
+
 /// The minimiser's result in the search variables.
 struct Minimum {
     q: DVector<f64>,
@@ -243,7 +246,7 @@ struct Minimum {
 /// Levenberg–Marquardt with Marquardt's diagonal scaling and Nielsen's damping update, on
 /// `residuals` (r and ∂r/∂q at q) from `q`.
 fn levenberg_marquardt(
-    residuals: &mut dyn FnMut(&DVector<f64>) -> Result<(DVector<f64>, DMatrix<f64>)>,
+    residuals: &mut Residuals<'_>,
     mut q: DVector<f64>,
     options: &FitOptions,
 ) -> Result<Minimum> {
