@@ -193,12 +193,24 @@ impl Chart {
             .build_cartesian_2d(x.lo..x.hi, y.lo..y.hi)
             .map_err(e)?;
         let (log_x, log_y) = (self.log_x, self.log_y);
+        // A tick that should be 0 but was reached by adding steps (−2.2e-16) reads 0.
+        let tick = |v: f64, log: bool, span: f64| {
+            axis_label(
+                if !log && v.abs() < 1e-9 * span {
+                    0.0
+                } else {
+                    v
+                },
+                log,
+            )
+        };
+        let (x_span, y_span) = (x.hi - x.lo, y.hi - y.lo);
         chart
             .configure_mesh()
             .x_desc(&self.x_label)
             .y_desc(&self.y_label)
-            .x_label_formatter(&|v| axis_label(*v, log_x))
-            .y_label_formatter(&|v| axis_label(*v, log_y))
+            .x_label_formatter(&|v| tick(*v, log_x, x_span))
+            .y_label_formatter(&|v| tick(*v, log_y, y_span))
             .label_style(("sans-serif", 16))
             .draw()
             .map_err(e)?;
