@@ -43,19 +43,24 @@ fn lorenz() -> Lorenz {
     })
 }
 
-/// Steps a model with integrator `I` through the `Integrator` trait.
+/// Steps a model with integrator `I` through the `Integrator` trait, [`STEPS`] steps of [`DT`].
 fn generated<M: Model, I: Integrator<M>>(model: &M) -> M::State {
+    stepped::<M, I>(model, STEPS, DT)
+}
+
+/// `steps` steps of `dt` with integrator `I` through the `Integrator` trait.
+fn stepped<M: Model, I: Integrator<M>>(model: &M, steps: u64, dt: f64) -> M::State {
     let mut state = model.state();
     let mut scratch = state.clone();
     let mut stats = Stats::default();
     let mut integrator = I::start(model, 0.0, &state, &NewtonOptions::default(), &mut stats)
         .expect("a fixed-size model always starts");
-    for n in 0..STEPS {
+    for n in 0..steps {
         // Explicit steps cannot fail; the `Result` is for implicit ones.
         let _ = integrator.step(
             model,
-            n as f64 * DT,
-            DT,
+            n as f64 * dt,
+            dt,
             &mut state,
             &mut scratch,
             &mut stats,
@@ -336,22 +341,7 @@ mod pleiades {
 
     #[divan::bench]
     fn rk4_generated() -> PleiadesState {
-        let p = black_box(Pleiades::start());
-        let mut state = p.state();
-        let mut scratch = state;
-        let mut stats = Stats::default();
-        let mut rk4 = <Rk4<_> as Integrator<Pleiades>>::start(
-            &p,
-            0.0,
-            &state,
-            &NewtonOptions::default(),
-            &mut stats,
-        )
-        .expect("a fixed-size model always starts");
-        for n in 0..STEPS {
-            let _ = rk4.step(&p, n as f64 * DT, DT, &mut state, &mut scratch, &mut stats);
-        }
-        state
+        stepped::<_, Rk4<_>>(&black_box(Pleiades::start()), STEPS, DT)
     }
     /// DOP853 to t = 3 at rtol = atol = 1.78e-12 (the peers' 1e-9 target, 362 steps),
     /// recording only the ends, with or without the dense output an adaptive run keeps by
@@ -425,23 +415,7 @@ mod double_pendulum {
     #[divan::bench(sample_count = 20)]
     fn rk4_generated(bencher: divan::Bencher) {
         let p = black_box(DoublePendulum::released());
-        bencher.bench_local(|| {
-            let mut state = p.state();
-            let mut scratch = state;
-            let mut stats = Stats::default();
-            let mut rk4 = <Rk4<_> as Integrator<DoublePendulum>>::start(
-                &p,
-                0.0,
-                &state,
-                &NewtonOptions::default(),
-                &mut stats,
-            )
-            .expect("a fixed-size model always starts");
-            for n in 0..STEPS {
-                let _ = rk4.step(&p, n as f64 * DT, DT, &mut state, &mut scratch, &mut stats);
-            }
-            state
-        });
+        bencher.bench_local(|| stepped::<_, Rk4<_>>(&p, STEPS, DT));
     }
     #[divan::bench(sample_count = 20)]
     fn rk4_hand(bencher: divan::Bencher) {
