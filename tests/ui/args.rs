@@ -133,3 +133,31 @@ mod unknown_integrator {
 }
 
 fn main() {}
+
+/// A wrong argument is its one error: the model still expands (with the default arguments), so
+/// code that runs it and reads its state draws nothing more.
+mod negative_rtol_model_still_used {
+    use odyn::prelude::*;
+
+    #[system(rtol = -1.0)]
+    pub struct Ball {
+        #[position]
+        pub y: f64,
+        #[velocity]
+        pub v: f64,
+        pub g: f64,
+    }
+
+    #[system]
+    impl Ball {
+        fn acceleration(&self) -> f64 {
+            -self.g
+        }
+    }
+
+    fn drop_height() -> odyn::Result<f64> {
+        let ball = Ball { y: 1.0, v: 0.0, g: 9.81 };
+        let run = ball.simulate().duration(0.1).run()?;
+        Ok(run.last().state.y)
+    }
+}

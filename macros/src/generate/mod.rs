@@ -36,6 +36,20 @@ use model::stub_model_with;
 /// comes after its impl, or lives in another module — cannot be replaced, so the name itself says
 /// what is required: "cannot find macro `__odyn_requires_system_on_struct_Spring_above_this_impl`"
 /// (a name that stays true in the notes of other errors, where the struct does have it).
+/// What the struct's expansion tells the impl block's.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub(crate) enum Forward {
+    /// The struct was accepted: expand the model.
+    Accepted,
+    /// The struct was read, but its attribute arguments (or their fit with the integrator) were
+    /// reported: expand the model all the same, with the default arguments, so code using it
+    /// sees its real state type and draws no follow-on errors, and nothing of the arguments is
+    /// evaluated or reported a second time.
+    Reported,
+    /// The struct was rejected: pass the impl block through, its bodies never run.
+    Rejected,
+}
+
 pub(crate) fn forwarder_name(model: &syn::Ident) -> syn::Ident {
     format_ident!(
         "__odyn_requires_system_on_struct_{}_above_this_impl",
@@ -84,12 +98,12 @@ pub(crate) fn never_run(
 /// rejected) it hands over only the impl block, marked `!`, which comes back with odyn's method
 /// attributes (`#[cell]`, `#[pair]`, `#[particle]`) removed and nothing added, so no follow-on
 /// errors drown the real one.
-pub(crate) fn forwarder(item: &ItemStruct, args: &TokenStream, ok: bool) -> TokenStream {
+pub(crate) fn forwarder(item: &ItemStruct, args: &TokenStream, forward: Forward) -> TokenStream {
     let name = forwarder_name(&item.ident);
-    let body = if ok {
-        quote!(::odyn::__private::system_impl! { [#args] #item $($item)* })
-    } else {
-        quote!(::odyn::__private::system_impl! { ! $($item)* })
+    let body = match forward {
+        Forward::Accepted => quote!(::odyn::__private::system_impl! { [#args] #item $($item)* }),
+        Forward::Reported => quote!(::odyn::__private::system_impl! { [] #item $($item)* }),
+        Forward::Rejected => quote!(::odyn::__private::system_impl! { ! $($item)* }),
     };
     quote! {
         #[doc(hidden)]

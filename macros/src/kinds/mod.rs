@@ -27,7 +27,7 @@ use syn::{ItemImpl, ItemStruct};
 
 use crate::args::{self, Args};
 use crate::errors::Errors;
-use crate::generate;
+use crate::generate::{self, Forward};
 use crate::model::state_ident;
 use crate::syntax::{strip_field_attributes, strip_method_attributes};
 use crate::validate::{self, FirstOrder};
@@ -115,22 +115,32 @@ pub(crate) fn expand_struct(args_tokens: TokenStream, item: &ItemStruct) -> Toke
         None
     } else {
         let kind = front_end(item);
+        let before = errors.len();
         if !kind.takes_parameters() {
             refuse_parameters(item, &mut errors);
         }
         let accepted = kind.expand_struct(item, &mut errors);
+        // A struct the front-end reported on is rejected whole, however it was returned.
+        let accepted = accepted.filter(|_| errors.len() == before);
         let first_order = accepted.as_ref().and_then(|s| s.first_order.as_ref());
         validate::structure(&args, first_order, &mut errors);
         accepted.map(|s| s.state)
     };
     match (errors.finish(), state) {
         (Ok(()), Some(state)) => {
-            let forwarder = generate::forwarder(item, &args_tokens, true);
+            let forwarder = generate::forwarder(item, &args_tokens, Forward::Accepted);
             quote!(#stripped #state #forwarder)
         }
-        (result, _) => {
+        // Only the arguments, or their fit with the model, were wrong (`rtol = -1.0`): the
+        // model still expands, so its uses draw no errors of their own.
+        (Err(error), Some(state)) => {
+            let error = error.to_compile_error();
+            let forwarder = generate::forwarder(item, &args_tokens, Forward::Reported);
+            quote!(#stripped #error #state #forwarder)
+        }
+        (result, None) => {
             let error = result.err().map(|e| e.to_compile_error());
-            let forwarder = generate::forwarder(item, &args_tokens, false);
+            let forwarder = generate::forwarder(item, &args_tokens, Forward::Rejected);
             let stub = generate::rejected_struct(item);
             quote!(#stripped #error #forwarder #stub)
         }
