@@ -91,6 +91,11 @@ pub(crate) fn model_impls(
     };
     let y = read("y");
     let derivative = match model.order {
+        // One scalar state: `derivative` may return the `f64` itself.
+        Order::First if model.len() == 1 && crate::syntax::is_f64(&force.output) => {
+            let field = model.states.first().map(|f| f.ident);
+            quote!(dydt.#field = self.#force_fn(t, #y);)
+        }
         Order::First => quote!(*dydt = self.#force_fn(t, #y);),
         Order::Second => {
             let positions = model.with_role(Role::Position).map(|f| f.ident);
