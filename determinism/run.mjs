@@ -3,18 +3,14 @@
 import { readFileSync } from "node:fs";
 
 const module = await WebAssembly.compile(readFileSync(process.argv[2]));
-// Dependencies built for the browser (indicatif's clock, through web-time and wasm-bindgen)
-// leave imports that only wasm-bindgen's JavaScript glue provides; no scene calls them, so each
-// is a function that fails loudly if one ever does.
-const imports = {};
-for (const { module: from, name, kind } of WebAssembly.Module.imports(module)) {
-  if (kind !== "function") throw new Error(`unexpected ${kind} import ${from}.${name}`);
-  imports[from] ??= {};
-  imports[from][name] = () => {
-    throw new Error(`${from}.${name} called: not available outside wasm-bindgen`);
-  };
+// The module is self-contained (odyn's wasm build pulls in no JavaScript glue); an import would
+// mean a dependency that expects a browser's, and is reported rather than stubbed.
+const imports = WebAssembly.Module.imports(module);
+if (imports.length > 0) {
+  const names = imports.map(({ module: from, name }) => `${from}.${name}`).join(", ");
+  throw new Error(`the determinism module imports ${names}; it must be self-contained`);
 }
-const instance = await WebAssembly.instantiate(module, imports);
+const instance = await WebAssembly.instantiate(module, {});
 const odyn = instance.exports;
 const count = odyn.odyn_scene_count();
 for (let i = 0; i < count; i++) {

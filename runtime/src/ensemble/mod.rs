@@ -26,7 +26,6 @@ pub use members::Members;
 pub use shard::{MemberRng, Shard, member_rng};
 pub use statistics::Statistics;
 
-use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 
 use crate::error::{bytes_text, count_text};
@@ -41,7 +40,7 @@ pub struct Ensemble {
     pub seed: u64,
     /// The share of the members this run takes ([`Shard::WHOLE`] by default).
     pub shard: Shard,
-    /// Show a progress bar on standard error.
+    /// Show a progress bar on standard error (not on WebAssembly, which has no terminal).
     pub progress: bool,
 }
 
@@ -109,26 +108,19 @@ impl Ensemble {
                 ),
             ));
         }
-        let bar = if self.progress {
-            let bar = ProgressBar::new(count);
-            if let Ok(style) = ProgressStyle::with_template(
-                "{msg} {bar:40} {pos}/{len} members, {elapsed} elapsed, ETA {eta}",
-            ) {
-                bar.set_style(style);
-            }
-            bar.set_message(format!("shard {}/{}", self.shard.index, self.shard.count));
-            bar
-        } else {
-            ProgressBar::hidden()
-        };
+        let bar = Bar::new(
+            self.progress,
+            count,
+            format!("shard {}/{}", self.shard.index, self.shard.count),
+        );
         // Into the slots reserved above (a range knows its length, so `par_extend` reserves
         // only what is missing: nothing).
         outputs.par_extend(range.clone().into_par_iter().map(|i| {
             let out = member(i, &mut member_rng(self.seed, i));
-            bar.inc(1);
+            bar.inc();
             out
         }));
-        bar.finish_and_clear();
+        bar.finish();
         for (i, out) in range.zip(outputs) {
             rows.push((i, out?));
         }
@@ -139,5 +131,47 @@ impl Ensemble {
         };
         members.check()?;
         Ok(members)
+    }
+}
+
+/// The ensemble's progress bar on standard error (indicatif), or nothing: when not asked for,
+/// and on WebAssembly, which has no terminal.
+struct Bar {
+    #[cfg(not(target_arch = "wasm32"))]
+    bar: indicatif::ProgressBar,
+}
+
+impl Bar {
+    #[cfg(not(target_arch = "wasm32"))]
+    fn new(shown: bool, count: u64, message: String) -> Self {
+        use indicatif::{ProgressBar, ProgressStyle};
+        let bar = if shown {
+            let bar = ProgressBar::new(count);
+            if let Ok(style) = ProgressStyle::with_template(
+                "{msg} {bar:40} {pos}/{len} members, {elapsed} elapsed, ETA {eta}",
+            ) {
+                bar.set_style(style);
+            }
+            bar.set_message(message);
+            bar
+        } else {
+            ProgressBar::hidden()
+        };
+        Bar { bar }
+    }
+
+    #[cfg(target_arch = "wasm32")]
+    fn new(_: bool, _: u64, _: String) -> Self {
+        Bar {}
+    }
+
+    fn inc(&self) {
+        #[cfg(not(target_arch = "wasm32"))]
+        self.bar.inc(1);
+    }
+
+    fn finish(&self) {
+        #[cfg(not(target_arch = "wasm32"))]
+        self.bar.finish_and_clear();
     }
 }
