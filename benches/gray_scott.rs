@@ -109,6 +109,17 @@ fn step_multigrid(bencher: divan::Bencher, n: usize) {
     linearized_step(bencher, n, LinearSolver::Krylov(krylov));
 }
 
+/// The whole step with ILU(0)-preconditioned BiCGSTAB (no warm start).
+#[divan::bench(args = SIZES, sample_count = 10)]
+fn step_ilu(bencher: divan::Bencher, n: usize) {
+    let krylov = Krylov {
+        warm_start: false,
+        preconditioner: Preconditioner::Ilu0,
+        ..Krylov::default()
+    };
+    linearized_step(bencher, n, LinearSolver::Krylov(krylov));
+}
+
 /// Ten full-Newton implicit Euler steps with `linear`.
 fn ten_steps(bencher: divan::Bencher, n: usize, linear: LinearSolver) {
     let model = model(n);
