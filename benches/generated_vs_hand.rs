@@ -23,13 +23,7 @@ fn main() {
 }
 
 fn spring() -> Spring {
-    black_box(Spring {
-        x: 1.0,
-        v: 0.0,
-        k: 50.0,
-        b: 0.5,
-        m: 1.0,
-    })
+    black_box(Spring::released())
 }
 
 fn lorenz() -> Lorenz {

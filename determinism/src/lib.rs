@@ -93,20 +93,9 @@ fn trajectory<S: State>(run: &Trajectory<S>) -> u64 {
     hash.finish()
 }
 
-/// The spring lab's spring (k = 50, b = 0.5, m = 1, from x = 1).
-fn spring() -> Spring {
-    Spring {
-        x: 1.0,
-        v: 0.0,
-        k: 50.0,
-        b: 0.5,
-        m: 1.0,
-    }
-}
-
 /// The spring lab's explicit Euler, dt = 0.016, 1 000 steps.
 fn spring_explicit_euler() -> odyn::Result<u64> {
-    let run = spring()
+    let run = Spring::released()
         .simulate()
         .integrator(Method::ExplicitEuler)
         .dt(0.016)
@@ -117,7 +106,7 @@ fn spring_explicit_euler() -> odyn::Result<u64> {
 
 /// The spring lab's symplectic Euler, dt = 0.016, 1 000 steps.
 fn spring_symplectic_euler() -> odyn::Result<u64> {
-    let run = spring()
+    let run = Spring::released()
         .simulate()
         .integrator(Method::SymplecticEuler)
         .dt(0.016)

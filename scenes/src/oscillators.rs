@@ -23,6 +23,18 @@ pub struct Spring {
 
 #[system]
 impl Spring {
+    /// The spring the checks and benches share: k = 50, b = 0.5, m = 1, released from x = 1 at
+    /// rest (ω₀ = √50 ≈ 7.07 rad/s, damping ratio 0.035).
+    pub fn released() -> Self {
+        Spring {
+            x: 1.0,
+            v: 0.0,
+            k: 50.0,
+            b: 0.5,
+            m: 1.0,
+        }
+    }
+
     /// The spring's force over its mass.
     pub fn acceleration(&self) -> f64 {
         (-self.k * self.x - self.b * self.v) / self.m

@@ -12,16 +12,6 @@ use odyn::prelude::*;
 use odyn::stability::{StabilityProbe, measured_limit};
 use odyn::{AdaptiveOptions, FixedTimestep, NewtonOptions, Stepper};
 
-fn spring() -> Spring {
-    Spring {
-        x: 1.0,
-        v: 0.0,
-        k: 50.0,
-        b: 0.5,
-        m: 1.0,
-    }
-}
-
 /// ẍ = −ω²x from (1, 0).
 fn oscillator(omega: f64) -> Oscillator {
     Oscillator {
@@ -173,7 +163,7 @@ fn newton_advice_names_the_option_that_helps() {
 /// once ran 1e11 steps), rejects a NaN or negative frame-time cap, and reports dropped time.
 #[test]
 fn the_frame_loop_cannot_spiral_or_hang() {
-    let model = spring();
+    let model = Spring::released();
     let mut stepper =
         Stepper::<_, SymplecticEuler<_>>::new(&model, model.state(), 0.0, 1e-12).unwrap();
     let mut clock = FixedTimestep::new();
@@ -247,7 +237,7 @@ fn integrators_check_the_model_when_they_start() {
     let error = started.err();
     assert!(matches!(error, Some(Error::BadModel { .. })), "{error:?}");
     // A NaN divergence limit on a bare stepper is refused too.
-    let s = spring();
+    let s = Spring::released();
     let limit = Stepper::<_, SymplecticEuler<_>>::with_limit(
         &s,
         s.state(),
@@ -263,7 +253,13 @@ fn integrators_check_the_model_when_they_start() {
 /// that advises reducing dt.
 #[test]
 fn an_initial_state_beyond_the_limit_is_an_input_error() {
-    let field = invalid_field(spring().simulate().divergence_limit(0.5).steps(10).run());
+    let field = invalid_field(
+        Spring::released()
+            .simulate()
+            .divergence_limit(0.5)
+            .steps(10)
+            .run(),
+    );
     assert_eq!(field, "initial state `x`");
 }
 
@@ -325,7 +321,7 @@ fn charts_refuse_what_they_cannot_draw() {
 /// Writing a trajectory whose samples were emptied is a typed error (it was an index panic).
 #[test]
 fn an_emptied_trajectory_is_a_typed_error() {
-    let mut run = spring().simulate().steps(3).run().unwrap();
+    let mut run = Spring::released().simulate().steps(3).run().unwrap();
     run.samples.clear();
     assert_eq!(
         invalid_field(run.write_csv(scratch("emptied", "empty.csv"))),
@@ -341,7 +337,7 @@ fn an_emptied_trajectory_is_a_typed_error() {
 #[test]
 fn output_files_respect_permissions_and_links() {
     use std::os::unix::fs::PermissionsExt;
-    let run = spring().simulate().steps(3).run().unwrap();
+    let run = Spring::released().simulate().steps(3).run().unwrap();
     let dir = scratch("outputs", "locked");
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::set_permissions(&dir, std::fs::Permissions::from_mode(0o555)).unwrap();
@@ -460,7 +456,12 @@ fn an_exploded_run_is_a_divergence() {
 /// digits.
 #[test]
 fn error_messages_print_numbers_compactly() {
-    let error = spring().simulate().dt(-1e-300).steps(1).run().unwrap_err();
+    let error = Spring::released()
+        .simulate()
+        .dt(-1e-300)
+        .steps(1)
+        .run()
+        .unwrap_err();
     let text = error.to_string();
     assert!(text.contains("-1e-300"), "{text}");
     assert!(text.len() < 120, "{text}");
@@ -837,7 +838,10 @@ fn bad_parameters_and_impossible_bounds_say_what_is_wrong() {
         other => panic!("expected BadModel, got {other:?}"),
     };
     for k in [f64::NAN, f64::INFINITY] {
-        let model = Spring { k, ..spring() };
+        let model = Spring {
+            k,
+            ..Spring::released()
+        };
         bad_model(
             model
                 .simulate()
@@ -868,7 +872,7 @@ fn bad_parameters_and_impossible_bounds_say_what_is_wrong() {
     // 50·1e308 overflows.
     let huge = Spring {
         x: 1e308,
-        ..spring()
+        ..Spring::released()
     };
     bad_model(
         huge.simulate()
@@ -882,7 +886,7 @@ fn bad_parameters_and_impossible_bounds_say_what_is_wrong() {
         dt_min: 10.0,
         ..AdaptiveOptions::default()
     };
-    let model = spring();
+    let model = Spring::released();
     let sim = model.simulate().integrator(Method::Tsit5).duration(1.0);
     assert_eq!(invalid_field(sim.clone().adaptive(control).run()), "dt_min");
     assert_eq!(

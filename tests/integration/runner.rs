@@ -6,16 +6,6 @@ use common::{Lorenz, Oscillator, OscillatorState, Pair, Spring};
 use odyn::prelude::*;
 use odyn::{Error, FixedTimestep, Stepper, integrators};
 
-fn spring() -> Spring {
-    Spring {
-        x: 1.0,
-        v: 0.0,
-        k: 50.0,
-        b: 0.5,
-        m: 1.0,
-    }
-}
-
 fn invalid_field(result: Result<impl std::fmt::Debug>) -> String {
     match result {
         Err(Error::InvalidInput { field, .. }) => field,
@@ -25,13 +15,13 @@ fn invalid_field(result: Result<impl std::fmt::Debug>) -> String {
 
 #[test]
 fn attribute_sets_the_defaults_and_the_runtime_overrides_them() {
-    let run = spring().simulate().duration(10.0).run().unwrap();
+    let run = Spring::released().simulate().duration(10.0).run().unwrap();
     assert_eq!(
         (run.method, run.stepping.dt(), run.steps()),
         (Method::SymplecticEuler, Some(0.016), 625)
     );
     assert_eq!(run.samples.len(), 626);
-    let rk4 = spring()
+    let rk4 = Spring::released()
         .simulate()
         .integrator(Method::Rk4)
         .dt(0.05)
@@ -53,36 +43,48 @@ fn attribute_sets_the_defaults_and_the_runtime_overrides_them() {
 #[test]
 fn bad_inputs_are_typed_errors() {
     assert_eq!(
-        invalid_field(spring().simulate().dt(0.0).steps(1).run()),
+        invalid_field(Spring::released().simulate().dt(0.0).steps(1).run()),
         "dt"
     );
     assert_eq!(
-        invalid_field(spring().simulate().dt(-0.1).steps(1).run()),
+        invalid_field(Spring::released().simulate().dt(-0.1).steps(1).run()),
         "dt"
     );
     assert_eq!(
-        invalid_field(spring().simulate().dt(f64::NAN).steps(1).run()),
+        invalid_field(Spring::released().simulate().dt(f64::NAN).steps(1).run()),
         "dt"
     );
     assert_eq!(
-        invalid_field(spring().simulate().dt(f64::INFINITY).steps(1).run()),
+        invalid_field(
+            Spring::released()
+                .simulate()
+                .dt(f64::INFINITY)
+                .steps(1)
+                .run()
+        ),
         "dt"
     );
-    assert_eq!(invalid_field(spring().simulate().run()), "length");
+    assert_eq!(invalid_field(Spring::released().simulate().run()), "length");
     assert_eq!(
-        invalid_field(spring().simulate().duration(-1.0).run()),
+        invalid_field(Spring::released().simulate().duration(-1.0).run()),
         "duration"
     );
     assert_eq!(
-        invalid_field(spring().simulate().duration(f64::NAN).run()),
+        invalid_field(Spring::released().simulate().duration(f64::NAN).run()),
         "duration"
     );
     assert_eq!(
-        invalid_field(spring().simulate().steps(3).record_every(0).run()),
+        invalid_field(Spring::released().simulate().steps(3).record_every(0).run()),
         "record_every"
     );
     assert_eq!(
-        invalid_field(spring().simulate().steps(3).start_time(f64::NAN).run()),
+        invalid_field(
+            Spring::released()
+                .simulate()
+                .steps(3)
+                .start_time(f64::NAN)
+                .run()
+        ),
         "t0"
     );
     // Lorenz's attribute names no dt.
@@ -101,7 +103,7 @@ fn bad_inputs_are_typed_errors() {
     );
     let nan = Spring {
         v: f64::NAN,
-        ..spring()
+        ..Spring::released()
     };
     assert_eq!(
         invalid_field(nan.simulate().steps(3).run()),
@@ -127,7 +129,7 @@ fn a_method_the_model_cannot_take_is_a_typed_error() {
         other => panic!("{other:?}"),
     }
     // The damped spring's force reads the velocity: position Verlet would silently ignore it.
-    let error = spring()
+    let error = Spring::released()
         .simulate()
         .integrator(Method::PositionVerlet)
         .steps(10)
@@ -222,7 +224,7 @@ fn identical_runs_are_bit_for_bit_identical() {
 #[test]
 fn frame_rate_does_not_change_the_physics() {
     fn history(fps: f64, seconds: f64) -> Vec<[u64; 3]> {
-        let model = spring();
+        let model = Spring::released();
         let mut stepper = Stepper::<_, integrators::VelocityVerlet<_>>::new(
             &model,
             model.state(),
@@ -272,7 +274,7 @@ fn frame_rate_does_not_change_the_physics() {
 
 #[test]
 fn a_long_frame_is_capped() {
-    let model = spring();
+    let model = Spring::released();
     let mut stepper =
         Stepper::<_, integrators::SymplecticEuler<_>>::new(&model, model.state(), 0.0, 0.01)
             .unwrap();
