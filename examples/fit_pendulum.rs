@@ -102,7 +102,7 @@ fn run(dir: &Path) -> odyn::Result<()> {
         gamma: 0.1,
         ..truth
     };
-    let found = fit(&guess, &data, &FitOptions::default())?;
+    let found = fit(&guess, std::slice::from_ref(&data), &FitOptions::default())?;
     println!(
         "fitted in {} iterations ({} solves with sensitivities); cost {:.4} → {:.4} (≈ (m − n)/2 = 49 for noise of the assumed σ)",
         found.iterations, found.solves, found.initial_cost, found.cost

@@ -2,7 +2,7 @@
 //! samples, by Levenberg–Marquardt on weighted least squares with the residuals' Jacobian from
 //! the forward sensitivities ([`crate::sensitivity`]) — no finite differences.
 //!
-//! Minimises ½ Σₖ wₖ² (y_c(tₖ; p) − dₖ)² over p (or over q = ln p for positive parameters, the
+//! Minimises ½ Σₖ wₖ² (y_c(tₖ; p) − dₖ)² (summed over every measured component c) over p (or over q = ln p for positive parameters, the
 //! usual way of fitting rates spread over orders of magnitude). Each iteration solves
 //! (JᵀJ + λ·diag(JᵀJ))·δ = −Jᵀr (Marquardt's scaling: Marquardt, SIAM J. Appl. Math. 11 (1963)
 //! 431; Moré, "The Levenberg–Marquardt algorithm: implementation and theory", LNM 630 (1978)),
@@ -22,7 +22,7 @@ use crate::sensitivity::Sensitive;
 use crate::{DenseMatrix, Error, Jacobian, Method, Model, Parameters, Result, State};
 
 /// Measured samples of one state component: `(t, value)` pairs, with optional weights
-/// (1/σ of each measurement; all 1 when empty).
+/// (1/σ of each measurement; all 1 when empty). A fit takes one per measured component.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Data {
     /// The state component measured (its index in the state's layout).
@@ -88,7 +88,8 @@ pub struct Fit {
     pub solves: usize,
 }
 
-/// Fits the `#[param]` parameters of `model` (its values are the initial guess) to `data`.
+/// Fits the `#[param]` parameters of `model` (its values are the initial guess) to `data`: one
+/// [`Data`] per measured state component, their residuals weighed together.
 ///
 /// # Errors
 ///
@@ -96,12 +97,15 @@ pub struct Fit {
 /// increasing or before the start, a component out of range, fewer samples than parameters, a
 /// non-positive parameter with `log_parameters`); [`Error::FitDidNotConverge`] when the
 /// iterations run out; any error of the solves.
-pub fn fit<M>(model: &M, data: &Data, options: &FitOptions) -> Result<Fit>
+pub fn fit<M>(model: &M, data: &[Data], options: &FitOptions) -> Result<Fit>
 where
     M: Parameters + Jacobian + Clone,
     M::Matrix: DenseMatrix,
 {
     check(model, data, options)?;
+    let mut times: Vec<f64> = data.iter().flat_map(|d| d.times.iter().copied()).collect();
+    times.sort_by(f64::total_cmp);
+    times.dedup();
     let guess = model.parameters();
     let to_search = |p: &[f64]| -> Vec<f64> {
         if options.log_parameters {
@@ -123,7 +127,7 @@ where
         let p = from_search(q.as_slice());
         let mut trial = model.clone();
         trial.set_parameters(&p)?;
-        let (r, mut jacobian) = residuals_and_jacobian(&trial, data, options)?;
+        let (r, mut jacobian) = residuals_and_jacobian(&trial, data, &times, options)?;
         if options.log_parameters {
             for (j, pj) in p.iter().enumerate() {
                 jacobian.column_mut(j).scale_mut(*pj);
@@ -150,36 +154,43 @@ where
     })
 }
 
-fn check<M: Parameters>(model: &M, data: &Data, options: &FitOptions) -> Result<()> {
+fn check<M: Parameters>(model: &M, data: &[Data], options: &FitOptions) -> Result<()> {
     let n = model.state().as_slice().len();
-    let m = data.times.len();
     let reject = |reason: String| Err(Error::invalid("fit data", reason));
-    if data.values.len() != m || !(data.weights.is_empty() || data.weights.len() == m) {
-        return reject(format!(
-            "{m} times, {} values and {} weights; give one value (and weight, if any) per time",
-            data.values.len(),
-            data.weights.len()
-        ));
+    for (i, data) in data.iter().enumerate() {
+        let m = data.times.len();
+        if data.values.len() != m || !(data.weights.is_empty() || data.weights.len() == m) {
+            return reject(format!(
+                "data set {i}: {m} times, {} values and {} weights; give one value (and \
+                 weight, if any) per time",
+                data.values.len(),
+                data.weights.len()
+            ));
+        }
+        if data.component >= n {
+            return reject(format!(
+                "data set {i}: component {} of a state of {n} components",
+                data.component
+            ));
+        }
+        if data.times.iter().any(|t| !t.is_finite()) || data.times.windows(2).any(|w| w[1] <= w[0])
+        {
+            return reject(format!(
+                "data set {i}: the times must be finite and increasing"
+            ));
+        }
+        if data.times.first().is_some_and(|&t| t < 0.0) {
+            return reject(format!(
+                "data set {i}: the first sample is at t = {}, before the model's start at t = 0",
+                data.times[0]
+            ));
+        }
     }
-    if data.component >= n {
-        return reject(format!(
-            "component {} of a state of {n} components",
-            data.component
-        ));
-    }
+    let m: usize = data.iter().map(|d| d.times.len()).sum();
     if m < M::NAMES.len() {
         return reject(format!(
             "{m} samples for {} parameters: a fit needs at least one sample per parameter",
             M::NAMES.len()
-        ));
-    }
-    if data.times.iter().any(|t| !t.is_finite()) || data.times.windows(2).any(|w| w[1] <= w[0]) {
-        return reject("the times must be finite and increasing".into());
-    }
-    if data.times.first().is_some_and(|&t| t < 0.0) {
-        return reject(format!(
-            "the first sample is at t = {}, before the model's start at t = 0",
-            data.times[0]
         ));
     }
     if options.log_parameters && model.parameters().iter().any(|p| p.is_nan() || *p <= 0.0) {
@@ -192,10 +203,12 @@ fn check<M: Parameters>(model: &M, data: &Data, options: &FitOptions) -> Result<
     Ok(())
 }
 
-/// The weighted residuals wₖ·(y_c(tₖ) − dₖ) and their Jacobian wₖ·∂y_c(tₖ)/∂p.
+/// The weighted residuals wₖ·(y_c(tₖ) − dₖ) of every data set, one after the other, and their
+/// Jacobian wₖ·∂y_c(tₖ)/∂p, from one solve saving at `times` (every data set's, merged).
 fn residuals_and_jacobian<M>(
     model: &M,
-    data: &Data,
+    data: &[Data],
+    times: &[f64],
     options: &FitOptions,
 ) -> Result<(DVector<f64>, DMatrix<f64>)>
 where
@@ -203,29 +216,34 @@ where
     M::Matrix: DenseMatrix,
 {
     let sensitive = Sensitive::new(model);
-    let end = *data.times.last().expect("checked: at least one sample");
+    let end = *times.last().expect("checked: at least one sample");
     let run = sensitive
         .simulate()
         .integrator(options.method)
         .tolerances(options.rtol, options.atol)
         .duration(end)
-        .save_at(&data.times)
+        .save_at(times)
         .dense_output(false)
         .run()?;
-    let (m, p) = (data.times.len(), M::NAMES.len());
+    let m: usize = data.iter().map(|d| d.times.len()).sum();
+    let p = M::NAMES.len();
     let mut r = DVector::zeros(m);
     let mut jacobian = DMatrix::zeros(m, p);
-    for (k, &t) in data.times.iter().enumerate() {
-        let sample = if t == 0.0 {
-            run.first()
-        } else {
-            run.sample_at(t)?
-        };
-        let w = data.weights.get(k).copied().unwrap_or(1.0);
-        r[k] = w * (sample.state.state()[data.component] - data.values[k]);
-        let s = sample.state.sensitivities();
-        for j in 0..p {
-            jacobian[(k, j)] = w * s[(data.component, j)];
+    let mut row = 0;
+    for data in data {
+        for (k, &t) in data.times.iter().enumerate() {
+            let sample = if t == 0.0 {
+                run.first()
+            } else {
+                run.sample_at(t)?
+            };
+            let w = data.weights.get(k).copied().unwrap_or(1.0);
+            r[row] = w * (sample.state.state()[data.component] - data.values[k]);
+            let s = sample.state.sensitivities();
+            for j in 0..p {
+                jacobian[(row, j)] = w * s[(data.component, j)];
+            }
+            row += 1;
         }
     }
     Ok((r, jacobian))
