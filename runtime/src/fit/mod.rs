@@ -13,7 +13,7 @@
 //!
 //! Why not a crate: `levenberg-marquardt` 0.15 is built on nalgebra 0.34 (odyn on 0.35: a second
 //! nalgebra in every build and conversions at the boundary), and argmin's least-squares solvers
-//! need their own math backend crate per nalgebra version; the method itself is the forty lines
+//! need their own math backend crate per nalgebra version; the method itself is the ~65 lines
 //! of `levenberg_marquardt` below.
 
 use nalgebra::{DMatrix, DVector};
