@@ -3,25 +3,14 @@
 //! `cargo bench --bench sph`; the cost per step should grow about linearly with the particle
 //! count (a uniform-grid neighbour search: each particle visits a fixed number of cells).
 
-use odyn::sph::{Sph, SphOptions};
+use odyn::sph::Sph;
 
 fn main() {
     divan::main();
 }
 
 fn dam_break(resolution: usize) -> Sph {
-    let a = 0.2;
-    let mut sph = Sph::block(
-        SphOptions {
-            spacing: a / resolution as f64,
-            sound_speed: 10.0 * (2.0 * 9.81 * 2.0 * a).sqrt(),
-            domain: (5.0 * a, 2.0 * a),
-            ..SphOptions::default()
-        },
-        a,
-        2.0 * a,
-    )
-    .expect("valid dam break");
+    let mut sph = scenes::dam_break(0.2, resolution).expect("valid dam break");
     for _ in 0..100 {
         sph.step(sph.stable_dt()).expect("stable step");
     }

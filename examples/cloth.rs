@@ -23,7 +23,7 @@ use odyn::particles::{ParticleState, ParticleSystem};
 use odyn::plot::{Chart, Series, View, views};
 use odyn::prelude::*;
 // The cloth: its model and the sheet that builds it (`scenes/src/cloth.rs`).
-use odyn::xpbd::{Constraint, Xpbd, XpbdOptions};
+use odyn::xpbd::Xpbd;
 use odyn::{NewtonOptions, Sample};
 use scenes::{Cloth, Sheet};
 
@@ -201,13 +201,7 @@ fn run(cli: Cli) -> odyn::Result<()> {
             failure,
         });
     }
-    runs.push(xpbd(
-        &cloth,
-        cli.k,
-        cli.xpbd_substeps,
-        cli.duration,
-        record_every,
-    )?);
+    runs.push(xpbd(&cloth, cli.xpbd_substeps, cli.duration, record_every)?);
     std::fs::create_dir_all(&cli.out).map_err(|source| Error::Io {
         path: cli.out.clone(),
         source,
@@ -227,35 +221,11 @@ fn run(cli: Cli) -> odyn::Result<()> {
     Ok(())
 }
 
-/// The same cloth as XPBD particles: every spring a distance constraint of compliance 1/k, the
-/// same pins and gravity (no air drag), `substeps` substeps of one sweep per 1/60 s frame.
-fn xpbd(
-    cloth: &Cloth,
-    k: f64,
-    substeps: u32,
-    duration: f64,
-    record_every: u64,
-) -> odyn::Result<Run> {
-    let mut particles = Xpbd::new(
-        cloth.x.clone(),
-        cloth.v.clone(),
-        &cloth.mass,
-        &cloth.pinned,
-        cloth.gravity,
-    )?;
-    particles.constraints = cloth
-        .springs
-        .iter()
-        .map(|s| Constraint::Distance {
-            ends: [s.a, s.b],
-            rest: s.rest,
-            compliance: 1.0 / k,
-        })
-        .collect();
-    particles.options = XpbdOptions {
-        substeps,
-        iterations: 1,
-    };
+/// The same cloth as XPBD particles (`Cloth::as_xpbd`: every spring a distance constraint of
+/// compliance 1/k, the same pins and gravity, no air drag), `substeps` substeps of one sweep per
+/// 1/60 s frame.
+fn xpbd(cloth: &Cloth, substeps: u32, duration: f64, record_every: u64) -> odyn::Result<Run> {
+    let mut particles = cloth.as_xpbd(substeps)?;
     let dt = 1.0 / 60.0;
     let steps = (duration / dt).round() as u64;
     let sample = |step: u64, particles: &Xpbd<3>| -> odyn::Result<Sample<ParticleState<3>>> {

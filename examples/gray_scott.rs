@@ -36,14 +36,8 @@ use odyn::{Method, Model, NewtonOptions};
 // + k)v.
 use scenes::GrayScott;
 
-/// Named (F, k) points: "mitosis" and "coral" from Karl Sims' reaction–diffusion tutorial
-/// (karlsims.com/rd.html, whose grid and Laplacian give nearly Pearson's D_u/dx² = 0.21), and
-/// "loops" from Munafo's Gray–Scott glossary (mrob.com/pub/comp/xmorphia, "Hilbert loop").
-const PATTERNS: [(&str, f64, f64); 3] = [
-    ("mitosis", 0.0367, 0.0649),
-    ("coral", 0.0545, 0.062),
-    ("loops", 0.062, 0.063),
-];
+/// The named (F, k) points (`GrayScott::PATTERNS`, with their sources).
+const PATTERNS: [(&str, f64, f64); 3] = GrayScott::PATTERNS;
 
 #[derive(Parser)]
 #[command(about)]

@@ -21,7 +21,9 @@ use std::time::Instant;
 use clap::Parser;
 use odyn::output::{number, write_table};
 use odyn::plot::{Chart, Frame, Series, View, animation, views};
-use odyn::sph::{Sph, SphOptions};
+use odyn::sph::Sph;
+// The dam break, written once for the examples, tests and benches (`scenes/src/fluids.rs`).
+use scenes::dam_break;
 
 /// Martin & Moyce (1952), n² = 2: (T, Z).
 const MARTIN_MOYCE: [(f64, f64); 15] = [
@@ -62,22 +64,6 @@ fn main() -> ExitCode {
             ExitCode::FAILURE
         }
     }
-}
-
-/// The dam break of column width `a` at `resolution` particles across it.
-pub fn dam_break(a: f64, resolution: usize) -> odyn::Result<Sph> {
-    let g = 9.81;
-    Sph::block(
-        SphOptions {
-            spacing: a / resolution as f64,
-            // Ten times the fastest flow, √(2g·2a) for a column 2a high.
-            sound_speed: 10.0 * (2.0 * g * 2.0 * a).sqrt(),
-            domain: (5.0 * a, 2.0 * a),
-            ..SphOptions::default()
-        },
-        a,
-        2.0 * a,
-    )
 }
 
 fn run(cli: Cli) -> odyn::Result<()> {

@@ -1,15 +1,15 @@
 //! Full trajectories of seven scenes reduced to one hash each, so a native run and the same code
 //! compiled to WebAssembly can be compared bit for bit (issue 26: cross-platform determinism).
 //!
-//! Each hash is FNV-1a (64-bit) over the IEEE bits of every recorded `f64` — every sample's
+//! Each hash is an [`odyn::Fingerprint`] (FNV-1a, 64-bit) over the IEEE bits of every recorded `f64` — every sample's
 //! time and state, every event's time and states — so one differing last bit anywhere changes
 //! it. Natively, `cargo run -p odyn-determinism --features deterministic` prints them; the
 //! WebAssembly module exports them to `run.mjs`; `scripts/determinism.sh` builds both and
 //! compares. With odyn's `deterministic` feature every transcendental function is the `libm`
 //! crate's on both sides; without it each side uses its platform's and the hashes may differ.
 
+use odyn::Fingerprint;
 use odyn::prelude::*;
-use odyn::sph::{Sph, SphOptions};
 use scenes::{DoublePendulum, GrayScott, Lorenz, LorenzState, Sheet, Spring};
 
 /// A scene: its name and what computes its hash.
@@ -47,52 +47,6 @@ fn hash_of(i: usize) -> u64 {
     }
 }
 
-/// FNV-1a over the bits of `f64`s (Fowler, Noll & Vo; the 64-bit offset basis and prime).
-#[derive(Clone, Copy, Debug)]
-pub struct Fnv(u64);
-
-impl Default for Fnv {
-    fn default() -> Self {
-        Fnv(0xcbf2_9ce4_8422_2325)
-    }
-}
-
-impl Fnv {
-    /// Adds one number's eight bytes.
-    pub fn add(&mut self, x: f64) {
-        for byte in x.to_bits().to_le_bytes() {
-            self.0 = (self.0 ^ u64::from(byte)).wrapping_mul(0x0000_0100_0000_01b3);
-        }
-    }
-
-    /// Adds every number of `xs`.
-    pub fn extend<'a>(&mut self, xs: impl IntoIterator<Item = &'a f64>) {
-        for &x in xs {
-            self.add(x);
-        }
-    }
-
-    /// The hash.
-    pub fn finish(self) -> u64 {
-        self.0
-    }
-}
-
-/// Every sample's time and state, then every event's time and states.
-fn trajectory<S: State>(run: &Trajectory<S>) -> u64 {
-    let mut hash = Fnv::default();
-    for sample in &run.samples {
-        hash.add(sample.t);
-        hash.extend(sample.state.as_slice());
-    }
-    for event in &run.events {
-        hash.add(event.t);
-        hash.extend(event.before.as_slice());
-        hash.extend(event.after.as_slice());
-    }
-    hash.finish()
-}
-
 /// The spring lab's explicit Euler, dt = 0.016, 1 000 steps.
 fn spring_explicit_euler() -> odyn::Result<u64> {
     let run = Spring::released()
@@ -101,7 +55,7 @@ fn spring_explicit_euler() -> odyn::Result<u64> {
         .dt(0.016)
         .steps(1000)
         .run()?;
-    Ok(trajectory(&run))
+    Ok(Fingerprint::of_trajectory(&run))
 }
 
 /// The spring lab's symplectic Euler, dt = 0.016, 1 000 steps.
@@ -112,7 +66,7 @@ fn spring_symplectic_euler() -> odyn::Result<u64> {
         .dt(0.016)
         .steps(1000)
         .run()?;
-    Ok(trajectory(&run))
+    Ok(Fingerprint::of_trajectory(&run))
 }
 
 /// The double pendulum under RK4 (sin and cos of the angles at every stage), dt = 0.001, 10 s.
@@ -124,7 +78,7 @@ fn double_pendulum_rk4() -> odyn::Result<u64> {
         .steps(10_000)
         .record_every(10)
         .run()?;
-    Ok(trajectory(&run))
+    Ok(Fingerprint::of_trajectory(&run))
 }
 
 /// Lorenz under DOP853 (its controller takes `powf` of the error every step) at rtol 1e-9, to
@@ -138,7 +92,7 @@ fn lorenz_dop853_events() -> odyn::Result<u64> {
         .duration(20.0)
         .event(crossing)
         .run()?;
-    Ok(trajectory(&run))
+    Ok(Fingerprint::of_trajectory(&run))
 }
 
 /// Gray–Scott at Pearson's set-up on 64², explicit Euler at dt = 1, 500 steps.
@@ -150,7 +104,7 @@ fn gray_scott_explicit() -> odyn::Result<u64> {
         .steps(500)
         .record_every(100)
         .run()?;
-    Ok(trajectory(&run))
+    Ok(Fingerprint::of_trajectory(&run))
 }
 
 /// The falling cloth at 12², implicit Euler at dt = 1/60 for one second: faer's sparse
@@ -167,24 +121,14 @@ fn cloth_implicit_euler() -> odyn::Result<u64> {
         .steps(60)
         .record_every(10)
         .run()?;
-    Ok(trajectory(&run))
+    Ok(Fingerprint::of_trajectory(&run))
 }
 
 /// The SPH dam break at 12 particles across the column, 200 steps each at the stable dt of
 /// the moment.
 fn sph_dam_break() -> odyn::Result<u64> {
-    let (a, g) = (0.1, 9.81);
-    let mut sph = Sph::block(
-        SphOptions {
-            spacing: a / 12.0,
-            sound_speed: 10.0 * (2.0 * g * 2.0 * a).sqrt(),
-            domain: (5.0 * a, 2.0 * a),
-            ..SphOptions::default()
-        },
-        a,
-        2.0 * a,
-    )?;
-    let mut hash = Fnv::default();
+    let mut sph = scenes::dam_break(0.1, 12)?;
+    let mut hash = Fingerprint::new();
     for _ in 0..200 {
         let dt = sph.stable_dt();
         hash.add(dt);
@@ -230,20 +174,11 @@ mod tests {
     use super::*;
 
     /// Every scene runs, and twice in one process gives the same hash (the hash covers the
-    /// whole trajectory: the next test shows one last bit changes it).
+    /// whole trajectory: `odyn::Fingerprint`'s tests show one last bit changes it).
     #[test]
     fn every_scene_runs_and_repeats_itself() {
         let first = hashes();
         assert!(first.iter().all(|&(_, h)| h != 0), "{first:x?}");
         assert_eq!(first, hashes());
-    }
-
-    /// One ulp in one number changes the hash.
-    #[test]
-    fn one_bit_changes_the_hash() {
-        let (mut a, mut b) = (Fnv::default(), Fnv::default());
-        a.extend(&[1.0, 2.0]);
-        b.extend(&[1.0, f64::from_bits(2.0f64.to_bits() + 1)]);
-        assert_ne!(a.finish(), b.finish());
     }
 }

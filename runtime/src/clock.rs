@@ -62,10 +62,32 @@ impl FixedTimestep {
         frame_time: f64,
         stepper: &mut Stepper<'_, M, I>,
     ) -> Result<Tick> {
+        let dt = stepper.dt();
+        self.advance_with(frame_time, dt, || stepper.step())
+    }
+
+    /// [`FixedTimestep::advance`] for whatever `step` advances by `dt`: several steppers at once,
+    /// an [`crate::xpbd::Xpbd`] or [`crate::sph::Sph`] system, a user's drag applied before
+    /// each step.
+    ///
+    /// Errors: as [`FixedTimestep::advance`], and [`Error::InvalidInput`] for a `dt` that is not
+    /// finite and positive; passes on the first error of `step` (the steps before it stand).
+    pub fn advance_with(
+        &mut self,
+        frame_time: f64,
+        dt: f64,
+        mut step: impl FnMut() -> Result<()>,
+    ) -> Result<Tick> {
         if !(frame_time.is_finite() && frame_time >= 0.0) {
             return Err(Error::invalid(
                 "frame_time",
                 format!("must be finite and non-negative, got {frame_time:?}"),
+            ));
+        }
+        if !(dt.is_finite() && dt > 0.0) {
+            return Err(Error::invalid(
+                "dt",
+                format!("must be finite and positive, got {dt:?}"),
             ));
         }
         if !(self.max_frame_time.is_finite() && self.max_frame_time > 0.0) {
@@ -80,7 +102,6 @@ impl FixedTimestep {
         let taken = frame_time.min(self.max_frame_time);
         let mut dropped = frame_time - taken;
         self.accumulator += taken;
-        let dt = stepper.dt();
         let mut steps = 0;
         while self.accumulator >= dt {
             if steps == self.max_steps_per_frame {
@@ -90,7 +111,7 @@ impl FixedTimestep {
                 self.accumulator = (self.accumulator - left).max(0.0);
                 break;
             }
-            stepper.step()?;
+            step()?;
             self.accumulator -= dt;
             steps += 1;
         }

@@ -16,6 +16,7 @@ pub mod clock;
 pub mod drive;
 pub mod ensemble;
 mod error;
+mod fingerprint;
 pub mod fit;
 pub mod fluids;
 pub mod grid;
@@ -46,6 +47,7 @@ pub use drive::{
     Tolerances,
 };
 pub use error::{Error, NewtonFailure, Result};
+pub use fingerprint::Fingerprint;
 pub use integrators::Integrator;
 pub use linalg::{
     DenseMatrix, FactorizeError, FaerDense, Krylov, KrylovCounts, LinearSolver, NewtonMatrix,

@@ -4,6 +4,7 @@
 
 use odyn::particles::Spring;
 use odyn::prelude::*;
+use odyn::xpbd::{Constraint, Xpbd, XpbdOptions};
 
 /// A cloth: damped springs between particles, weight and air drag on each.
 #[system(integrator = ImplicitEuler, dt = 1.0 / 60.0)]
@@ -67,6 +68,35 @@ impl Cloth {
             .map(|(x, m)| -m * self.gravity.dot(x))
             .sum();
         springs + gravity
+    }
+}
+
+impl Cloth {
+    /// The same cloth as XPBD particles: every spring a distance constraint of compliance
+    /// 1/k, the same masses, pins and gravity (no air drag, no spring damping), `substeps`
+    /// substeps of one sweep per step (`odyn::xpbd`).
+    pub fn as_xpbd(&self, substeps: u32) -> odyn::Result<Xpbd<3>> {
+        let mut particles = Xpbd::new(
+            self.x.clone(),
+            self.v.clone(),
+            &self.mass,
+            &self.pinned,
+            self.gravity,
+        )?;
+        particles.constraints = self
+            .springs
+            .iter()
+            .map(|s| Constraint::Distance {
+                ends: [s.a, s.b],
+                rest: s.rest,
+                compliance: 1.0 / s.stiffness,
+            })
+            .collect();
+        particles.options = XpbdOptions {
+            substeps,
+            iterations: 1,
+        };
+        Ok(particles)
     }
 }
 

@@ -39,6 +39,16 @@ impl GrayScott {
 }
 
 impl GrayScott {
+    /// Named (F, k) points: "mitosis" and "coral" from Karl Sims' reaction–diffusion tutorial
+    /// (karlsims.com/rd.html, whose grid and Laplacian give nearly Pearson's D_u/dx² = 0.21),
+    /// and "loops" from Munafo's Gray–Scott glossary (mrob.com/pub/comp/xmorphia, "Hilbert
+    /// loop").
+    pub const PATTERNS: [(&'static str, f64, f64); 3] = [
+        ("mitosis", 0.0367, 0.0649),
+        ("coral", 0.0545, 0.062),
+        ("loops", 0.062, 0.063),
+    ];
+
     /// Pearson's set-up on an n × n periodic grid of side 2.5: D_u = 2·10⁻⁵, D_v = 10⁻⁵, u = 1
     /// and v = 0 but for a central square of side 20/256 of the grid, where u = 1/2, v = 1/4.
     pub fn pearson(n: usize, feed: f64, kill: f64) -> odyn::Result<Self> {

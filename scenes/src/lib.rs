@@ -12,6 +12,7 @@
 //!   [`Pollu`], [`Orego`]) with their references.
 //! - [`cloth`] — the Baraff–Witkin [`Cloth`] and the [`Sheet`] that builds it.
 //! - [`fields`] — Gray–Scott reaction–diffusion, [`GrayScott`].
+//! - [`fluids`] — the SPH [`dam_break`].
 //! - [`analysis`] — the fitted [`slope`] of a convergence study.
 //!
 //! Not published: the scenes serve odyn's own checks and examples; each example that uses one
@@ -21,6 +22,7 @@ pub mod analysis;
 pub mod chaos;
 pub mod cloth;
 pub mod fields;
+pub mod fluids;
 pub mod orbits;
 pub mod oscillators;
 pub mod pendulums;
@@ -30,6 +32,7 @@ pub use analysis::slope;
 pub use chaos::*;
 pub use cloth::{Cloth, Hang, Sheet};
 pub use fields::*;
+pub use fluids::dam_break;
 pub use orbits::*;
 pub use oscillators::*;
 pub use pendulums::*;

@@ -292,6 +292,54 @@ fn a_long_frame_is_capped() {
     ));
 }
 
+/// `advance_with` takes the same steps as `advance` for the same frames (it is what `advance`
+/// runs), stops at the first failing step, and refuses a dt that is not finite and positive.
+#[test]
+fn advance_with_steps_anything_like_advance() {
+    let mut counted = FixedTimestep::new();
+    let mut through_stepper = FixedTimestep::new();
+    let model = Spring::released();
+    let mut stepper =
+        Stepper::<_, integrators::SymplecticEuler<_>>::new(&model, model.state(), 0.0, 0.01)
+            .unwrap();
+    let mut steps = 0;
+    for frame in [0.016, 0.017, 0.004, 0.033, 0.25] {
+        let a = counted
+            .advance_with(frame, 0.01, || {
+                steps += 1;
+                Ok(())
+            })
+            .unwrap();
+        let b = through_stepper.advance(frame, &mut stepper).unwrap();
+        assert_eq!(a, b);
+    }
+    assert_eq!(steps, stepper.steps());
+    // 0.016 + 0.017 + 0.004 + 0.033 + 0.1 (the cap) = 0.17 s: 16 or 17 steps of 0.01, as the
+    // rounding of the sums falls.
+    assert!((16..=17).contains(&steps), "{steps}");
+    let mut failing = FixedTimestep::new();
+    let mut tries = 0;
+    let failed = failing.advance_with(0.05, 0.01, || {
+        tries += 1;
+        if tries == 3 {
+            Err(Error::InvalidInput {
+                field: "test".into(),
+                reason: "third step".into(),
+            })
+        } else {
+            Ok(())
+        }
+    });
+    assert!(matches!(failed, Err(Error::InvalidInput { .. })));
+    assert_eq!(tries, 3);
+    for dt in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+        assert!(matches!(
+            FixedTimestep::new().advance_with(0.1, dt, || Ok(())),
+            Err(Error::InvalidInput { .. })
+        ));
+    }
+}
+
 #[test]
 fn first_order_models_run_with_the_general_methods() {
     let lorenz = Lorenz::classic();

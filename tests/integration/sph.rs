@@ -5,19 +5,10 @@
 use odyn::Error;
 use odyn::sph::{Sph, SphOptions};
 
-/// A column a wide and 2a high in a box 5a wide and 2a high, `resolution` particles across a.
+/// The dam break (`scenes::dam_break`): a column a wide and 2a high in a box 5a wide and 2a
+/// high, `resolution` particles across a.
 fn dam_break(a: f64, resolution: usize) -> Sph {
-    Sph::block(
-        SphOptions {
-            spacing: a / resolution as f64,
-            sound_speed: 10.0 * (2.0 * 9.81 * 2.0 * a).sqrt(),
-            domain: (5.0 * a, 2.0 * a),
-            ..SphOptions::default()
-        },
-        a,
-        2.0 * a,
-    )
-    .unwrap()
+    scenes::dam_break(a, resolution).unwrap()
 }
 
 /// Particles are never created or destroyed, so the fluid's mass is exactly the same after a

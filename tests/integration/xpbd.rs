@@ -407,3 +407,34 @@ fn a_rigid_pendulum_keeps_more_of_its_swing_with_more_substeps() {
     assert!(kept.windows(2).all(|w| w[1] > w[0]), "{kept:?}");
     assert!(kept[0] < 0.5 && kept[3] > 0.9, "{kept:?}");
 }
+
+/// A held particle stays exactly where it is held, at rest, while the chain swings from it (a
+/// drag); let go, it falls with its own mass again; a pinned particle stays pinned when let go.
+/// Holding a particle that does not exist, or at a non-finite point, is a typed error.
+#[test]
+fn a_held_particle_stays_where_it_is_held_until_let_go() {
+    let mut rope = chain(10, 0.1, 0.0, true);
+    let hand = Vector2::new(0.5, 0.3);
+    for _ in 0..30 {
+        rope.hold(10, Some(hand)).unwrap();
+        rope.step(1.0 / 60.0).unwrap();
+        assert_eq!(rope.x[10], hand);
+        assert_eq!(rope.v[10], Vector2::zeros());
+    }
+    // The chain hangs between the pin and the hand: its middle sags below both.
+    assert!(rope.x[5].y < 0.0, "{:?}", rope.x[5]);
+    rope.hold(10, None).unwrap();
+    rope.step(1.0 / 60.0).unwrap();
+    assert!(rope.x[10].y < hand.y, "falls once let go: {:?}", rope.x[10]);
+    rope.hold(0, None).unwrap();
+    rope.step(1.0 / 60.0).unwrap();
+    assert_eq!(rope.x[0], Vector2::zeros(), "the pin holds");
+    assert!(matches!(
+        rope.hold(11, None),
+        Err(Error::InvalidInput { .. })
+    ));
+    assert!(matches!(
+        rope.hold(3, Some(Vector2::new(f64::NAN, 0.0))),
+        Err(Error::InvalidInput { .. })
+    ));
+}

@@ -66,8 +66,10 @@ pub struct Xpbd<const D: usize> {
     pub x: Vec<SVector<f64, D>>,
     /// Velocities.
     pub v: Vec<SVector<f64, D>>,
-    /// Inverse masses (0 for pinned particles).
+    /// Inverse masses (0 for pinned and held particles).
     inverse_mass: Vec<f64>,
+    /// Inverse masses as built (0 for pinned particles): what a held particle gets back.
+    own_inverse_mass: Vec<f64>,
     /// The constraints, solved in this order.
     pub constraints: Vec<Constraint<D>>,
     /// The obstacles.
@@ -150,6 +152,7 @@ impl<const D: usize> Xpbd<D> {
             previous: x.clone(),
             x,
             v,
+            own_inverse_mass: inverse_mass.clone(),
             inverse_mass,
             constraints: Vec::new(),
             colliders: Vec::new(),
@@ -229,6 +232,38 @@ impl<const D: usize> Xpbd<D> {
         self.steps += 1;
         self.t += dt;
         self.check_finite(dt)
+    }
+
+    /// Holds particle `i` at `at`, at rest, through the steps that follow, as if pinned (a
+    /// user's drag: call it again each frame with where the hand is); `None` lets it go, with
+    /// its own mass again. A pinned particle stays pinned when let go.
+    ///
+    /// Errors: [`Error::InvalidInput`] for a particle that does not exist or a position that is
+    /// not finite.
+    pub fn hold(&mut self, i: usize, at: Option<SVector<f64, D>>) -> Result<()> {
+        let n = self.x.len();
+        if i >= n {
+            return Err(Error::invalid(
+                "particle",
+                format!("particle {i} does not exist ({n} particles)"),
+            ));
+        }
+        match at {
+            Some(at) if !at.iter().all(|c| c.is_finite()) => Err(Error::invalid(
+                "at",
+                format!("particle {i} would be held at a position that is not finite"),
+            )),
+            Some(at) => {
+                self.x[i] = at;
+                self.v[i] = SVector::zeros();
+                self.inverse_mass[i] = 0.0;
+                Ok(())
+            }
+            None => {
+                self.inverse_mass[i] = self.own_inverse_mass[i];
+                Ok(())
+            }
+        }
     }
 
     /// The largest relative stretch |length/rest − 1| over the distance constraints.
