@@ -46,11 +46,7 @@ fn main() -> ExitCode {
 
 fn run() -> odyn::Result<()> {
     let dir = std::path::Path::new("out/robertson");
-    let model = Robertson {
-        a: 1.0,
-        b: 0.0,
-        c: 0.0,
-    };
+    let model = Robertson::classic();
     println!("Robertson kinetics: implicit Euler error at t = 40 against SciPy Radau");
     println!(
         "  {:>7} {:>7} {:>12} {:>12}",

@@ -109,11 +109,7 @@ struct Cli {}
 fn main() -> odyn::Result<()> {
     <Cli as clap::Parser>::parse();
     let dir = Path::new("out/stiff_suite");
-    let robertson = Robertson {
-        a: 1.0,
-        b: 0.0,
-        c: 0.0,
-    };
+    let robertson = Robertson::classic();
     let reference = ROBERTSON_1E5.to_vec();
     study(
         "robertson",

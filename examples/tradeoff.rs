@@ -209,11 +209,7 @@ fn run(quick: bool) -> odyn::Result<()> {
     report(&measure(&pleiades, &study)?, dir, Accuracy::FinalState)?;
 
     // Robertson at t = 40 against SciPy Radau (scripts/reference.py).
-    let robertson = Robertson {
-        a: 1.0,
-        b: 0.0,
-        c: 0.0,
-    };
+    let robertson = Robertson::classic();
     let mut study = WorkPrecision::new(
         "robertson",
         robertson.state(),

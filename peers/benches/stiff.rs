@@ -118,11 +118,7 @@ impl Problem<3> for Robertson {
     const REFERENCE: [f64; 3] = scenes::ROBERTSON_1E5;
 
     fn instance() -> Self {
-        Robertson {
-            a: 1.0,
-            b: 0.0,
-            c: 0.0,
-        }
+        Robertson::classic()
     }
 }
 

@@ -70,8 +70,9 @@ pub const OREGO_REFERENCE: [f64; 3] = [
 /// van der Pol, μ = 1000, at t = 2000: the test set's `vdpolm.f` reference (problem VDPOLM).
 pub const VAN_DER_POL_2000: [f64; 2] = [0.170_616_773_217_046_9e1, -0.892_809_701_024_812_5e-3];
 
-/// A → B (0.04), B + C → A + C (10⁴), 2B → B + C (3·10⁷) (Robertson 1966), the classic stiff
-/// test problem.
+/// A → B (k₁ = 0.04), B + C → A + C (k₂ = 10⁴), 2B → B + C (k₃ = 3·10⁷) (Robertson 1966), the
+/// classic stiff test problem; the rates are `#[param]`s, so ∂f/∂k and the sensitivities to
+/// them are generated too (the `fit_robertson` example recovers them from noisy data).
 #[system(integrator = ImplicitEuler)]
 #[derive(Clone, Copy, Debug)]
 pub struct Robertson {
@@ -84,14 +85,38 @@ pub struct Robertson {
     /// Concentration of C.
     #[state]
     pub c: f64,
+    /// Rate of A → B.
+    #[param]
+    pub k1: f64,
+    /// Rate of B + C → A + C.
+    #[param]
+    pub k2: f64,
+    /// Rate of 2B → B + C.
+    #[param]
+    pub k3: f64,
+}
+
+impl Robertson {
+    /// Robertson's rates from A alone: a = 1, b = c = 0, k₁ = 0.04, k₂ = 10⁴, k₃ = 3·10⁷ (the
+    /// test set's `rober.f`).
+    pub fn classic() -> Self {
+        Robertson {
+            a: 1.0,
+            b: 0.0,
+            c: 0.0,
+            k1: 0.04,
+            k2: 1e4,
+            k3: 3e7,
+        }
+    }
 }
 
 #[system]
 impl Robertson {
     fn derivative(&self) -> RobertsonState {
-        let slow = 0.04 * self.a;
-        let exchange = 1e4 * self.b * self.c;
-        let fast = 3e7 * self.b * self.b;
+        let slow = self.k1 * self.a;
+        let exchange = self.k2 * self.b * self.c;
+        let fast = self.k3 * self.b * self.b;
         RobertsonState {
             a: -slow + exchange,
             b: slow - exchange - fast,

@@ -374,11 +374,7 @@ fn a_reset_does_not_retrigger() {
 /// 3.5/|λ| with |λ| ≈ 1e4).
 #[test]
 fn a_stiff_problem_under_tsit5_hits_the_step_budget() {
-    let model = Robertson {
-        a: 1.0,
-        b: 0.0,
-        c: 0.0,
-    };
+    let model = Robertson::classic();
     let control = AdaptiveOptions {
         max_steps: 20_000,
         ..AdaptiveOptions::default()

@@ -148,11 +148,7 @@ fn fixed_step_runs_are_second_order() {
 /// each Newton update keeps the sum (1ᵀJ = 0).
 #[test]
 fn stiff_references_are_met_to_the_tolerance() {
-    let rober = Robertson {
-        a: 1.0,
-        b: 0.0,
-        c: 0.0,
-    };
+    let rober = Robertson::classic();
     let vdp = VanDerPol {
         y1: 2.0,
         y2: 0.0,
@@ -213,19 +209,15 @@ fn counted(refactor_ratio: f64) -> [(&'static str, Stats, f64); 3] {
         refactor_ratio,
         ..NewtonOptions::default()
     };
-    let rober = Robertson {
-        a: 1.0,
-        b: 0.0,
-        c: 0.0,
-    }
-    .simulate()
-    .integrator(Method::Bdf)
-    .newton(newton)
-    .tolerances(1e-6, 1e-12)
-    .duration(1e5)
-    .dense_output(false)
-    .run()
-    .unwrap();
+    let rober = Robertson::classic()
+        .simulate()
+        .integrator(Method::Bdf)
+        .newton(newton)
+        .tolerances(1e-6, 1e-12)
+        .duration(1e5)
+        .dense_output(false)
+        .run()
+        .unwrap();
     let s = rober.last().state;
     let rober_error = max_relative(&[s.a, s.b, s.c], &ROBERTSON_1E5);
     let hires = Hires {

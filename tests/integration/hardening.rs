@@ -130,11 +130,7 @@ fn newton_on_nan_input_fails_fast_and_says_why() {
 /// (raising `max_iters` does not).
 #[test]
 fn newton_advice_names_the_option_that_helps() {
-    let model = common::Robertson {
-        a: 1.0,
-        b: 0.0,
-        c: 0.0,
-    };
+    let model = common::Robertson::classic();
     let run = |newton: NewtonOptions| model.simulate().dt(1e3).steps(100).newton(newton).run();
     let ok = run(NewtonOptions::default()).unwrap();
     assert!((ok.last().state.a + ok.last().state.b + ok.last().state.c - 1.0).abs() < 1e-12);

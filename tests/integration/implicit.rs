@@ -123,11 +123,7 @@ fn robertson_error_falls_linearly_with_dt() {
         9.185534764554085e-06,
         2.841637457453337e-01,
     ];
-    let model = Robertson {
-        a: 1.0,
-        b: 0.0,
-        c: 0.0,
-    };
+    let model = Robertson::classic();
     let points: Vec<(f64, f64)> = [0.04, 0.02, 0.01, 0.005]
         .iter()
         .map(|&dt| {

@@ -79,11 +79,7 @@ fn nonlinear_models_match_finite_differences() {
         y1: r.uniform(-2.5, 2.5),
         y2: r.uniform(-2.0, 2.0),
     });
-    let rob = Robertson {
-        a: 1.0,
-        b: 0.0,
-        c: 0.0,
-    };
+    let rob = Robertson::classic();
     check(&rob, 0.0, 200, |r| RobertsonState {
         a: r.uniform(0.0, 1.0),
         b: r.uniform(0.0, 4e-5),

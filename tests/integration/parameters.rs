@@ -350,3 +350,194 @@ fn a_one_component_model_may_return_f64() {
     // c(1) = 2·e^{−0.7}; Rodas5P at rtol 1e-10.
     assert!((run.last().state.c - 2.0 * (-0.7f64).exp()).abs() < 1e-8);
 }
+
+/// The augmented Jacobian (∂y′/∂y on the diagonal blocks, ∂(J·sⱼ + ∂f/∂pⱼ)/∂y below them)
+/// against central differences of the augmented derivative at random states and sensitivities:
+/// exact for Lorenz (f quadratic, so J linear: the model's differences are exact up to
+/// rounding), and to the differences' own accuracy for the Arrhenius model (exp, powf, branches).
+#[test]
+fn the_augmented_jacobian_matches_differences_of_the_augmented_derivative() {
+    use odyn::sensitivity::Sensitive;
+    use odyn::{Jacobian, Model, State};
+    fn check<M>(sensitive: &M, z: &M::State, t: f64, tolerance: f64)
+    where
+        M: Model + Jacobian<Matrix = odyn::DynamicDense>,
+    {
+        let mut jacobian = sensitive.jacobian_matrix(z);
+        sensitive.jacobian(t, z, &mut jacobian);
+        let n = z.as_slice().len();
+        let (mut plus, mut minus) = (z.clone(), z.clone());
+        let scale = (0..n)
+            .flat_map(|i| (0..n).map(move |k| (i, k)))
+            .map(|(i, k)| jacobian.entry(i, k).abs())
+            .fold(0.0, f64::max);
+        for k in 0..n {
+            let h = 1e-6 * (1.0 + z.as_slice()[k].abs());
+            let (mut up, mut down) = (z.clone(), z.clone());
+            up.as_mut_slice()[k] += h;
+            down.as_mut_slice()[k] -= h;
+            sensitive.derivative(t, &up, &mut plus);
+            sensitive.derivative(t, &down, &mut minus);
+            for i in 0..n {
+                let fd = (plus.as_slice()[i] - minus.as_slice()[i]) / (2.0 * h);
+                assert!(
+                    (fd - jacobian.entry(i, k)).abs() < tolerance * scale,
+                    "∂F{i}/∂z{k}: {} against {fd}",
+                    jacobian.entry(i, k)
+                );
+            }
+        }
+    }
+    let mut rng = Rng(26);
+    let lorenz = FitLorenz {
+        x: 1.0,
+        y: 2.0,
+        z: 20.0,
+        sigma: 10.0,
+        rho: 28.0,
+        beta: 8.0 / 3.0,
+    };
+    let sensitive = Sensitive::with_initial_state(&lorenz);
+    let mut z = sensitive.state();
+    for value in z.as_mut_slice() {
+        *value = rng.uniform(-5.0, 5.0);
+    }
+    // Central differences of a quadratic f: exact but for rounding (~1e-16·|F|/h ≈ 1e-9).
+    check(&sensitive, &z, 0.0, 1e-8);
+    let arrhenius = Arrhenius {
+        c: 0.8,
+        d: 0.1,
+        a: 2.0,
+        e: 300.0,
+        n: 1.5,
+        temperature: 350.0,
+    };
+    let sensitive = Sensitive::new(&arrhenius);
+    let mut z = sensitive.state();
+    for value in z.as_mut_slice().iter_mut().skip(2) {
+        *value = rng.uniform(-1.0, 1.0);
+    }
+    // Two layers of differences (the test's, h ≈ 1e-6, and the Jacobian's own, δ ≈ 6e-6):
+    // each O(h²) ≈ 1e-11 with moderate third derivatives, round-off ~1e-10.
+    check(&sensitive, &z, 1.5, 1e-6);
+}
+
+/// Implicit Euler on the augmented system gives the exact derivative of its own discrete
+/// solution: on ċ = −k·c, cₙ = c₀(1 + kh)⁻ⁿ, so ∂cₙ/∂k = −n·h·c₀(1 + kh)⁻ⁿ⁻¹ and ∂cₙ/∂c₀ =
+/// (1 + kh)⁻ⁿ (differentiating the recurrence's closed form), at a stiff kh = 5.
+#[test]
+fn implicit_euler_sensitivities_are_the_derivatives_of_its_steps() {
+    use odyn::sensitivity::Sensitive;
+    let decay = Decay { c: 2.0, k: 500.0 };
+    let h = 0.01;
+    let run = Sensitive::with_initial_state(&decay)
+        .simulate()
+        .integrator(Method::ImplicitEuler)
+        .dt(h)
+        .steps(20)
+        .run()
+        .unwrap();
+    for sample in &run.samples[1..] {
+        let n = sample.step as i32;
+        let g = 1.0 + 500.0 * h;
+        let s = sample.state.sensitivities();
+        let (dk, dc0) = (-f64::from(n) * h * 2.0 * g.powi(-n - 1), g.powi(-n));
+        assert!((sample.state.state()[0] - 2.0 * dc0).abs() < 1e-14 * 2.0 * dc0);
+        assert!(
+            (s[(0, 0)] - dk).abs() < 1e-12 * dk.abs(),
+            "step {n}: {s} vs {dk}"
+        );
+        assert!(
+            (s[(0, 1)] - dc0).abs() < 1e-12 * dc0,
+            "step {n}: {s} vs {dc0}"
+        );
+    }
+}
+
+/// Robertson's sensitivities to its three rates at t = 40 under each stiff method, against
+/// central differences of whole Rodas5P solutions at rtol 1e-12, h = 1e-4·kⱼ: truncation
+/// O(h²) ≈ 1e-8 relative, the solves' error over 2h ≈ 1e-12/1e-4 = 1e-8 relative; the methods
+/// run at rtol 1e-10 (Rosenbrock23, third order, at 1e-9) with the sensitivities held to
+/// atol/kⱼ (the fit's scaling), so 1e-4 of each column's largest entry is strict for all.
+#[test]
+fn stiff_methods_give_robertson_sensitivities_that_match_differences_of_solutions() {
+    use odyn::Tolerances;
+    use odyn::sensitivity::Sensitive;
+    use scenes::Robertson;
+    let model = Robertson::classic();
+    let rates = model.parameters();
+    let solve = |m: &Robertson| {
+        let run = m
+            .simulate()
+            .integrator(Method::Rodas5P)
+            .tolerances(1e-12, 1e-20)
+            .duration(40.0)
+            .run()
+            .unwrap();
+        run.last().state
+    };
+    let mut differences = DMatrix::zeros(3, 3);
+    for j in 0..3 {
+        let h = 1e-4 * rates[j];
+        let at = |delta: f64| {
+            let mut m = model;
+            let mut values = rates.clone();
+            values[j] += delta;
+            m.set_parameters(&values).unwrap();
+            solve(&m)
+        };
+        let (plus, minus) = (at(h), at(-h));
+        for i in 0..3 {
+            differences[(i, j)] = (plus.as_slice()[i] - minus.as_slice()[i]) / (2.0 * h);
+        }
+    }
+    for (method, rtol) in [
+        (Method::Rodas5P, 1e-10),
+        (Method::Rosenbrock23, 1e-9),
+        (Method::Bdf, 1e-10),
+    ] {
+        let atol = 1e-14;
+        let mut atols = vec![atol; 3];
+        for k in &rates {
+            atols.extend([atol / k; 3]);
+        }
+        let sensitive = Sensitive::new(&model);
+        let run = sensitive
+            .simulate()
+            .integrator(method)
+            .with_tolerances(Tolerances::per_component(rtol, atols))
+            .duration(40.0)
+            .run()
+            .unwrap();
+        let s = run.last().state.sensitivity_matrix();
+        for j in 0..3 {
+            let scale = (0..3)
+                .map(|i| differences[(i, j)].abs())
+                .fold(0.0, f64::max);
+            for i in 0..3 {
+                assert!(
+                    (s[(i, j)] - differences[(i, j)]).abs() < 1e-4 * scale,
+                    "{method}: ∂y{i}/∂{}: {} against {}",
+                    Robertson::NAMES[j],
+                    s[(i, j)],
+                    differences[(i, j)]
+                );
+            }
+        }
+        // The model's own work: f, J and ∂f/∂p once per augmented derivative, and J 1 + 2n = 7
+        // times and ∂f/∂p 2n = 6 times per augmented Jacobian.
+        let (stats, work) = (run.stats, sensitive.work());
+        assert!(stats.jacobian_evaluations > 0, "{method}");
+        assert_eq!(work.derivatives, stats.evaluations, "{method}");
+        assert_eq!(
+            work.jacobians,
+            stats.evaluations + 7 * stats.jacobian_evaluations,
+            "{method}"
+        );
+        assert_eq!(
+            work.parameter_jacobians,
+            stats.evaluations + 6 * stats.jacobian_evaluations,
+            "{method}"
+        );
+    }
+}

@@ -113,11 +113,7 @@ fn robertson_meets_the_tolerance_and_conserves_mass() {
         7.274_751_468_436_319e-8,
         9.821_340_061_103_858e-1,
     ];
-    let model = Robertson {
-        a: 1.0,
-        b: 0.0,
-        c: 0.0,
-    };
+    let model = Robertson::classic();
     let mut points = Vec::new();
     for k in [4, 6, 8, 10] {
         let rtol = 10f64.powi(-k);
@@ -243,11 +239,7 @@ fn a_singular_matrix_is_a_typed_error() {
 /// the start of each retried state, never again for the retry), factorizations once per attempt.
 #[test]
 fn a_rejected_step_keeps_its_jacobian() {
-    let model = Robertson {
-        a: 1.0,
-        b: 0.0,
-        c: 0.0,
-    };
+    let model = Robertson::classic();
     let run = model
         .simulate()
         .integrator(Method::Rodas5P)
@@ -273,11 +265,7 @@ fn a_rejected_step_keeps_its_jacobian() {
 /// 0. (odyn may take one step fewer: it stretches a step by up to 1 % to land on the end.)
 #[test]
 fn step_counts_match_the_reference_implementation() {
-    let model = Robertson {
-        a: 1.0,
-        b: 0.0,
-        c: 0.0,
-    };
+    let model = Robertson::classic();
     for (method, q, accepted, rejected) in [
         (Method::Rodas5P, 4, 99, 2),
         (Method::Rosenbrock23, 2, 663, 0),

@@ -19,7 +19,7 @@
 use nalgebra::{DMatrix, DVector};
 
 use crate::sensitivity::Sensitive;
-use crate::{DenseMatrix, Error, Jacobian, Method, Model, Parameters, Result, State};
+use crate::{DenseMatrix, Error, Jacobian, Method, Model, Parameters, Result, State, Tolerances};
 
 /// Measured samples of one state component: `(t, value)` pairs, with optional weights
 /// (1/σ of each measurement; all 1 when empty). A fit takes one per measured component.
@@ -38,10 +38,13 @@ pub struct Data {
 /// How a fit runs.
 #[derive(Clone, Debug, PartialEq)]
 pub struct FitOptions {
-    /// The integrator of the model and its sensitivities (an explicit one; default DOP853).
+    /// The integrator of the model and its sensitivities (default DOP853; for stiff models
+    /// Rodas5P, Rosenbrock23 or BDF, on the augmented Jacobian).
     pub method: Method,
     /// Its relative and absolute tolerance (default 1e-10, 1e-12: the fit cannot be more
-    /// accurate than the solves its residuals come from).
+    /// accurate than the solves its residuals come from). The sensitivities ∂y/∂pⱼ are held
+    /// to atol/|pⱼ| (CVODES's rule with p̄ = p): an error of that size in pⱼ·∂y/∂pⱼ, the change
+    /// of y over a relative change of pⱼ, weighs as atol does in y.
     pub rtol: f64,
     /// See [`FitOptions::rtol`].
     pub atol: f64,
@@ -217,10 +220,20 @@ where
 {
     let sensitive = Sensitive::new(model);
     let end = *times.last().expect("checked: at least one sample");
+    let n = model.state().as_slice().len();
+    let mut atol = vec![options.atol; n];
+    for p in model.parameters() {
+        let scale = if p != 0.0 && p.is_finite() {
+            p.abs()
+        } else {
+            1.0
+        };
+        atol.extend(std::iter::repeat_n(options.atol / scale, n));
+    }
     let run = sensitive
         .simulate()
         .integrator(options.method)
-        .tolerances(options.rtol, options.atol)
+        .with_tolerances(Tolerances::per_component(options.rtol, atol))
         .duration(end)
         .save_at(times)
         .dense_output(false)

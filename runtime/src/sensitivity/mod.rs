@@ -6,15 +6,17 @@
 //!
 //! the "simultaneous" forward method (Hairer, Nørsett & Wanner, *Solving ODEs I*, §I.14; SUNDIALS
 //! CVODES, `CV_SIMULTANEOUS`). ∂f/∂y and ∂f/∂p are the ones `#[system]` generated, exact. The
-//! augmented system is an ordinary model, [`Sensitive`], so every explicit method runs it —
-//! RK4 at a fixed step, Tsit5 and DOP853 adaptively with dense output, `save_at` and events —
-//! and its error control includes the sensitivities, as CVODES does by default (`errconS`).
-//! Implicit methods would need the augmented system's Jacobian (second derivatives of f); they
-//! are not offered on it yet.
+//! augmented system is an ordinary model, [`Sensitive`], so every method runs it: RK4 at a
+//! fixed step, Tsit5 and DOP853 adaptively with dense output, `save_at` and events, and for stiff
+//! models Rodas5P, Rosenbrock23, BDF and implicit Euler on the augmented Jacobian (`jacobian.rs`:
+//! block lower-triangular with J on its diagonal). Its error control includes the
+//! sensitivities, as CVODES does by default (`errconS`); [`crate::fit`] holds ∂y/∂pⱼ to
+//! atol/|pⱼ|, CVODES's scaling.
 
+mod jacobian;
 mod state;
 
-use std::cell::RefCell;
+use std::cell::{Cell, RefCell};
 
 pub use state::SensitivityState;
 
@@ -22,13 +24,16 @@ use nalgebra::DMatrix;
 
 use crate::{DenseMatrix, Jacobian, Method, Model, Parameters, State, Unavailable};
 
-/// What a [`Sensitive`] model evaluates into, allocated once: the state, f, J and ∂f/∂p.
+/// What a [`Sensitive`] model evaluates into, allocated once: the state, f, J and ∂f/∂p, and a
+/// second J and ∂f/∂p for the augmented Jacobian's differences.
 #[derive(Debug)]
 struct Scratch<M: Jacobian> {
     y: M::State,
     f: M::State,
     jacobian: M::Matrix,
     dfdp: DMatrix<f64>,
+    jacobian_minus: M::Matrix,
+    dfdp_minus: DMatrix<f64>,
 }
 
 /// A model together with its forward sensitivities, as one model whose state is a
@@ -39,6 +44,20 @@ pub struct Sensitive<'m, M: Parameters + Jacobian> {
     initial_state: bool,
     scratch: RefCell<Scratch<M>>,
     template: SensitivityState,
+    work: Cell<SensitivityWork>,
+}
+
+/// The model's own evaluations a [`Sensitive`] run made: what the sensitivities cost beyond the
+/// run's [`crate::Stats`] (which count evaluations of the augmented system).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SensitivityWork {
+    /// Evaluations of f (one per augmented derivative).
+    pub derivatives: u64,
+    /// Evaluations of ∂f/∂y: one per augmented derivative, 1 + 2n per augmented Jacobian (its
+    /// coupling blocks are central differences of J in each of the n components).
+    pub jacobians: u64,
+    /// Evaluations of ∂f/∂p: one per augmented derivative, 2n per augmented Jacobian.
+    pub parameter_jacobians: u64,
 }
 
 impl<'m, M> Sensitive<'m, M>
@@ -68,8 +87,10 @@ where
         let template = SensitivityState::new(&y, columns);
         let scratch = Scratch {
             jacobian: model.jacobian_matrix(&y),
+            jacobian_minus: model.jacobian_matrix(&y),
             f: y.clone(),
             dfdp: DMatrix::zeros(n, M::NAMES.len()),
+            dfdp_minus: DMatrix::zeros(n, M::NAMES.len()),
             y,
         };
         Sensitive {
@@ -77,7 +98,22 @@ where
             initial_state,
             scratch: RefCell::new(scratch),
             template,
+            work: Cell::new(SensitivityWork::default()),
         }
+    }
+
+    /// The model's evaluations so far, all runs of this `Sensitive` together.
+    pub fn work(&self) -> SensitivityWork {
+        self.work.get()
+    }
+
+    /// Adds to [`Sensitive::work`].
+    fn count(&self, derivatives: u64, jacobians: u64, parameter_jacobians: u64) {
+        let mut work = self.work.get();
+        work.derivatives += derivatives;
+        work.jacobians += jacobians;
+        work.parameter_jacobians += parameter_jacobians;
+        self.work.set(work);
     }
 }
 
@@ -88,7 +124,7 @@ where
 {
     type State = SensitivityState;
     type SecondOrder = Unavailable<Self>;
-    type Jacobian = Unavailable<Self>;
+    type Jacobian = Self;
     const NAME: &'static str = M::NAME;
     const DEFAULT_METHOD: Method = Method::Dop853;
     const DEFAULT_DT: Option<f64> = M::DEFAULT_DT;
@@ -120,6 +156,7 @@ where
         self.model.jacobian(t, &scratch.y, &mut scratch.jacobian);
         self.model
             .parameter_jacobian(t, &scratch.y, &mut scratch.dfdp);
+        self.count(1, 1, 1);
         let out = dydt.as_mut_slice();
         out[..n].copy_from_slice(scratch.f.as_slice());
         let parameters = M::NAMES.len();
@@ -149,7 +186,7 @@ where
         None
     }
 
-    fn as_jacobian(&self) -> Option<&Unavailable<Self>> {
-        None
+    fn as_jacobian(&self) -> Option<&Self> {
+        Some(self)
     }
 }

@@ -258,12 +258,22 @@ impl NewtonMatrix for nalgebra::SMatrix<f64, 0, 0> {
 /// An N×N matrix on the heap, solved with faer's partial-pivoting LU: the Jacobian of models with
 /// more than 32 state components. Every buffer is allocated by [`DenseMatrix::zeros`] and
 /// [`NewtonMatrix::factors`]; factorizations and solves allocate nothing.
+#[derive(Clone, Debug)]
 pub struct FaerDense<const N: usize> {
+    inner: DynamicDense,
+}
+
+/// A square matrix on the heap whose size is known only at run time — the Jacobian of a model
+/// augmented with its sensitivities ([`crate::sensitivity::Sensitive`]) — solved like
+/// [`FaerDense`], with faer's partial-pivoting LU.
+#[derive(Clone, Debug)]
+pub struct DynamicDense {
     matrix: Mat<f64>,
 }
 
-/// The LU factors of a [`FaerDense`] W, with its permutation and scratch space.
-pub struct FaerLu<const N: usize> {
+/// The LU factors of a [`FaerDense`] or [`DynamicDense`] W, with its permutation and scratch
+/// space.
+pub struct FaerLu {
     lu: Mat<f64>,
     perm: Vec<usize>,
     perm_inv: Vec<usize>,
@@ -273,6 +283,25 @@ pub struct FaerLu<const N: usize> {
 impl<const N: usize> FaerDense<N> {
     /// Sets every entry to zero.
     pub fn fill_zero(&mut self) {
+        self.inner.fill_zero();
+    }
+
+    /// Sets entry (row, column).
+    pub fn set(&mut self, row: usize, column: usize, value: f64) {
+        self.inner.set(row, column, value);
+    }
+}
+
+impl DynamicDense {
+    /// The n×n zero matrix.
+    pub fn zeros(n: usize) -> Self {
+        DynamicDense {
+            matrix: Mat::zeros(n, n),
+        }
+    }
+
+    /// Sets every entry to zero.
+    pub fn fill_zero(&mut self) {
         self.matrix.fill(0.0);
     }
 
@@ -280,44 +309,48 @@ impl<const N: usize> FaerDense<N> {
     pub fn set(&mut self, row: usize, column: usize, value: f64) {
         self.matrix[(row, column)] = value;
     }
-}
 
-impl<const N: usize> FaerLu<N> {
-    fn scratch_size() -> StackReq {
-        let par = Par::Seq;
-        factor::lu_in_place_scratch::<usize, f64>(N, N, par, Default::default())
-            .or(solve::solve_in_place_scratch::<usize, f64>(N, 1, par))
+    /// Entry (row, column).
+    pub fn entry(&self, row: usize, column: usize) -> f64 {
+        self.matrix[(row, column)]
+    }
+
+    /// Rows (= columns).
+    pub fn dim(&self) -> usize {
+        self.matrix.nrows()
     }
 }
 
-impl<const N: usize> Clone for FaerDense<N> {
-    fn clone(&self) -> Self {
-        FaerDense {
-            matrix: self.matrix.clone(),
+impl FaerLu {
+    /// Room for the factors of an n×n matrix.
+    fn new(n: usize) -> Self {
+        FaerLu {
+            lu: Mat::zeros(n, n),
+            perm: vec![0; n],
+            perm_inv: vec![0; n],
+            scratch: MemBuffer::new(Self::scratch_size(n)),
         }
     }
+
+    fn scratch_size(n: usize) -> StackReq {
+        let par = Par::Seq;
+        factor::lu_in_place_scratch::<usize, f64>(n, n, par, Default::default())
+            .or(solve::solve_in_place_scratch::<usize, f64>(n, 1, par))
+    }
 }
 
-impl<const N: usize> Clone for FaerLu<N> {
+impl Clone for FaerLu {
     fn clone(&self) -> Self {
         FaerLu {
             lu: self.lu.clone(),
             perm: self.perm.clone(),
             perm_inv: self.perm_inv.clone(),
-            scratch: MemBuffer::new(Self::scratch_size()),
+            scratch: MemBuffer::new(Self::scratch_size(self.lu.nrows())),
         }
     }
 }
 
-impl<const N: usize> fmt::Debug for FaerDense<N> {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.debug_struct("FaerDense")
-            .field("matrix", &self.matrix)
-            .finish()
-    }
-}
-
-impl<const N: usize> fmt::Debug for FaerLu<N> {
+impl fmt::Debug for FaerLu {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_struct("FaerLu").finish_non_exhaustive()
     }
@@ -326,12 +359,12 @@ impl<const N: usize> fmt::Debug for FaerLu<N> {
 impl<const N: usize> DenseMatrix for FaerDense<N> {
     fn zeros() -> Self {
         FaerDense {
-            matrix: Mat::zeros(N, N),
+            inner: DynamicDense::zeros(N),
         }
     }
 
     fn entry(&self, row: usize, column: usize) -> f64 {
-        self.matrix[(row, column)]
+        self.inner.entry(row, column)
     }
 
     fn dim(&self) -> usize {
@@ -340,20 +373,35 @@ impl<const N: usize> DenseMatrix for FaerDense<N> {
 }
 
 impl<const N: usize> NewtonMatrix for FaerDense<N> {
-    type Factors = FaerLu<N>;
+    type Factors = FaerLu;
 
-    fn factors(&self) -> FaerLu<N> {
-        FaerLu {
-            lu: Mat::zeros(N, N),
-            perm: vec![0; N],
-            perm_inv: vec![0; N],
-            scratch: MemBuffer::new(FaerLu::<N>::scratch_size()),
-        }
+    fn factors(&self) -> FaerLu {
+        self.inner.factors()
     }
 
-    fn factorize(&mut self, c: f64, f: &mut FaerLu<N>) -> Result<(), FactorizeError> {
-        for column in 0..N {
-            for row in 0..N {
+    fn factorize(&mut self, c: f64, f: &mut FaerLu) -> Result<(), FactorizeError> {
+        self.inner.factorize(c, f)
+    }
+
+    fn solve(&mut self, f: &mut FaerLu, b: &mut [f64]) -> Result<(), SolveError> {
+        self.inner.solve(f, b)
+    }
+}
+
+impl NewtonMatrix for DynamicDense {
+    type Factors = FaerLu;
+
+    fn factors(&self) -> FaerLu {
+        FaerLu::new(self.dim())
+    }
+
+    fn factorize(&mut self, c: f64, f: &mut FaerLu) -> Result<(), FactorizeError> {
+        let n = self.dim();
+        if f.lu.nrows() != n {
+            *f = FaerLu::new(n);
+        }
+        for column in 0..n {
+            for row in 0..n {
                 let identity = if row == column { 1.0 } else { 0.0 };
                 f.lu[(row, column)] = identity - c * self.matrix[(row, column)];
             }
@@ -367,16 +415,23 @@ impl<const N: usize> NewtonMatrix for FaerDense<N> {
             Default::default(),
         );
         // A zero pivot leaves U singular: the solve would produce infinities.
-        if (0..N).all(|i| f.lu[(i, i)] != 0.0 && f.lu[(i, i)].is_finite()) {
+        if (0..n).all(|i| f.lu[(i, i)] != 0.0 && f.lu[(i, i)].is_finite()) {
             Ok(())
         } else {
             Err(FactorizeError::Singular)
         }
     }
 
-    fn solve(&mut self, f: &mut FaerLu<N>, b: &mut [f64]) -> Result<(), SolveError> {
-        let perm = faer::perm::PermRef::new_checked(&f.perm, &f.perm_inv, N);
-        let rhs = MatMut::from_column_major_slice_mut(b, N, 1);
+    fn solve(&mut self, f: &mut FaerLu, b: &mut [f64]) -> Result<(), SolveError> {
+        let n = self.dim();
+        if b.len() != n {
+            return Err(SolveError::WrongLength {
+                expected: n,
+                found: b.len(),
+            });
+        }
+        let perm = faer::perm::PermRef::new_checked(&f.perm, &f.perm_inv, n);
+        let rhs = MatMut::from_column_major_slice_mut(b, n, 1);
         let lu = f.lu.as_ref();
         solve::solve_in_place(lu, lu, perm, rhs, Par::Seq, MemStack::new(&mut f.scratch));
         finite(b)
