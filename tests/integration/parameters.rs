@@ -541,3 +541,93 @@ fn stiff_methods_give_robertson_sensitivities_that_match_differences_of_solution
         );
     }
 }
+
+/// Sensitivities converge at the method's order: on ċ = −k·c from c₀ = 2, k = 0.7, the error of
+/// ∂c/∂k and ∂c/∂c₀ at t = 1 against the closed form falls as h⁴ under RK4 and as h under
+/// implicit Euler (fitted slopes of the log-log error over h = 0.1 … 0.0125).
+#[test]
+fn sensitivities_converge_at_the_methods_order() {
+    use odyn::sensitivity::Sensitive;
+    let decay = Decay { c: 2.0, k: 0.7 };
+    let sensitive = Sensitive::with_initial_state(&decay);
+    let (dk, dc0) = (-2.0 * (-0.7f64).exp(), (-0.7f64).exp());
+    for (method, order) in [(Method::Rk4, 4.0), (Method::ImplicitEuler, 1.0)] {
+        let points: Vec<(f64, f64)> = [0.1, 0.05, 0.025, 0.0125]
+            .iter()
+            .map(|&h| {
+                let run = sensitive
+                    .simulate()
+                    .integrator(method)
+                    .dt(h)
+                    .duration(1.0)
+                    .run()
+                    .unwrap();
+                let s = run.last().state.sensitivity_matrix();
+                let error = (s[(0, 0)] - dk).abs().max((s[(0, 1)] - dc0).abs());
+                (h, error)
+            })
+            .collect();
+        let fitted = scenes::slope(&points);
+        assert!(
+            (fitted - order).abs() < 0.15,
+            "{method}: slope {fitted}, {points:?}"
+        );
+    }
+}
+
+/// Leaving the sensitivities out of the error test (atol +∞ on them, CVODES's `errconS =
+/// false`) sizes the steps for y alone: Robertson to t = 40 under Rodas5P takes fewer steps,
+/// y is as accurate (to its tolerance), and the sensitivities, no longer controlled, still
+/// agree with the controlled run's to 1e-2 of each column.
+#[test]
+fn sensitivities_may_be_left_out_of_the_error_test() {
+    use odyn::sensitivity::Sensitive;
+    use scenes::Robertson;
+    let model = Robertson::classic();
+    let sensitive = Sensitive::new(&model);
+    let run = |included: bool| {
+        sensitive
+            .simulate()
+            .integrator(Method::Rodas5P)
+            .with_tolerances(sensitive.tolerances(1e-8, 1e-14, included))
+            .duration(40.0)
+            .run()
+            .unwrap()
+    };
+    let (with, without) = (run(true), run(false));
+    assert!(
+        without.stats.steps < with.stats.steps,
+        "{} steps without, {} with",
+        without.stats.steps,
+        with.stats.steps
+    );
+    let (a, b) = (&with.last().state, &without.last().state);
+    for i in 0..3 {
+        let y = a.state()[i];
+        assert!(
+            (y - b.state()[i]).abs() < 1e-6 * y.abs().max(1e-6),
+            "y{i}: {y} against {}",
+            b.state()[i]
+        );
+    }
+    let (sa, sb) = (a.sensitivity_matrix(), b.sensitivity_matrix());
+    for j in 0..3 {
+        let scale = (0..3).map(|i| sa[(i, j)].abs()).fold(0.0, f64::max);
+        for i in 0..3 {
+            assert!(
+                (sa[(i, j)] - sb[(i, j)]).abs() < 1e-2 * scale,
+                "∂y{i}/∂k{j}"
+            );
+        }
+    }
+    // Every sensitivity left out and nothing else to control is refused.
+    let all_out = odyn::Tolerances::per_component(1e-8, vec![f64::INFINITY; 12]);
+    let error = sensitive
+        .simulate()
+        .integrator(Method::Rodas5P)
+        .with_tolerances(all_out)
+        .duration(1.0)
+        .run()
+        .unwrap_err();
+    assert!(matches!(error, odyn::Error::InvalidInput { .. }), "{error}");
+}

@@ -8,7 +8,10 @@ use crate::{Error, Result};
 pub enum Atol {
     /// The same for every component.
     Scalar(f64),
-    /// One per state component, in layout order.
+    /// One per state component, in layout order. `f64::INFINITY` leaves a component out of the
+    /// error test (its error weighs nothing and it does not count in the norm's n): how
+    /// sensitivities are excluded, as CVODES's `errconS = false` does
+    /// ([`crate::sensitivity::Sensitive::tolerances`]).
     PerComponent(Vec<f64>),
 }
 
@@ -78,14 +81,26 @@ impl Tolerances {
                 a
             }
         };
+        // Per component, +∞ leaves the component out of the error test.
+        let excluded = |a: f64| matches!(self.atol, Atol::PerComponent(_)) && a == f64::INFINITY;
         if let Some((i, a)) = atols
             .iter()
             .enumerate()
-            .find(|(_, a)| !(a.is_finite() && **a >= 0.0))
+            .find(|(_, a)| !((a.is_finite() || excluded(**a)) && **a >= 0.0))
         {
+            let reason = if matches!(self.atol, Atol::PerComponent(_)) {
+                format!(
+                    "must be finite and non-negative (or +inf: not error-controlled), got {a:?}"
+                )
+            } else {
+                format!("must be finite and non-negative, got {a:?}")
+            };
+            return Err(Error::invalid(format!("atol[{i}]"), reason));
+        }
+        if len > 0 && self.controlled(len) == 0 {
             return Err(Error::invalid(
-                format!("atol[{i}]"),
-                format!("must be finite and non-negative, got {a:?}"),
+                "atol",
+                "every component is +inf: no component would be error-controlled",
             ));
         }
         if self.rtol == 0.0 && atols.contains(&0.0) {
@@ -143,6 +158,32 @@ impl Tolerances {
         }
     }
 
+    /// The components of a state of `len` that the error test counts: all but those of
+    /// per-component atol +∞.
+    #[inline]
+    pub(crate) fn controlled(&self, len: usize) -> usize {
+        match &self.atol {
+            Atol::Scalar(_) => len,
+            Atol::PerComponent(a) => a.iter().filter(|a| a.is_finite()).count(),
+        }
+    }
+
+    /// The absolute tolerance of component `i` for weighing Newton updates: its own, or for a
+    /// component left out of the error test the smallest other one (its iterates must still
+    /// converge).
+    #[inline]
+    pub(crate) fn iteration_atol(&self, i: usize) -> f64 {
+        match &self.atol {
+            Atol::Scalar(a) => *a,
+            Atol::PerComponent(a) if a[i].is_finite() => a[i],
+            Atol::PerComponent(a) => a
+                .iter()
+                .copied()
+                .filter(|a| a.is_finite())
+                .fold(f64::INFINITY, f64::min),
+        }
+    }
+
     /// The weight of component i's error in a step from `y` to `y_new`:
     /// atolᵢ + rtol·max(|yᵢ|, |ŷᵢ|).
     #[inline]
@@ -159,13 +200,13 @@ impl Tolerances {
             let r = e(i) / self.scale(i, y[i], y_new[i]);
             sum += r * r;
         }
-        (sum / y.len().max(1) as f64).sqrt()
+        (sum / self.controlled(y.len()).max(1) as f64).sqrt()
     }
 
     /// The weighted RMS norm of an error vector `e` for a step from `y` to `y_new`.
     #[inline]
     pub(crate) fn norm(&self, e: &[f64], y: &[f64], y_new: &[f64]) -> f64 {
-        self.sum_squares(e, y, y_new, 1.0).sqrt() / (e.len().max(1) as f64).sqrt()
+        self.sum_squares(e, y, y_new, 1.0).sqrt() / (self.controlled(e.len()).max(1) as f64).sqrt()
     }
 
     /// Σᵢ (scale·eᵢ / scᵢ)², the building block of [`Tolerances::norm`] and of DOP853's
@@ -192,6 +233,22 @@ mod tests {
         let e = [1.001e-3, 2e-6];
         let n = tol.norm(&e, &[1.0, 0.0], &[0.5, 0.0]);
         assert!((n - (2.5f64).sqrt()).abs() < 1e-12, "{n}");
+    }
+
+    /// A component of per-component atol +∞ weighs nothing and does not count in n: the norm
+    /// of the other components alone.
+    #[test]
+    fn an_infinite_atol_leaves_a_component_out_of_the_norm() {
+        let tol = Tolerances::per_component(1e-3, vec![1e-6, f64::INFINITY]);
+        tol.check(2).unwrap();
+        let n = tol.norm(&[1.001e-3, 5.0], &[1.0, 0.0], &[0.5, 0.0]);
+        assert!((n - 1.0).abs() < 1e-12, "{n}");
+        assert!(Tolerances::new(1e-3, f64::INFINITY).check(2).is_err());
+        assert!(
+            Tolerances::per_component(1e-3, vec![f64::INFINITY; 2])
+                .check(2)
+                .is_err()
+        );
     }
 
     #[test]

@@ -19,7 +19,7 @@
 use nalgebra::{DMatrix, DVector};
 
 use crate::sensitivity::Sensitive;
-use crate::{DenseMatrix, Error, Jacobian, Method, Model, Parameters, Result, State, Tolerances};
+use crate::{DenseMatrix, Error, Jacobian, Method, Model, Parameters, Result, State};
 
 /// Measured samples of one state component: `(t, value)` pairs, with optional weights
 /// (1/σ of each measurement; all 1 when empty). A fit takes one per measured component.
@@ -43,11 +43,13 @@ pub struct FitOptions {
     pub method: Method,
     /// Its relative and absolute tolerance (default 1e-10, 1e-12: the fit cannot be more
     /// accurate than the solves its residuals come from). The sensitivities ∂y/∂pⱼ are held
-    /// to atol/|pⱼ| (CVODES's rule with p̄ = p): an error of that size in pⱼ·∂y/∂pⱼ, the change
-    /// of y over a relative change of pⱼ, weighs as atol does in y.
+    /// to atol/|pⱼ| (CVODES's rule with p̄ = p; `Sensitive::tolerances`).
     pub rtol: f64,
     /// See [`FitOptions::rtol`].
     pub atol: f64,
+    /// Whether the sensitivities count in the solves' error test (default true, CVODES's
+    /// default); false sizes the steps for the state alone (`Sensitive::tolerances`).
+    pub sensitivities_in_error_test: bool,
     /// Fit ln p instead of p for every parameter (they must then be positive; default false).
     pub log_parameters: bool,
     /// The most iterations (default 100).
@@ -65,6 +67,7 @@ impl Default for FitOptions {
             method: Method::Dop853,
             rtol: 1e-10,
             atol: 1e-12,
+            sensitivities_in_error_test: true,
             log_parameters: false,
             max_iterations: 100,
             step_tolerance: 1e-8,
@@ -182,6 +185,22 @@ fn check<M: Parameters>(model: &M, data: &[Data], options: &FitOptions) -> Resul
                 "data set {i}: the times must be finite and increasing"
             ));
         }
+        if let Some(k) = data.values.iter().position(|v| !v.is_finite()) {
+            return reject(format!(
+                "data set {i}: value {k} is {:?}; every value must be finite",
+                data.values[k]
+            ));
+        }
+        if let Some(k) = data
+            .weights
+            .iter()
+            .position(|w| !(w.is_finite() && *w >= 0.0))
+        {
+            return reject(format!(
+                "data set {i}: weight {k} is {:?}; weights must be finite and non-negative",
+                data.weights[k]
+            ));
+        }
         if data.times.first().is_some_and(|&t| t < 0.0) {
             return reject(format!(
                 "data set {i}: the first sample is at t = {}, before the model's start at t = 0",
@@ -220,20 +239,15 @@ where
 {
     let sensitive = Sensitive::new(model);
     let end = *times.last().expect("checked: at least one sample");
-    let n = model.state().as_slice().len();
-    let mut atol = vec![options.atol; n];
-    for p in model.parameters() {
-        let scale = if p != 0.0 && p.is_finite() {
-            p.abs()
-        } else {
-            1.0
-        };
-        atol.extend(std::iter::repeat_n(options.atol / scale, n));
-    }
+    let tolerances = sensitive.tolerances(
+        options.rtol,
+        options.atol,
+        options.sensitivities_in_error_test,
+    );
     let run = sensitive
         .simulate()
         .integrator(options.method)
-        .with_tolerances(Tolerances::per_component(options.rtol, atol))
+        .with_tolerances(tolerances)
         .duration(end)
         .save_at(times)
         .dense_output(false)

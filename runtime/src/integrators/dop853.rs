@@ -87,7 +87,7 @@ impl Tableau for Dop853Tableau {
             err5 += e5 * e5;
             err3 += e3 * e3;
         }
-        combined(h, err5, err3, y.as_slice().len())
+        combined(h, err5, err3, tolerances.controlled(y.as_slice().len()))
     }
 
     /// Hairer's CONTD8 polynomial, r₀ + θ(r₁ + θ₁(r₂ + θ(r₃ + θ₁(r₄ + θ(r₅ + θ₁(r₆ + θr₇)))))) with

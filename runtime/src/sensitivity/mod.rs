@@ -22,7 +22,7 @@ pub use state::SensitivityState;
 
 use nalgebra::DMatrix;
 
-use crate::{DenseMatrix, Jacobian, Method, Model, Parameters, State, Unavailable};
+use crate::{DenseMatrix, Jacobian, Method, Model, Parameters, State, Tolerances, Unavailable};
 
 /// What a [`Sensitive`] model evaluates into, allocated once: the state, f, J and ∂f/∂p, and a
 /// second J and ∂f/∂p for the augmented Jacobian's differences.
@@ -100,6 +100,38 @@ where
             template,
             work: Cell::new(SensitivityWork::default()),
         }
+    }
+
+    /// Tolerances for the augmented state: `atol` on the model's components and on ∂y/∂y₀, and
+    /// atol/|pⱼ| on ∂y/∂pⱼ (CVODES's scaling with p̄ = p: an error of atol in pⱼ·∂y/∂pⱼ, the
+    /// change of y over a relative change of pⱼ, weighs as atol does in y; atol itself for
+    /// pⱼ = 0). With `sensitivities_in_error_test` false the sensitivities are left out of the
+    /// error test (atol +∞, [`crate::Atol::PerComponent`]): steps are sized for y alone, as
+    /// CVODES's `errconS = false`; the sensitivities are then only as accurate as those steps
+    /// make them.
+    pub fn tolerances(
+        &self,
+        rtol: f64,
+        atol: f64,
+        sensitivities_in_error_test: bool,
+    ) -> Tolerances {
+        let n = self.model.state().as_slice().len();
+        let columns = self.template.columns().len();
+        let parameters = self.model.parameters();
+        let mut atols = vec![atol; n];
+        for c in 0..columns {
+            let scale = match parameters.get(c) {
+                Some(&p) if p != 0.0 && p.is_finite() => p.abs(),
+                _ => 1.0,
+            };
+            let value = if sensitivities_in_error_test {
+                atol / scale
+            } else {
+                f64::INFINITY
+            };
+            atols.extend(std::iter::repeat_n(value, n));
+        }
+        Tolerances::per_component(rtol, atols)
     }
 
     /// The model's evaluations so far, all runs of this `Sensitive` together.

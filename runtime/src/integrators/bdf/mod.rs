@@ -208,7 +208,7 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
                     .zip(&*predict)
                     .enumerate()
                 {
-                    *w = tolerances.atol(i) + tolerances.rtol * p.abs();
+                    *w = tolerances.iteration_atol(i) + tolerances.rtol * p.abs();
                 }
                 let rtol = tolerances.rtol.max(100.0 * f64::EPSILON);
                 (
