@@ -50,8 +50,8 @@ pub use error::{Error, NewtonFailure, Result};
 pub use fingerprint::Fingerprint;
 pub use integrators::Integrator;
 pub use linalg::{
-    DenseMatrix, DynamicDense, FactorizeError, FaerDense, Krylov, KrylovCounts, LinearSolver,
-    NewtonMatrix, NewtonOptions, Preconditioner, SolveError,
+    DenseMatrix, FactorizeError, FaerDense, Krylov, KrylovCounts, LinearSolver, NewtonMatrix,
+    NewtonOptions, Preconditioner, SolveError,
 };
 pub use method::{Method, MethodInfo};
 pub use model::{Jacobian, Model, Parameters, SecondOrder, State, Unavailable};

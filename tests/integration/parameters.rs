@@ -359,13 +359,35 @@ fn a_one_component_model_may_return_f64() {
 fn the_augmented_jacobian_matches_differences_of_the_augmented_derivative() {
     use odyn::sensitivity::Sensitive;
     use odyn::{Jacobian, Model, State};
-    fn check<M>(sensitive: &M, z: &M::State, t: f64, tolerance: f64)
+    fn check<M, J>(sensitive: &M, z: &M::State, t: f64, tolerance: f64)
     where
-        M: Model + Jacobian<Matrix = odyn::DynamicDense>,
+        M: Model + Jacobian<Matrix = odyn::sensitivity::AugmentedJacobian<J>>,
+        J: odyn::DenseMatrix + odyn::NewtonMatrix,
     {
         let mut jacobian = sensitive.jacobian_matrix(z);
         sensitive.jacobian(t, z, &mut jacobian);
         let n = z.as_slice().len();
+        // Its block solve (one factorization of the model's I − cJ) is the dense solve of the
+        // whole augmented W = I − c·∂F/∂z.
+        {
+            use odyn::NewtonMatrix;
+            let c = 0.03;
+            let dense = DMatrix::from_fn(n, n, |i, k| {
+                f64::from(u8::from(i == k)) - c * jacobian.entry(i, k)
+            });
+            let mut b: Vec<f64> = (0..n).map(|i| (1.0 + i as f64).sin()).collect();
+            let expected = dense
+                .lu()
+                .solve(&odyn::nalgebra::DVector::from_column_slice(&b))
+                .unwrap();
+            let mut factors = jacobian.factors();
+            jacobian.factorize(c, &mut factors).unwrap();
+            jacobian.solve(&mut factors, &mut b).unwrap();
+            let size = expected.amax();
+            for (x, e) in b.iter().zip(expected.iter()) {
+                assert!((x - e).abs() < 1e-12 * size, "{x} against {e}");
+            }
+        }
         let (mut plus, mut minus) = (z.clone(), z.clone());
         let scale = (0..n)
             .flat_map(|i| (0..n).map(move |k| (i, k)))

@@ -10,6 +10,6 @@ mod precond;
 pub(crate) mod sparse;
 pub(crate) mod spd;
 
-pub use dense::{DenseMatrix, DynamicDense, FactorizeError, FaerDense, NewtonMatrix, SolveError};
+pub use dense::{DenseMatrix, FactorizeError, FaerDense, NewtonMatrix, SolveError};
 pub use krylov::{Krylov, KrylovCounts, LinearSolver, Preconditioner};
 pub use newton::NewtonOptions;

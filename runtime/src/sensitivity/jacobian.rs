@@ -7,9 +7,9 @@
 //!         ⎢ ⋮        ⋱   ⎥
 //!         ⎣ H_c 0   ⋯  J ⎦
 //!
-//! block lower-triangular with J on the diagonal: W = I − γh·∂F/∂z is solved by one
-//! factorization of I − γh·J per block row in exact arithmetic (CVODES's simultaneous corrector
-//! rests on the same structure). The Hⱼ hold second derivatives of f, which the macro does not
+//! block lower-triangular with J on the diagonal: W = I − γh·∂F/∂z is solved with one
+//! factorization of the model's own I − γh·J ([`AugmentedJacobian`]), in exact arithmetic — the
+//! structure CVODES's simultaneous corrector rests on. The Hⱼ hold second derivatives of f, which the macro does not
 //! generate: they are central differences of the exact J and ∂f/∂p along each component of y,
 //! step δₖ = ε^⅓·max(|yₖ|, 1), so accurate to ~ε^⅔ ≈ 4e-11 relative on smooth f and exact
 //! (up to rounding) where J is linear in y — mass-action kinetics such as Robertson's. BDF and
@@ -17,40 +17,125 @@
 //! those of the discretisation whatever its error; Rosenbrock methods build it into their
 //! stages, where an error of 1e-10 relative is far below any tolerance they are run at.
 
+use nalgebra::DMatrix;
+
 use super::Sensitive;
-use crate::{DenseMatrix, DynamicDense, Jacobian, Parameters, State};
+use crate::linalg::{FactorizeError, NewtonMatrix, SolveError};
+use crate::{DenseMatrix, Jacobian, NewtonOptions, Parameters, State};
+
+/// The augmented Jacobian: the model's own J (in the model's matrix type) and the coupling
+/// blocks H₁ … H_c below it, row block j of `coupling`.
+///
+/// W = I − c·∂F/∂z is factorized by factorizing the model's I − c·J alone, and solved by block
+/// forward substitution: x₀ = W₀⁻¹b₀, xⱼ = W₀⁻¹(bⱼ + c·Hⱼ·x₀) — one factorization of the model's
+/// size however many sensitivities ride along (the reuse CVODES's simultaneous corrector makes).
+#[derive(Clone, Debug)]
+pub struct AugmentedJacobian<J> {
+    jacobian: J,
+    coupling: DMatrix<f64>,
+}
+
+/// The factors of an [`AugmentedJacobian`]'s W: the model's, and the c they were made with.
+#[derive(Clone, Debug)]
+pub struct AugmentedFactors<F> {
+    factors: F,
+    c: f64,
+    product: Vec<f64>,
+}
+
+impl<J: DenseMatrix> AugmentedJacobian<J> {
+    /// Entry (row, column) of ∂F/∂z: J on the diagonal blocks, Hⱼ in the first block column,
+    /// zero elsewhere.
+    pub fn entry(&self, row: usize, column: usize) -> f64 {
+        let n = self.jacobian.dim();
+        let (block_row, block_column) = (row / n, column / n);
+        if block_row == block_column {
+            self.jacobian.entry(row % n, column % n)
+        } else if block_column == 0 {
+            self.coupling[(row - n, column)]
+        } else {
+            0.0
+        }
+    }
+
+    /// Rows (= columns): n·(1 + c).
+    pub fn dim(&self) -> usize {
+        self.jacobian.dim() + self.coupling.nrows()
+    }
+}
+
+impl<J: NewtonMatrix + DenseMatrix> NewtonMatrix for AugmentedJacobian<J> {
+    type Factors = AugmentedFactors<J::Factors>;
+
+    fn factors(&self) -> Self::Factors {
+        AugmentedFactors {
+            factors: self.jacobian.factors(),
+            c: 0.0,
+            product: vec![0.0; self.jacobian.dim()],
+        }
+    }
+
+    fn factorize(&mut self, c: f64, f: &mut Self::Factors) -> Result<(), FactorizeError> {
+        f.c = c;
+        self.jacobian.factorize(c, &mut f.factors)
+    }
+
+    fn solve(&mut self, f: &mut Self::Factors, b: &mut [f64]) -> Result<(), SolveError> {
+        let n = self.jacobian.dim();
+        if b.len() != self.dim() {
+            return Err(SolveError::WrongLength {
+                expected: self.dim(),
+                found: b.len(),
+            });
+        }
+        let (x0, rest) = b.split_at_mut(n);
+        self.jacobian.solve(&mut f.factors, x0)?;
+        for (block, bj) in rest.chunks_exact_mut(n).enumerate() {
+            for (i, p) in f.product.iter_mut().enumerate() {
+                let row = self.coupling.row(block * n + i);
+                *p = row.iter().zip(x0.iter()).map(|(h, x)| h * x).sum();
+            }
+            for (b, p) in bj.iter_mut().zip(&f.product) {
+                *b += f.c * p;
+            }
+            self.jacobian.solve(&mut f.factors, bj)?;
+        }
+        Ok(())
+    }
+
+    fn configure(&mut self, newton: &NewtonOptions, in_newton: bool) {
+        self.jacobian.configure(newton, in_newton);
+    }
+}
 
 impl<M> Jacobian for Sensitive<'_, M>
 where
     M: Parameters + Jacobian,
     M::Matrix: DenseMatrix,
 {
-    type Matrix = DynamicDense;
+    type Matrix = AugmentedJacobian<M::Matrix>;
     /// Not known at compile time (it depends on the model's pattern and the columns asked for).
     const NONZEROS: &'static [(usize, usize)] = &[];
     const TIME_DEPENDENT: bool = M::TIME_DEPENDENT;
 
-    fn jacobian_matrix(&self, state: &Self::State) -> DynamicDense {
-        DynamicDense::zeros(state.as_slice().len())
+    fn jacobian_matrix(&self, state: &Self::State) -> Self::Matrix {
+        let y = self.model.state();
+        let n = y.as_slice().len();
+        AugmentedJacobian {
+            jacobian: self.model.jacobian_matrix(&y),
+            coupling: DMatrix::zeros(state.as_slice().len() - n, n),
+        }
     }
 
-    fn jacobian(&self, t: f64, z: &Self::State, out: &mut DynamicDense) {
+    fn jacobian(&self, t: f64, z: &Self::State, out: &mut Self::Matrix) {
         let scratch = &mut *self.scratch.borrow_mut();
         let values = z.as_slice();
         let n = scratch.y.as_slice().len();
         let columns = (values.len() - n) / n;
         let parameters = M::NAMES.len();
-        out.fill_zero();
         self.count(0, 1 + 2 * n as u64, 2 * n as u64);
         scratch.y.as_mut_slice().copy_from_slice(&values[..n]);
-        self.model.jacobian(t, &scratch.y, &mut scratch.jacobian);
-        for block in 0..=columns {
-            for i in 0..n {
-                for k in 0..n {
-                    out.set(block * n + i, block * n + k, scratch.jacobian.entry(i, k));
-                }
-            }
-        }
+        self.model.jacobian(t, &scratch.y, &mut out.jacobian);
         for k in 0..n {
             let yk = values[k];
             let delta = crate::math::Transcendental::cbrt(f64::EPSILON) * yk.abs().max(1.0);
@@ -80,7 +165,7 @@ where
                             - scratch.jacobian_minus.entry(i, l))
                             * sl;
                     }
-                    out.set(n * (1 + c) + i, k, difference / width);
+                    out.coupling[(n * c + i, k)] = difference / width;
                 }
             }
         }

@@ -18,6 +18,7 @@ mod state;
 
 use std::cell::{Cell, RefCell};
 
+pub use jacobian::{AugmentedFactors, AugmentedJacobian};
 pub use state::SensitivityState;
 
 use nalgebra::DMatrix;

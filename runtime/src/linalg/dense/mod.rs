@@ -263,11 +263,10 @@ pub struct FaerDense<const N: usize> {
     inner: DynamicDense,
 }
 
-/// A square matrix on the heap whose size is known only at run time — the Jacobian of a model
-/// augmented with its sensitivities ([`crate::sensitivity::Sensitive`]) — solved like
-/// [`FaerDense`], with faer's partial-pivoting LU.
+/// A square matrix on the heap whose size is known at run time, solved with faer's
+/// partial-pivoting LU: what [`FaerDense`] is made of.
 #[derive(Clone, Debug)]
-pub struct DynamicDense {
+pub(crate) struct DynamicDense {
     matrix: Mat<f64>,
 }
 
@@ -294,7 +293,7 @@ impl<const N: usize> FaerDense<N> {
 
 impl DynamicDense {
     /// The n×n zero matrix.
-    pub fn zeros(n: usize) -> Self {
+    pub(crate) fn zeros(n: usize) -> Self {
         DynamicDense {
             matrix: Mat::zeros(n, n),
         }
