@@ -39,7 +39,8 @@
 //! - `odyn_rodas5p`, `odyn_bdf`: `Sensitive::new(&model)` through `simulate()` with
 //!   `Method::Rodas5P` / `Method::Bdf` and per-component tolerances, recording only the initial
 //!   and final states, no dense output. The augmented Jacobian is 12 × 12 (J on its diagonal,
-//!   its coupling blocks central differences of the exact J and ∂f/∂p), factorized whole.
+//!   its coupling blocks central differences of the exact J and ∂f/∂p); its W is solved by block
+//!   forward substitution on one factorization of the model's 3 × 3 I − cJ.
 //! - `diffsol_bdf`, `diffsol_esdirk34`: diffsol 0.18's `bdf_sens` / `esdirk34_sens` on nalgebra
 //!   dense matrices with `NalgebraLU`, built with `rhs_sens_implicit` (f, J·v, ∂f/∂p·v) and
 //!   `init_sens` (∂y₀/∂p = 0), `sens_rtol` = rtol, `sens_atol` = atol and `param_scales` = k (so

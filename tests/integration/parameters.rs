@@ -262,6 +262,18 @@ fn sensitivities_of_decay_match_the_closed_form() {
         "dc/dc(t0)",
         "the CSV header of ∂c/∂c₀"
     );
+    // Between the saved times, through DOP853's dense output (order 7 interpolant): the same
+    // closed form, to 1e-8.
+    for t in [0.37, 1.5, 2.71] {
+        let z = run.at(t).unwrap();
+        let e = (-0.7 * t).exp();
+        let s = z.sensitivities();
+        assert!(
+            (s[(0, 0)] + t * 2.0 * e).abs() < 1e-8 * t * 2.0 * e,
+            "t = {t}: {s}"
+        );
+        assert!((s[(0, 1)] - e).abs() < 1e-8 * e, "t = {t}: {s}");
+    }
 }
 
 /// Lorenz's sensitivities at t = 1 against central differences of whole solutions, each
