@@ -22,30 +22,9 @@ use odyn::prelude::*;
 use odyn::rand::rngs::StdRng;
 use odyn::rand::{Rng, SeedableRng};
 
-/// A damped pendulum: ω² = g/l and the damping rate γ are the parameters to fit.
-#[system]
-#[derive(Clone, Copy, Debug)]
-pub struct Pendulum {
-    /// Angle from the downward vertical (rad).
-    #[position]
-    pub theta: f64,
-    /// Angular velocity (rad/s).
-    #[velocity]
-    pub omega: f64,
-    /// ω² = g/l (s⁻²).
-    #[param]
-    pub omega2: f64,
-    /// Damping rate γ (s⁻¹).
-    #[param]
-    pub gamma: f64,
-}
-
-#[system]
-impl Pendulum {
-    fn acceleration(&self) -> f64 {
-        -self.omega2 * self.theta.sin() - self.gamma * self.omega
-    }
-}
+// The model, written once for the examples and tests (`scenes/src/pendulums.rs`):
+// θ̈ = −ω²·sin θ − γ·θ̇ with ω² and γ `#[param]`s.
+use scenes::DampedPendulum as Pendulum;
 
 const SIGMA: f64 = 0.02;
 
@@ -75,12 +54,7 @@ fn swing(model: &Pendulum, times: &[f64]) -> odyn::Result<Vec<f64>> {
 }
 
 fn run(dir: &Path) -> odyn::Result<()> {
-    let truth = Pendulum {
-        theta: 1.0,
-        omega: 0.0,
-        omega2: 9.81,
-        gamma: 0.3,
-    };
+    let truth = Pendulum::released();
     let times: Vec<f64> = (1..=100).map(|k| 0.1 * k as f64).collect();
     // Gaussian noise by Box–Muller from a seeded generator.
     let mut rng = StdRng::seed_from_u64(2026);

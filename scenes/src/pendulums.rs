@@ -1,4 +1,5 @@
-//! Pendulums: the double pendulum of the chaos demonstrations.
+//! Pendulums: the double pendulum of the chaos demonstrations, and the damped pendulum the
+//! `fit_pendulum` example fits.
 
 use odyn::prelude::*;
 
@@ -82,6 +83,45 @@ impl DoublePendulum {
             l1: 1.0,
             l2: 1.0,
             g: 9.81,
+        }
+    }
+}
+
+/// A damped pendulum, θ̈ = −ω²·sin θ − γ·θ̇: ω² = g/l and the damping rate γ are `#[param]`s, so
+/// ∂f/∂p and the sensitivities to them are generated (the `fit_pendulum` example recovers them
+/// from a noisy swing).
+#[system]
+#[derive(Clone, Copy, Debug)]
+pub struct DampedPendulum {
+    /// Angle from the downward vertical (rad).
+    #[position]
+    pub theta: f64,
+    /// Angular velocity (rad/s).
+    #[velocity]
+    pub omega: f64,
+    /// ω² = g/l (s⁻²).
+    #[param]
+    pub omega2: f64,
+    /// Damping rate γ (s⁻¹).
+    #[param]
+    pub gamma: f64,
+}
+
+#[system]
+impl DampedPendulum {
+    fn acceleration(&self) -> f64 {
+        -self.omega2 * self.theta.sin() - self.gamma * self.omega
+    }
+}
+
+impl DampedPendulum {
+    /// A 1 m pendulum (ω² = 9.81 s⁻²) damped at γ = 0.3 s⁻¹, released from rest at θ = 1 rad.
+    pub fn released() -> Self {
+        DampedPendulum {
+            theta: 1.0,
+            omega: 0.0,
+            omega2: 9.81,
+            gamma: 0.3,
         }
     }
 }
