@@ -231,6 +231,22 @@ fn parameters_round_trip_and_a_wrong_length_is_an_error() {
     let error = model.set_parameters(&[1.0]).unwrap_err();
     assert!(matches!(error, odyn::Error::InvalidInput { .. }), "{error}");
     assert!(error.to_string().contains("sigma, rho, beta"), "{error}");
+    // The typed parameter struct generated beside the state type.
+    let values = model.parameter_values();
+    assert_eq!(
+        values,
+        FitLorenzParameters {
+            sigma: 1.0,
+            rho: 2.0,
+            beta: 3.0
+        }
+    );
+    model.set_parameter_values(FitLorenzParameters {
+        rho: 28.0,
+        ..values
+    });
+    assert_eq!(model.parameters(), [1.0, 28.0, 3.0]);
+    assert_eq!((model.x, model.y, model.z), (1.0, 2.0, 3.0));
 }
 
 /// Exponential decay ċ = −k·c with k and the initial value: c = c₀e^{−kt}, ∂c/∂k = −t·c₀e^{−kt},
