@@ -4,7 +4,9 @@
 //! Functions with kinks are differentiated almost everywhere, and at the kink take the
 //! derivative of the side Rust's own definition falls on: |x|′ = signum(x), which is ±1 at ±0;
 //! min(a, b)′ = a′ where a ≤ b (so a′ at a tie), max(a, b)′ = a′ where a ≥ b; signum′ = 0. A branch
-//! on parameters differentiates the branch taken.
+//! on parameters differentiates the branch taken. A call of a function the graph cannot see into
+//! ([`Node::Extern`]) is the one inexact rule: its partial derivatives are central differences of
+//! the call itself ([`Node::Slope`]), the chain rule around them exact.
 //!
 //! Every rule builds its result with the graph's smart constructors, so derivatives simplify as
 //! they are made and reuse the nodes of the function itself (∂ sin u = cos u · ∂u shares u;
@@ -187,6 +189,23 @@ impl Differentiator {
                 );
                 g.pick(a, b, dt, de)
             }
+            Node::Extern { args, arity, .. } => {
+                // Σᵢ ∂f/∂aᵢ · aᵢ′, each ∂f/∂aᵢ a central difference of the call.
+                let mut sum = g.num(0.0);
+                for (i, &a) in args[..usize::from(arity)].iter().enumerate() {
+                    let da = self.differentiate(g, a, var);
+                    if !g.is_zero(da) {
+                        let slope = g.slope(e, u8::try_from(i).expect("at most four"));
+                        let term = g.mul(slope, da);
+                        sum = g.add(sum, term);
+                    }
+                }
+                sum
+            }
+            // No second derivatives are taken (the Jacobian, ∂f/∂t, ∂f/∂p and tangents are all
+            // first derivatives of f); were one asked for, NaN would surface at run time rather
+            // than a silent zero.
+            Node::Slope { .. } => g.num(f64::NAN),
         };
         self.memo.insert((e, var), d);
         d

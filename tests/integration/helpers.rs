@@ -516,3 +516,97 @@ fn a_helper_in_an_arm_on_the_state_keeps_its_locals_to_itself() {
     model.jacobian(0.0, &ArmedState { x: 0.5 }, &mut j);
     assert_eq!(j[(0, 0)], 4.0 * 1.25 * 0.5 * 2.0 - 1.0);
 }
+
+/// A force odyn cannot see inside: a crate-style free function (not `#[odyn::function]`), and a
+/// measured force curve looked up in a table and interpolated. The macro evaluates both calls as
+/// written and differentiates each by a central difference of the call
+/// (`Jacobian::EXACT = false`); the chain rule around them stays exact.
+fn stiffening(x: f64, k: f64) -> f64 {
+    -k * x * (1.0 + x * x)
+}
+
+/// −x³ − x tabulated at 0.05 over [−3, 3] (121 points) and linearly interpolated: a lookup
+/// table of the kind a measured spring curve comes in.
+fn tabulated(x: f64) -> f64 {
+    const STEP: f64 = 0.05;
+    let s = ((x + 3.0) / STEP).clamp(0.0, 119.999_999);
+    let i = s as usize;
+    let f = s - i as f64;
+    let at = |i: usize| {
+        let x = -3.0 + i as f64 * STEP;
+        -x * x * x - x
+    };
+    at(i) * (1.0 - f) + at(i + 1) * f
+}
+
+#[system(integrator = Rodas5P)]
+#[derive(Clone, Copy, Debug)]
+struct Opaque {
+    #[position]
+    x: f64,
+    #[velocity]
+    v: f64,
+    k: f64,
+    c: f64,
+}
+
+#[system]
+impl Opaque {
+    fn acceleration(&self) -> f64 {
+        stiffening(self.x, self.k) + 0.5 * tabulated(self.x * self.v) - self.c * self.v
+    }
+}
+
+#[test]
+fn calls_odyn_cannot_see_inside_are_differentiated_by_differences_of_the_call() {
+    use odyn::Jacobian;
+    const { assert!(!<Opaque as Jacobian>::EXACT) };
+    const { assert!(<Duffing as Jacobian>::EXACT) };
+    let model = Opaque {
+        x: 0.3,
+        v: -0.2,
+        k: 4.0,
+        c: 50.0,
+    };
+    // Off the table's nodes, where a difference quotient straddles two segments (x·v within
+    // 1e-3 of a multiple of 0.05), and inside it (|x·v| < 2.25).
+    check(&model, 0.0, 50, |rng| {
+        loop {
+            let (x, v) = (rng.uniform(-1.5, 1.5), rng.uniform(-1.5, 1.5));
+            let s = (x * v + 3.0) / 0.05;
+            if (s - s.round()).abs() > 0.02 {
+                break OpaqueState { x, v };
+            }
+        }
+    });
+}
+
+/// Rodas5P on the model with opaque calls (c = 50: stiff against k = 4) against DOP853 on the
+/// same model at rtol 1e-12 (an explicit method never uses the Jacobian): they agree to the
+/// Rosenbrock run's tolerance, 1e-6, at t = 5.
+#[test]
+fn rodas5p_runs_on_a_model_with_opaque_calls() {
+    let model = Opaque {
+        x: 1.0,
+        v: 0.0,
+        k: 4.0,
+        c: 50.0,
+    };
+    let run = |method: Method, rtol: f64| {
+        model
+            .simulate()
+            .integrator(method)
+            .tolerances(rtol, rtol * 1e-2)
+            .duration(5.0)
+            .run()
+            .unwrap()
+            .last()
+            .state
+    };
+    let (rodas, reference) = (run(Method::Rodas5P, 1e-8), run(Method::Dop853, 1e-12));
+    assert!(
+        (rodas.x - reference.x).abs() < 1e-6 * reference.x.abs().max(1e-3),
+        "{rodas:?} against {reference:?}"
+    );
+    assert!((rodas.v - reference.v).abs() < 1e-6 * reference.v.abs().max(1e-3));
+}

@@ -154,29 +154,6 @@ mod helper_reads_the_state {
     }
 }
 
-mod unmarked_helper {
-    use odyn::prelude::*;
-
-    #[system]
-    pub struct Spring {
-        #[position]
-        pub x: f64,
-        #[velocity]
-        pub v: f64,
-    }
-
-    #[system]
-    impl Spring {
-        fn acceleration(&self) -> f64 {
-            Self::restoring(self.x)
-        }
-
-        fn restoring(x: f64) -> f64 {
-            -x * x * x
-        }
-    }
-}
-
 mod free_function_marked {
     #[odyn::function]
     fn cubic(x: f64) -> f64 {

@@ -208,6 +208,46 @@ fn binding(
             let (then, otherwise) = (operand(then), operand(otherwise));
             quote!(if #a <= #b { #then } else { #otherwise })
         }
+        Node::Extern {
+            function,
+            args,
+            arity,
+        } => {
+            let path = graph.extern_path(function);
+            let args = args[..usize::from(arity)].iter().map(|&a| operand(a));
+            quote!(#path(#(#args),*))
+        }
+        Node::Slope {
+            function,
+            args,
+            arity,
+            wrt,
+        } => {
+            let path = graph.extern_path(function);
+            let wrt = usize::from(wrt);
+            let at = operand(args[wrt]);
+            // ε^⅓ (the step that balances a central difference's truncation and rounding).
+            let step = float_literal(libm::cbrt(f64::EPSILON));
+            let shifted = |shift: TokenStream| {
+                let args = args[..usize::from(arity)]
+                    .iter()
+                    .enumerate()
+                    .map(|(i, &a)| if i == wrt { shift.clone() } else { operand(a) });
+                quote!(#path(#(#args),*))
+            };
+            let up = format_ident!("__odyn_up", span = Span::mixed_site());
+            let down = format_ident!("__odyn_down", span = Span::mixed_site());
+            let (plus, minus) = (
+                shifted(up.to_token_stream()),
+                shifted(down.to_token_stream()),
+            );
+            quote!({
+                let __odyn_h: f64 = #step * f64::max(f64::abs(#at), 1.0);
+                let #up: f64 = #at + __odyn_h;
+                let #down: f64 = #at - __odyn_h;
+                (#plus - #minus) / (#up - #down)
+            })
+        }
     };
     let name = node_ident(id);
     Some(quote!(let #name: f64 = #value;))

@@ -58,6 +58,21 @@ pub(crate) enum Node {
         then: ExprId,
         otherwise: ExprId,
     },
+    /// A call of a function odyn cannot see into (a crate's, or the user's own unmarked one),
+    /// `function(args[..arity])`, of numbers returning a number: evaluated as written.
+    Extern {
+        function: u32,
+        args: [ExprId; 4],
+        arity: u8,
+    },
+    /// ∂/∂args[wrt] of an [`Node::Extern`] call, by a central difference of the call itself:
+    /// (f(…, a + h, …) − f(…, a − h, …)) / ((a + h) − (a − h)), h = ε^⅓·max(|a|, 1).
+    Slope {
+        function: u32,
+        args: [ExprId; 4],
+        arity: u8,
+        wrt: u8,
+    },
 }
 
 impl Node {
@@ -65,6 +80,9 @@ impl Node {
     pub(crate) fn children(self) -> impl Iterator<Item = ExprId> {
         let (list, len): ([ExprId; 4], usize) = match self {
             Node::Const(_) | Node::Var(_) | Node::Opaque(_) => ([ExprId(0); 4], 0),
+            Node::Extern { args, arity, .. } | Node::Slope { args, arity, .. } => {
+                (args, usize::from(arity))
+            }
             Node::Neg(a) | Node::Powi(a, _) | Node::Call(_, a) => ([a, a, a, a], 1),
             Node::Add(a, b)
             | Node::Mul(a, b)
@@ -90,6 +108,8 @@ impl Node {
 pub(crate) struct Graph {
     nodes: Vec<Node>,
     index: HashMap<Node, ExprId>,
+    /// The functions of [`Node::Extern`] calls, as the user wrote their paths.
+    externs: Vec<proc_macro2::TokenStream>,
 }
 
 impl Graph {
@@ -135,6 +155,58 @@ impl Graph {
 
     pub(crate) fn opaque(&mut self, index: usize) -> ExprId {
         self.intern(Node::Opaque(index))
+    }
+
+    /// The call `path(args)` of a function the graph cannot see into (1 to 4 arguments; the
+    /// caller checks).
+    pub(crate) fn extern_call(
+        &mut self,
+        path: proc_macro2::TokenStream,
+        args: &[ExprId],
+    ) -> ExprId {
+        let key = path.to_string();
+        let function = match self.externs.iter().position(|p| p.to_string() == key) {
+            Some(i) => i,
+            None => {
+                self.externs.push(path);
+                self.externs.len() - 1
+            }
+        };
+        let mut padded = [ExprId(0); 4];
+        padded[..args.len()].copy_from_slice(args);
+        self.intern(Node::Extern {
+            function: u32::try_from(function).expect("fewer than 2³² functions"),
+            args: padded,
+            arity: u8::try_from(args.len()).expect("at most four arguments"),
+        })
+    }
+
+    /// ∂/∂(argument `wrt`) of the extern call `call` (a [`Node::Extern`]).
+    pub(crate) fn slope(&mut self, call: ExprId, wrt: u8) -> ExprId {
+        match self.node(call) {
+            Node::Extern {
+                function,
+                args,
+                arity,
+            } => self.intern(Node::Slope {
+                function,
+                args,
+                arity,
+                wrt,
+            }),
+            _ => self.num(f64::NAN),
+        }
+    }
+
+    /// The path of extern function `function`, as written.
+    pub(crate) fn extern_path(&self, function: u32) -> &proc_macro2::TokenStream {
+        &self.externs[function as usize]
+    }
+
+    /// Whether the graph calls a function it cannot see into: its derivatives then hold
+    /// central differences of those calls.
+    pub(crate) fn has_externs(&self) -> bool {
+        !self.externs.is_empty()
     }
 
     pub(crate) fn add(&mut self, a: ExprId, b: ExprId) -> ExprId {
@@ -307,6 +379,8 @@ impl Graph {
                 then,
                 otherwise,
             } => e(if e(a) <= e(b) { then } else { otherwise }),
+            // The user's functions are not evaluated at compile time.
+            Node::Extern { .. } | Node::Slope { .. } => f64::NAN,
         }
     }
 }

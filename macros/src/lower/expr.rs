@@ -331,20 +331,38 @@ impl Lowering<'_> {
                     .ident;
                 self.apply(name, receiver, &args[1..], method)
             }
-            _ => {
-                let name = segments.join("::");
-                let last = segments.last().map_or("f", String::as_str);
-                Err(self.error(
-                    &c.func,
-                    format_args!(
-                        "a call of `{name}` (odyn cannot see inside functions; mark it \
-                         `#[odyn::function]` in the model's `#[system]` impl block and call it \
-                         as `Self::{last}(…)`, or `self.{last}(…)` if it takes `&self`; or \
-                         inline it)"
-                    ),
-                ))
+            _ if (1..=4).contains(&args.len()) => {
+                // A function odyn cannot see into, of numbers: evaluated as written, its
+                // derivative a central difference of the call (`Jacobian::EXACT` is then false).
+                let mut lowered = Vec::with_capacity(args.len());
+                for a in &args {
+                    match self.expr(a)? {
+                        Value::Scalar(id) => lowered.push(id),
+                        _ => return Err(self.opaque_call_error(c, &segments)),
+                    }
+                }
+                let path = c.func.to_token_stream();
+                Ok(Value::Scalar(self.graph.extern_call(path, &lowered)))
             }
+            _ => Err(self.opaque_call_error(c, &segments)),
         }
+    }
+
+    /// The refusal of a call the graph cannot take as an extern: not one to four numbers in.
+    fn opaque_call_error(&self, c: &syn::ExprCall, segments: &[String]) -> syn::Error {
+        let name = segments.join("::");
+        let last = segments.last().map_or("f", String::as_str);
+        self.error(
+            &c.func,
+            format_args!(
+                "a call of `{name}` with {} argument(s) not all numbers (odyn differentiates \
+                 a function it cannot see inside by central differences only when it takes one \
+                 to four `f64`s; mark it `#[odyn::function]` in the model's `#[system]` impl \
+                 block and call it as `Self::{last}(…)`, or `self.{last}(…)` if it takes \
+                 `&self`, for an exact Jacobian; or inline it)",
+                c.args.len()
+            ),
+        )
     }
 
     pub(super) fn integer(&self, e: &Expr) -> Option<i32> {

@@ -124,6 +124,14 @@ pub trait Jacobian: Model {
     /// Writes ∂f/∂y at (t, y) into `jacobian`, every entry.
     fn jacobian(&self, t: f64, y: &Self::State, jacobian: &mut Self::Matrix);
 
+    /// Whether every entry is exact: `#[system]` sets it false when the model's code calls a
+    /// function it cannot see inside (a crate's, or the user's own not marked
+    /// `#[odyn::function]`), whose derivative it then takes by a central difference of the
+    /// call (relative error ~1e-10 on smooth functions). Newton-based methods (implicit Euler,
+    /// BDF) only iterate with J, so their results do not depend on it; Rosenbrock methods build
+    /// it into their stages.
+    const EXACT: bool = true;
+
     /// Whether f reads the time, so ∂f/∂t may be non-zero (false for autonomous models: then
     /// methods that need ∂f/∂t skip it at no cost).
     const TIME_DEPENDENT: bool = true;

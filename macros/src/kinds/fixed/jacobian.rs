@@ -115,6 +115,15 @@ pub(crate) fn jacobian(
     let doc = format!(
         "The {count} structural non-zeros of ∂f/∂y, derived by `#[system]` from the model's code."
     );
+    let exact = if graph.has_externs() {
+        quote! {
+            /// False: the model calls a function `#[system]` cannot see inside; the derivative
+            /// of each such call is a central difference of the call.
+            const EXACT: bool = false;
+        }
+    } else {
+        TokenStream::new()
+    };
     quote! {
         #[automatically_derived]
         impl #self_ty {
@@ -126,6 +135,7 @@ pub(crate) fn jacobian(
             type Matrix = #matrix;
             #[doc = #doc]
             const NONZEROS: &'static [(usize, usize)] = &[#(#nonzeros),*];
+            #exact
             fn jacobian_matrix(&self, _: &#state) -> #matrix {
                 <#matrix as ::odyn::DenseMatrix>::zeros()
             }
