@@ -610,3 +610,40 @@ fn rodas5p_runs_on_a_model_with_opaque_calls() {
     );
     assert!((rodas.v - reference.v).abs() < 1e-6 * reference.v.abs().max(1e-3));
 }
+
+/// A method of a number odyn does not differentiate itself (`to_radians`, `fract`) is called as
+/// written and differentiated by a central difference of the call: 1 for `fract` away from the
+/// integers, π/180 for `to_radians`.
+#[system]
+#[derive(Clone, Copy, Debug)]
+struct Sawtooth {
+    #[state]
+    x: f64,
+    #[state]
+    y: f64,
+}
+
+#[system]
+impl Sawtooth {
+    fn derivative(&self) -> SawtoothState {
+        SawtoothState {
+            x: -self.x.fract() * self.y,
+            y: self.x.to_radians().sin() + self.y.mul_add(2.0, 1.0),
+        }
+    }
+}
+
+#[test]
+fn unknown_methods_of_numbers_are_differentiated_by_differences_of_the_call() {
+    use odyn::Jacobian;
+    const { assert!(!<Sawtooth as Jacobian>::EXACT) };
+    // Off the integers, where `fract` jumps.
+    check(&Sawtooth { x: 0.5, y: 1.0 }, 0.0, 50, |rng| {
+        loop {
+            let (x, y) = (rng.uniform(-3.0, 3.0), rng.uniform(-2.0, 2.0));
+            if (x - x.round()).abs() > 0.01 {
+                break SawtoothState { x, y };
+            }
+        }
+    });
+}

@@ -756,39 +756,3 @@ fn pendulum_sensitivities_match_differences_of_solutions() {
         }
     }
 }
-
-/// A rate computed by a function odyn cannot see inside: ∂f/∂k through the call is its central
-/// difference times the chain rule around it, against central differences of f in k.
-fn rate(k: f64) -> f64 {
-    k * k + k.sin()
-}
-
-#[system]
-#[derive(Clone, Copy, Debug)]
-pub struct OpaqueRate {
-    #[state]
-    pub c: f64,
-    #[param]
-    pub k: f64,
-}
-
-#[system]
-impl OpaqueRate {
-    fn derivative(&self) -> OpaqueRateState {
-        OpaqueRateState {
-            c: -rate(self.k) * self.c,
-        }
-    }
-}
-
-#[test]
-fn parameters_read_through_opaque_calls_are_differentiated() {
-    let mut rng = Rng(5);
-    for _ in 0..20 {
-        let model = OpaqueRate {
-            c: rng.uniform(0.1, 2.0),
-            k: rng.uniform(0.1, 3.0),
-        };
-        check(&model, 0.0, &model.state());
-    }
-}

@@ -421,22 +421,24 @@ mod unsupported_call {
     fn main() {}
 }
 
+// A method of a number odyn does not know is differentiated by differences of the call; one of
+// a vector is refused.
 mod unsupported_method {
     use odyn::prelude::*;
 
     #[system()]
     pub struct Model {
         #[position]
-        pub x: f64,
+        pub x: Vector2<f64>,
         #[velocity]
-        pub v: f64,
+        pub v: Vector2<f64>,
         pub k: f64,
     }
 
     #[system]
     impl Model {
-        fn acceleration(&self) -> f64 {
-            self.x.floor()
+        fn acceleration(&self) -> Vector2<f64> {
+            -self.x * self.x.amax()
         }
     }
 

@@ -59,6 +59,29 @@ mod param_without_jacobian {
     }
 }
 
+mod param_through_an_opaque_call {
+    use odyn::system;
+
+    fn rate(k: f64) -> f64 {
+        k * k
+    }
+
+    #[system]
+    struct Decay {
+        #[state]
+        c: f64,
+        #[param]
+        k: f64,
+    }
+
+    #[system]
+    impl Decay {
+        fn derivative(&self) -> DecayState {
+            DecayState { c: -rate(self.k) * self.c }
+        }
+    }
+}
+
 mod param_on_a_grid_model {
     use odyn::grid::{Grid, Stencil};
     use odyn::system;

@@ -203,6 +203,13 @@ impl Graph {
         &self.externs[function as usize]
     }
 
+    /// Whether `id` reads a variable (a state component or the time).
+    pub(crate) fn reads_variables(&self, id: ExprId) -> bool {
+        self.reachable([id])
+            .into_iter()
+            .any(|i| matches!(self.node(i), Node::Var(_)))
+    }
+
     /// Whether the graph calls a function it cannot see into: its derivatives then hold
     /// central differences of those calls.
     pub(crate) fn has_externs(&self) -> bool {

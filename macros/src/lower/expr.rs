@@ -341,6 +341,10 @@ impl Lowering<'_> {
                         _ => return Err(self.opaque_call_error(c, &segments)),
                     }
                 }
+                // State-free calls stay the user's code, as before (their value is opaque).
+                if !lowered.iter().any(|&id| self.graph.reads_variables(id)) {
+                    return Err(self.opaque_call_error(c, &segments));
+                }
                 let path = c.func.to_token_stream();
                 Ok(Value::Scalar(self.graph.extern_call(path, &lowered)))
             }

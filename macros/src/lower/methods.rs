@@ -70,11 +70,12 @@ impl Lowering<'_> {
                     let (s, c) = (self.graph.call(Func::Sin, x), self.graph.call(Func::Cos, x));
                     return Ok(Value::Tuple(vec![Value::Scalar(s), Value::Scalar(c)]));
                 }
-                let f = Func::ALL
-                    .into_iter()
-                    .find(|f| f.method() == name)
-                    .ok_or_else(|| unsupported(self))?;
-                Ok(Value::Scalar(self.graph.call(f, x)))
+                match Func::ALL.into_iter().find(|f| f.method() == name) {
+                    Some(f) => Ok(Value::Scalar(self.graph.call(f, x))),
+                    // State-free receivers stay the user's code (an opaque value), as before.
+                    None if !self.graph.reads_variables(x) => Err(unsupported(self)),
+                    None => Ok(Value::Scalar(self.extern_method(at, x, &[]))),
+                }
             }
             (Value::Scalar(x), [n]) if name == "powi" => {
                 let n = self.integer(n).ok_or_else(|| {
@@ -161,8 +162,44 @@ impl Lowering<'_> {
                     _ => Err(unsupported(self)),
                 }
             }
+            (Value::Scalar(x), rest) if rest.len() <= 3 => {
+                // Another method of a number, of numbers: evaluated as written, differentiated
+                // by central differences of the call (`Jacobian::EXACT` false).
+                let mut lowered = Vec::with_capacity(rest.len());
+                for a in rest {
+                    match self.expr(a)? {
+                        Value::Scalar(id) => lowered.push(id),
+                        _ => return Err(unsupported(self)),
+                    }
+                }
+                if !std::iter::once(&x)
+                    .chain(&lowered)
+                    .any(|&id| self.graph.reads_variables(id))
+                {
+                    return Err(unsupported(self));
+                }
+                Ok(Value::Scalar(self.extern_method(at, x, &lowered)))
+            }
             _ => Err(unsupported(self)),
         }
+    }
+
+    /// `receiver.method(args)` of a method the graph cannot see into, as an extern call of the
+    /// closure `|r, a…| r.method(a…)`.
+    fn extern_method(
+        &mut self,
+        method: &Ident,
+        receiver: crate::ir::ExprId,
+        args: &[crate::ir::ExprId],
+    ) -> crate::ir::ExprId {
+        let names: Vec<Ident> = (0..=args.len())
+            .map(|i| quote::format_ident!("__odyn_a{}", i, span = proc_macro2::Span::mixed_site()))
+            .collect();
+        let (r, rest) = (&names[0], &names[1..]);
+        let closure = quote::quote!((|#(#names: f64),*| -> f64 { #r.#method(#(#rest),*) }));
+        let mut all = vec![receiver];
+        all.extend_from_slice(args);
+        self.graph.extern_call(closure, &all)
     }
 
     fn dot(&mut self, v: &[crate::ir::ExprId], w: &[crate::ir::ExprId]) -> crate::ir::ExprId {
