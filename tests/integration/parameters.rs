@@ -316,8 +316,57 @@ fn sensitivities_of_decay_match_the_closed_form() {
 
 /// Lorenz's sensitivities at t = 1 against central differences of whole solutions, each
 /// parameter ±h with h = 1e-5·p: truncation O(h²) ≈ 1e-8 relative (the third derivative of the
-/// solution in p over t ≤ 1 is moderate), the solves at rtol 1e-12 add ~1e-12/h ≈ 1e-8, so 1e-5
+/// solution in p over t ≤ 1 is moderate), the solves at rtol 1e-12 add ~1e-12/h ≈ 1e-8, so 1e-7
 /// relative to the column's largest entry is safe and still far below a wrong term's effect.
+/// Central differences of whole solutions in each parameter: column j is
+/// (y(p + hⱼeⱼ) − y(p − hⱼeⱼ))/2hⱼ with hⱼ = `relative`·pⱼ, each y the final state `solve` gives.
+fn differences_of_solutions<M: Parameters + Copy>(
+    model: &M,
+    relative: f64,
+    solve: impl Fn(&M) -> M::State,
+) -> DMatrix<f64> {
+    let p = model.parameters();
+    let n = model.state().as_slice().len();
+    let mut differences = DMatrix::zeros(n, p.len());
+    for j in 0..p.len() {
+        let h = relative * p[j];
+        let at = |delta: f64| {
+            let mut m = *model;
+            let mut values = p.clone();
+            values[j] += delta;
+            m.set_parameters(&values).unwrap();
+            solve(&m)
+        };
+        let (plus, minus) = (at(h), at(-h));
+        for i in 0..n {
+            differences[(i, j)] = (plus.as_slice()[i] - minus.as_slice()[i]) / (2.0 * h);
+        }
+    }
+    differences
+}
+
+/// Every entry of `s` within `agreement` of `reference`, relative to the largest entry of its
+/// column (the parameter's).
+fn assert_columns_agree<M: Parameters>(
+    s: &DMatrix<f64>,
+    reference: &DMatrix<f64>,
+    agreement: f64,
+    what: &str,
+) {
+    for j in 0..s.ncols() {
+        let scale = reference.column(j).amax();
+        for i in 0..s.nrows() {
+            assert!(
+                (s[(i, j)] - reference[(i, j)]).abs() < agreement * scale,
+                "{what}: ∂y{i}/∂{}: {} against {}",
+                M::NAMES[j],
+                s[(i, j)],
+                reference[(i, j)]
+            );
+        }
+    }
+}
+
 #[test]
 fn lorenz_sensitivities_match_differences_of_solutions() {
     use odyn::sensitivity::Sensitive;
@@ -347,28 +396,8 @@ fn lorenz_sensitivities_match_differences_of_solutions() {
         .run()
         .unwrap();
     let s = run.last().state.sensitivity_matrix();
-    let p = model.parameters();
-    for j in 0..3 {
-        let h = 1e-5 * p[j];
-        let at = |delta: f64| {
-            let mut m = model;
-            let mut values = p.clone();
-            values[j] += delta;
-            m.set_parameters(&values).unwrap();
-            solve(&m)
-        };
-        let (plus, minus) = (at(h), at(-h));
-        let scale = (0..3).map(|i| s[(i, j)].abs()).fold(0.0, f64::max);
-        for i in 0..3 {
-            let fd = (plus.as_slice()[i] - minus.as_slice()[i]) / (2.0 * h);
-            assert!(
-                (fd - s[(i, j)]).abs() < 1e-5 * scale,
-                "∂y{i}/∂{}: {} against {fd}",
-                FitLorenz::NAMES[j],
-                s[(i, j)]
-            );
-        }
-    }
+    let differences = differences_of_solutions(&model, 1e-5, solve);
+    assert_columns_agree::<FitLorenz>(&s, &differences, 1e-7, "DOP853");
 }
 
 /// A first-order model of one scalar state may return its derivative as an `f64`.
@@ -534,69 +563,34 @@ fn implicit_euler_sensitivities_are_the_derivatives_of_its_steps() {
 /// 1e-6), the reference itself being within ~5e-9 of the exact sensitivities.
 #[test]
 fn stiff_methods_give_robertson_sensitivities_that_match_differences_of_solutions() {
-    use odyn::Tolerances;
     use odyn::sensitivity::Sensitive;
     use scenes::Robertson;
     let model = Robertson::classic();
-    let rates = model.parameters();
-    let solve = |m: &Robertson| {
-        let run = m
-            .simulate()
+    let differences = differences_of_solutions(&model, 1e-4, |m: &Robertson| {
+        m.simulate()
             .integrator(Method::Rodas5P)
             .tolerances(1e-12, 1e-20)
             .duration(40.0)
             .run()
-            .unwrap();
-        run.last().state
-    };
-    let mut differences = DMatrix::zeros(3, 3);
-    for j in 0..3 {
-        let h = 1e-4 * rates[j];
-        let at = |delta: f64| {
-            let mut m = model;
-            let mut values = rates.clone();
-            values[j] += delta;
-            m.set_parameters(&values).unwrap();
-            solve(&m)
-        };
-        let (plus, minus) = (at(h), at(-h));
-        for i in 0..3 {
-            differences[(i, j)] = (plus.as_slice()[i] - minus.as_slice()[i]) / (2.0 * h);
-        }
-    }
+            .unwrap()
+            .last()
+            .state
+    });
     for (method, rtol, agreement) in [
         (Method::Rodas5P, 1e-10, 1e-7),
         (Method::Rosenbrock23, 1e-9, 1e-6),
         (Method::Bdf, 1e-10, 1e-7),
     ] {
-        let atol = 1e-14;
-        let mut atols = vec![atol; 3];
-        for k in &rates {
-            atols.extend([atol / k; 3]);
-        }
         let sensitive = Sensitive::new(&model);
         let run = sensitive
             .simulate()
             .integrator(method)
-            .with_tolerances(Tolerances::per_component(rtol, atols))
+            .with_tolerances(sensitive.tolerances(rtol, 1e-14, true))
             .duration(40.0)
             .run()
             .unwrap();
         let s = run.last().state.sensitivity_matrix();
-        for j in 0..3 {
-            let scale = (0..3)
-                .map(|i| differences[(i, j)].abs())
-                .fold(0.0, f64::max);
-            for i in 0..3 {
-                assert!(
-                    (s[(i, j)] - differences[(i, j)]).abs() < agreement * scale,
-                    "{method}: ∂y{i}/∂{}: {} against {}",
-                    Robertson::NAMES[j],
-                    s[(i, j)],
-                    differences[(i, j)]
-                );
-            }
-        }
+        assert_columns_agree::<Robertson>(&s, &differences, agreement, &method.to_string());
         // The model's own work: f, J and ∂f/∂p once per augmented derivative, and J 1 + 2n = 7
         // times and ∂f/∂p 2n = 6 times per augmented Jacobian.
         let (stats, work) = (run.stats, sensitive.work());
@@ -733,26 +727,6 @@ fn pendulum_sensitivities_match_differences_of_solutions() {
         .run()
         .unwrap();
     let s = run.last().state.sensitivity_matrix();
-    let p = model.parameters();
-    for j in 0..2 {
-        let h = 1e-5 * p[j];
-        let at = |delta: f64| {
-            let mut m = model;
-            let mut values = p.clone();
-            values[j] += delta;
-            m.set_parameters(&values).unwrap();
-            solve(&m)
-        };
-        let (plus, minus) = (at(h), at(-h));
-        let scale = (0..2).map(|i| s[(i, j)].abs()).fold(0.0, f64::max);
-        for i in 0..2 {
-            let fd = (plus.as_slice()[i] - minus.as_slice()[i]) / (2.0 * h);
-            assert!(
-                (fd - s[(i, j)]).abs() < 1e-7 * scale,
-                "∂y{i}/∂{}: {} against {fd}",
-                DampedPendulum::NAMES[j],
-                s[(i, j)]
-            );
-        }
-    }
+    let differences = differences_of_solutions(&model, 1e-5, solve);
+    assert_columns_agree::<DampedPendulum>(&s, &differences, 1e-7, "DOP853");
 }
