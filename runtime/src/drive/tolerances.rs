@@ -168,14 +168,11 @@ impl Tolerances {
         }
     }
 
-    /// The absolute tolerance of component `i` for weighing Newton updates: its own, or for a
-    /// component left out of the error test the smallest other one (its iterates must still
-    /// converge).
-    #[inline]
-    pub(crate) fn iteration_atol(&self, i: usize) -> f64 {
+    /// The absolute tolerance that weighs Newton updates of a component left out of the error
+    /// test (atol +∞): the smallest finite one, so its iterates must still converge.
+    pub(crate) fn smallest_finite_atol(&self) -> f64 {
         match &self.atol {
             Atol::Scalar(a) => *a,
-            Atol::PerComponent(a) if a[i].is_finite() => a[i],
             Atol::PerComponent(a) => a
                 .iter()
                 .copied()

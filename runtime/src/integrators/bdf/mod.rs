@@ -201,6 +201,9 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
         }
         let (max_iters, tol) = match s.tolerances {
             Some(tolerances) => {
+                // A component left out of the error test (atol +∞) is weighed by the smallest
+                // finite atol: found once, not per component.
+                let fallback = tolerances.smallest_finite_atol();
                 for (i, (w, p)) in self
                     .scale
                     .as_mut_slice()
@@ -208,7 +211,9 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
                     .zip(&*predict)
                     .enumerate()
                 {
-                    *w = tolerances.iteration_atol(i) + tolerances.rtol * p.abs();
+                    let atol = tolerances.atol(i);
+                    let atol = if atol.is_finite() { atol } else { fallback };
+                    *w = atol + tolerances.rtol * p.abs();
                 }
                 let rtol = tolerances.rtol.max(100.0 * f64::EPSILON);
                 (

@@ -260,18 +260,10 @@ impl NewtonMatrix for nalgebra::SMatrix<f64, 0, 0> {
 /// [`NewtonMatrix::factors`]; factorizations and solves allocate nothing.
 #[derive(Clone, Debug)]
 pub struct FaerDense<const N: usize> {
-    inner: DynamicDense,
-}
-
-/// A square matrix on the heap whose size is known at run time, solved with faer's
-/// partial-pivoting LU: what [`FaerDense`] is made of.
-#[derive(Clone, Debug)]
-pub(crate) struct DynamicDense {
     matrix: Mat<f64>,
 }
 
-/// The LU factors of a [`FaerDense`] or [`DynamicDense`] W, with its permutation and scratch
-/// space.
+/// The LU factors of a [`FaerDense`] W, with its permutation and scratch space.
 pub struct FaerLu {
     lu: Mat<f64>,
     perm: Vec<usize>,
@@ -282,41 +274,12 @@ pub struct FaerLu {
 impl<const N: usize> FaerDense<N> {
     /// Sets every entry to zero.
     pub fn fill_zero(&mut self) {
-        self.inner.fill_zero();
-    }
-
-    /// Sets entry (row, column).
-    pub fn set(&mut self, row: usize, column: usize, value: f64) {
-        self.inner.set(row, column, value);
-    }
-}
-
-impl DynamicDense {
-    /// The n×n zero matrix.
-    pub(crate) fn zeros(n: usize) -> Self {
-        DynamicDense {
-            matrix: Mat::zeros(n, n),
-        }
-    }
-
-    /// Sets every entry to zero.
-    pub fn fill_zero(&mut self) {
         self.matrix.fill(0.0);
     }
 
     /// Sets entry (row, column).
     pub fn set(&mut self, row: usize, column: usize, value: f64) {
         self.matrix[(row, column)] = value;
-    }
-
-    /// Entry (row, column).
-    pub fn entry(&self, row: usize, column: usize) -> f64 {
-        self.matrix[(row, column)]
-    }
-
-    /// Rows (= columns).
-    pub fn dim(&self) -> usize {
-        self.matrix.nrows()
     }
 }
 
@@ -358,12 +321,12 @@ impl fmt::Debug for FaerLu {
 impl<const N: usize> DenseMatrix for FaerDense<N> {
     fn zeros() -> Self {
         FaerDense {
-            inner: DynamicDense::zeros(N),
+            matrix: Mat::zeros(N, N),
         }
     }
 
     fn entry(&self, row: usize, column: usize) -> f64 {
-        self.inner.entry(row, column)
+        self.matrix[(row, column)]
     }
 
     fn dim(&self) -> usize {
@@ -375,32 +338,12 @@ impl<const N: usize> NewtonMatrix for FaerDense<N> {
     type Factors = FaerLu;
 
     fn factors(&self) -> FaerLu {
-        self.inner.factors()
+        FaerLu::new(N)
     }
 
     fn factorize(&mut self, c: f64, f: &mut FaerLu) -> Result<(), FactorizeError> {
-        self.inner.factorize(c, f)
-    }
-
-    fn solve(&mut self, f: &mut FaerLu, b: &mut [f64]) -> Result<(), SolveError> {
-        self.inner.solve(f, b)
-    }
-}
-
-impl NewtonMatrix for DynamicDense {
-    type Factors = FaerLu;
-
-    fn factors(&self) -> FaerLu {
-        FaerLu::new(self.dim())
-    }
-
-    fn factorize(&mut self, c: f64, f: &mut FaerLu) -> Result<(), FactorizeError> {
-        let n = self.dim();
-        if f.lu.nrows() != n {
-            *f = FaerLu::new(n);
-        }
-        for column in 0..n {
-            for row in 0..n {
+        for column in 0..N {
+            for row in 0..N {
                 let identity = if row == column { 1.0 } else { 0.0 };
                 f.lu[(row, column)] = identity - c * self.matrix[(row, column)];
             }
@@ -414,7 +357,7 @@ impl NewtonMatrix for DynamicDense {
             Default::default(),
         );
         // A zero pivot leaves U singular: the solve would produce infinities.
-        if (0..n).all(|i| f.lu[(i, i)] != 0.0 && f.lu[(i, i)].is_finite()) {
+        if (0..N).all(|i| f.lu[(i, i)] != 0.0 && f.lu[(i, i)].is_finite()) {
             Ok(())
         } else {
             Err(FactorizeError::Singular)
@@ -422,15 +365,14 @@ impl NewtonMatrix for DynamicDense {
     }
 
     fn solve(&mut self, f: &mut FaerLu, b: &mut [f64]) -> Result<(), SolveError> {
-        let n = self.dim();
-        if b.len() != n {
+        if b.len() != N {
             return Err(SolveError::WrongLength {
-                expected: n,
+                expected: N,
                 found: b.len(),
             });
         }
-        let perm = faer::perm::PermRef::new_checked(&f.perm, &f.perm_inv, n);
-        let rhs = MatMut::from_column_major_slice_mut(b, n, 1);
+        let perm = faer::perm::PermRef::new_checked(&f.perm, &f.perm_inv, N);
+        let rhs = MatMut::from_column_major_slice_mut(b, N, 1);
         let lu = f.lu.as_ref();
         solve::solve_in_place(lu, lu, perm, rhs, Par::Seq, MemStack::new(&mut f.scratch));
         finite(b)
