@@ -24,79 +24,13 @@ use odyn::output::write_table;
 use odyn::plot::{Chart, Frame, Series, View, animation, views};
 use odyn::prelude::*;
 
-/// Bodies of the outer solar system (the state arrays spell the length out: `#[system]` needs a
-/// literal).
+/// Bodies of the outer solar system.
 const N: usize = 6;
 
-/// Newtonian gravity between `N` bodies in 3-D.
-#[system(jacobian = false)]
-#[derive(Clone, Copy)]
-pub struct SolarSystem {
-    /// x coordinates (AU).
-    #[position]
-    pub x: [f64; 6],
-    /// y coordinates (AU).
-    #[position]
-    pub y: [f64; 6],
-    /// z coordinates (AU).
-    #[position]
-    pub z: [f64; 6],
-    /// x velocities (AU/day).
-    #[velocity]
-    pub u: [f64; 6],
-    /// y velocities (AU/day).
-    #[velocity]
-    pub v: [f64; 6],
-    /// z velocities (AU/day).
-    #[velocity]
-    pub w: [f64; 6],
-    /// Masses (solar masses).
-    pub m: [f64; 6],
-    /// Gravitational constant.
-    pub g: f64,
-}
-
-#[system]
-impl SolarSystem {
-    /// Each pair once: the force is computed for i < j and applied to both bodies.
-    fn acceleration(&self) -> ([f64; N], [f64; N], [f64; N]) {
-        let mut ax = [0.0; N];
-        let mut ay = [0.0; N];
-        let mut az = [0.0; N];
-        for i in 0..N {
-            for j in (i + 1)..N {
-                let dx = self.x[j] - self.x[i];
-                let dy = self.y[j] - self.y[i];
-                let dz = self.z[j] - self.z[i];
-                let r2 = dx * dx + dy * dy + dz * dz;
-                let s = self.g / (r2 * r2.sqrt());
-                ax[i] += self.m[j] * s * dx;
-                ay[i] += self.m[j] * s * dy;
-                az[i] += self.m[j] * s * dz;
-                ax[j] -= self.m[i] * s * dx;
-                ay[j] -= self.m[i] * s * dy;
-                az[j] -= self.m[i] * s * dz;
-            }
-        }
-        (ax, ay, az)
-    }
-
-    fn energy(&self) -> f64 {
-        let mut e = 0.0;
-        for i in 0..N {
-            e += 0.5
-                * self.m[i]
-                * (self.u[i] * self.u[i] + self.v[i] * self.v[i] + self.w[i] * self.w[i]);
-            for j in (i + 1)..N {
-                let dx = self.x[j] - self.x[i];
-                let dy = self.y[j] - self.y[i];
-                let dz = self.z[j] - self.z[i];
-                e -= self.g * self.m[i] * self.m[j] / (dx * dx + dy * dy + dz * dz).sqrt();
-            }
-        }
-        e
-    }
-}
+// The outer solar system (HLW 2006, Table 2.1), shared with the tests: positions and
+// velocities `[Vector3<f64>; 6]`, r̈ᵢ = Σⱼ G mⱼ (rⱼ − rᵢ)/|rⱼ − rᵢ|³, its energy, and
+// `SolarSystem::outer()` (the table's data moved to the barycentric frame).
+use scenes::SolarSystem;
 
 /// Three equal masses in the plane, G = m = 1.
 #[system(jacobian = false)]
@@ -137,90 +71,6 @@ impl ThreeBodies {
     }
 }
 
-/// The outer solar system of HLW Table 2.1, moved to its barycentric frame (the table's data are
-/// heliocentric, so the whole system would drift by ~1.4 AU over the run and smear the orbits).
-fn solar_system() -> SolarSystem {
-    let mut system = SolarSystem {
-        x: [
-            0.0,
-            -3.5023653,
-            9.0755314,
-            8.3101420,
-            11.4707666,
-            -15.5387357,
-        ],
-        y: [
-            0.0,
-            -3.8169847,
-            -3.0458353,
-            -16.2901086,
-            -25.7294829,
-            -25.2225594,
-        ],
-        z: [
-            0.0,
-            -1.5507963,
-            -1.6483708,
-            -7.2521278,
-            -10.8169456,
-            -3.1902382,
-        ],
-        u: [
-            0.0, 0.00565429, 0.00168318, 0.00354178, 0.00288930, 0.00276725,
-        ],
-        v: [
-            0.0,
-            -0.00412490,
-            0.00483525,
-            0.00137102,
-            0.00114527,
-            -0.00170702,
-        ],
-        w: [
-            0.0,
-            -0.00190589,
-            0.00192462,
-            0.00055029,
-            0.00039677,
-            -0.00136504,
-        ],
-        m: [
-            1.00000597682,
-            0.000954786104043,
-            0.000285583733151,
-            0.0000437273164546,
-            0.0000517759138449,
-            1.0 / 1.3e8,
-        ],
-        g: 2.95912208286e-4,
-    };
-    let total: f64 = system.m.iter().sum();
-    for field in [
-        &mut system.x,
-        &mut system.y,
-        &mut system.z,
-        &mut system.u,
-        &mut system.v,
-        &mut system.w,
-    ] {
-        let centre = field.iter().zip(&system.m).map(|(q, m)| q * m).sum::<f64>() / total;
-        field.iter_mut().for_each(|q| *q -= centre);
-    }
-    system
-}
-
-/// Total angular momentum Σ mᵢ qᵢ × vᵢ.
-fn angular_momentum(model: &SolarSystem, s: &SolarSystemState) -> [f64; 3] {
-    let mut l = [0.0; 3];
-    for i in 0..N {
-        let m = model.m[i];
-        l[0] += m * (s.y[i] * s.w[i] - s.z[i] * s.v[i]);
-        l[1] += m * (s.z[i] * s.u[i] - s.x[i] * s.w[i]);
-        l[2] += m * (s.x[i] * s.v[i] - s.y[i] * s.u[i]);
-    }
-    l
-}
-
 /// The methods compared at a fixed step.
 const FIXED: [Method; 5] = [
     Method::Leapfrog,
@@ -245,11 +95,10 @@ struct Cli {
 fn main() -> odyn::Result<()> {
     let cli = <Cli as clap::Parser>::parse();
     let dir = Path::new("out/nbody");
-    let model = solar_system();
+    let model = SolarSystem::outer();
     let (days, dt) = (2e5, 10.0);
     let e0 = Model::energy(&model, &model.state()).expect("the model defines its energy");
-    let l0 = angular_momentum(&model, &model.state());
-    let norm = |l: [f64; 3]| (l[0] * l[0] + l[1] * l[1] + l[2] * l[2]).sqrt();
+    let l0 = model.angular_momentum(&model.state());
 
     println!("Outer solar system, {days:e} days (HLW Table 2.1); |ΔE/E₀| and |ΔL|/|L₀|:");
     println!(
@@ -288,11 +137,8 @@ fn main() -> odyn::Result<()> {
             .samples
             .iter()
             .map(|s| {
-                let l = angular_momentum(&model, &s.state);
-                (
-                    s.t,
-                    norm([l[0] - l0[0], l[1] - l0[1], l[2] - l0[2]]) / norm(l0),
-                )
+                let l = model.angular_momentum(&s.state);
+                (s.t, (l - l0).norm() / l0.norm())
             })
             .collect();
         let max_energy = energy.iter().map(|p| p.1).fold(0.0, f64::max);
@@ -355,8 +201,8 @@ fn main() -> odyn::Result<()> {
     for pair in orbit_run.samples.windows(2) {
         for i in 1..N {
             segments.push([
-                (pair[0].state.x[i], pair[0].state.y[i]),
-                (pair[1].state.x[i], pair[1].state.y[i]),
+                (pair[0].state.r[i].x, pair[0].state.r[i].y),
+                (pair[1].state.r[i].x, pair[1].state.r[i].y),
             ]);
         }
     }
@@ -369,7 +215,7 @@ fn main() -> odyn::Result<()> {
             x_label: "x".into(),
             y_label: "y".into(),
             segments,
-            points: (0..N).map(|i| (last.x[i], last.y[i])).collect(),
+            points: (0..N).map(|i| (last.r[i].x, last.r[i].y)).collect(),
             bounds: ((-50.0, 50.0), (-50.0, 50.0)),
             ..View::default()
         }],

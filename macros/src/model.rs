@@ -39,6 +39,33 @@ pub(crate) enum Shape {
     Array(usize),
     /// `SVector<f64, N>` or `VectorN<f64>`
     Vector(usize),
+    /// `[[f64; M]; N]` or `[SVector<f64, M>; N]` (`[Vector3<f64>; N]`): `N` rows of `M`, laid out
+    /// row after row.
+    Rows(usize, Row),
+}
+
+/// One row of a [`Shape::Rows`].
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub(crate) enum Row {
+    /// `[f64; M]`
+    Array(usize),
+    /// `SVector<f64, M>` or `VectorM<f64>`
+    Vector(usize),
+}
+
+impl Row {
+    pub(crate) fn len(self) -> usize {
+        match self {
+            Row::Array(m) | Row::Vector(m) => m,
+        }
+    }
+
+    fn shape(self) -> Shape {
+        match self {
+            Row::Array(m) => Shape::Array(m),
+            Row::Vector(m) => Shape::Vector(m),
+        }
+    }
 }
 
 impl Shape {
@@ -47,6 +74,7 @@ impl Shape {
         match self {
             Shape::Scalar => 1,
             Shape::Array(n) | Shape::Vector(n) => n,
+            Shape::Rows(n, row) => n * row.len(),
         }
     }
 
@@ -57,6 +85,11 @@ impl Shape {
             Shape::Scalar => quote!(f64),
             Shape::Array(_) => quote!([f64; #n]),
             Shape::Vector(_) => quote!(::odyn::__private::nalgebra::SVector<f64, #n>),
+            Shape::Rows(rows, row) => {
+                let (rows, row) = (proc_macro2::Literal::usize_unsuffixed(rows), row.shape());
+                let row = row.to_type();
+                quote!([#row; #rows])
+            }
         }
     }
 
@@ -65,6 +98,31 @@ impl Shape {
             Shape::Scalar => "f64".to_owned(),
             Shape::Array(n) => format!("[f64; {n}]"),
             Shape::Vector(n) => format!("SVector<f64, {n}>"),
+            Shape::Rows(n, row) => format!("[{}; {n}]", row.shape().describe()),
+        }
+    }
+
+    /// The component names of a field `name` of this shape, in layout order: `x`, `x[2]`,
+    /// `x[2][1]`.
+    pub(crate) fn component_names(self, name: &str) -> Vec<String> {
+        match self {
+            Shape::Scalar => vec![name.to_owned()],
+            Shape::Array(n) | Shape::Vector(n) => (0..n).map(|i| format!("{name}[{i}]")).collect(),
+            Shape::Rows(n, row) => (0..n)
+                .flat_map(|i| (0..row.len()).map(move |j| format!("{name}[{i}][{j}]")))
+                .collect(),
+        }
+    }
+
+    /// How each component of a value `base` of this shape is read, in layout order: `base`,
+    /// `base[2]`, `base[2][1]`.
+    pub(crate) fn component_reads(self, base: &TokenStream) -> Vec<TokenStream> {
+        match self {
+            Shape::Scalar => vec![base.clone()],
+            Shape::Array(n) | Shape::Vector(n) => (0..n).map(|i| quote!(#base[#i])).collect(),
+            Shape::Rows(n, row) => (0..n)
+                .flat_map(|i| (0..row.len()).map(move |j| quote!(#base[#i][#j])))
+                .collect(),
         }
     }
 }
@@ -135,6 +193,14 @@ pub(crate) fn shape_of(ty: &Type) -> Option<Shape> {
         Type::Paren(p) => shape_of(&p.elem),
         Type::Group(g) => shape_of(&g.elem),
         Type::Array(a) if is_f64(&a.elem) => int_literal(&a.len).map(Shape::Array),
+        Type::Array(a) => {
+            let row = match shape_of(&a.elem)? {
+                Shape::Array(m) => Row::Array(m),
+                Shape::Vector(m) => Row::Vector(m),
+                Shape::Scalar | Shape::Rows(..) => return None,
+            };
+            int_literal(&a.len).map(|n| Shape::Rows(n, row))
+        }
         Type::Path(p) if p.qself.is_none() => {
             let last = p.path.segments.last()?;
             let name = last.ident.to_string();
@@ -162,7 +228,18 @@ pub(crate) fn shape_of(ty: &Type) -> Option<Shape> {
     }
 }
 
-/// `[f64; N]` whose length is not an integer literal (`[f64; N * N]`, `[f64; SIZE]`).
-pub(crate) fn array_of_f64_with_computed_length(ty: &Type) -> bool {
-    matches!(ty, Type::Array(a) if is_f64(&a.elem) && int_literal(&a.len).is_none())
+/// An array of a state shape whose length is not an integer literal (`[f64; N * N]`,
+/// `[Vector3<f64>; SIZE]`, `[[f64; 3]; N]`).
+pub(crate) fn array_with_computed_length(ty: &Type) -> bool {
+    match ty {
+        Type::Paren(p) => array_with_computed_length(&p.elem),
+        Type::Group(g) => array_with_computed_length(&g.elem),
+        Type::Array(a) => {
+            let row = is_f64(&a.elem)
+                || matches!(shape_of(&a.elem), Some(Shape::Array(_) | Shape::Vector(_)))
+                || array_with_computed_length(&a.elem);
+            row && (int_literal(&a.len).is_none() || array_with_computed_length(&a.elem))
+        }
+        _ => false,
+    }
 }

@@ -35,6 +35,7 @@ mod particles;
 mod reference_dop853;
 mod rosenbrock;
 mod runner;
+mod shapes;
 mod sph;
 mod stability;
 mod state;

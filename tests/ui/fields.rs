@@ -253,4 +253,22 @@ mod velocity_without_position {
     fn main() {}
 }
 
+mod arrays_of_vectors {
+    use odyn::prelude::*;
+
+    const N: usize = 4;
+
+    // An array of vectors needs its length written out too; an array three deep is not a
+    // state shape.
+    #[system]
+    pub struct Bodies {
+        #[position]
+        pub r: [Vector3<f64>; N],
+        #[velocity]
+        pub v: [[[f64; 2]; 2]; 2],
+    }
+
+    fn main() {}
+}
+
 fn main() {}

@@ -2,7 +2,7 @@
 //! state literal `<Model>State { … }`; and the function's value as f(t, y) in state layout.
 
 use proc_macro2::TokenStream;
-use quote::{ToTokens, quote};
+use quote::ToTokens;
 use syn::{BinOp, Expr, ExprBinary, ExprField, Lit, Member, UnOp};
 
 use super::scope::path_name;
@@ -74,6 +74,32 @@ impl Lowering<'_> {
         }
     }
 
+    /// An array literal's value: a vector of numbers, or rows (a tuple) of vectors of one
+    /// length.
+    fn array(&self, elements: Vec<Value>, at: impl ToTokens) -> syn::Result<Value> {
+        if let Some(numbers) = elements
+            .iter()
+            .map(|e| match e {
+                Value::Scalar(x) => Some(*x),
+                _ => None,
+            })
+            .collect::<Option<Vec<_>>>()
+        {
+            return Ok(Value::Vector(numbers));
+        }
+        let rows = elements
+            .iter()
+            .all(|e| matches!((e, &elements[0]), (Value::Vector(a), Value::Vector(b)) if a.len() == b.len()));
+        if rows {
+            Ok(Value::Tuple(elements))
+        } else {
+            Err(self.error(
+                at,
+                "an array of other values than numbers or vectors of one length",
+            ))
+        }
+    }
+
     pub(super) fn opaque(&mut self, tokens: TokenStream) -> ExprId {
         let index = self.opaques;
         self.opaques += 1;
@@ -141,18 +167,20 @@ impl Lowering<'_> {
                     .map(|e| self.expr(e))
                     .collect::<syn::Result<_>>()?,
             )),
-            Expr::Array(a) => Ok(Value::Vector(
-                a.elems
+            Expr::Array(a) => {
+                let elements = a
+                    .elems
                     .iter()
-                    .map(|e| self.scalar(e))
-                    .collect::<syn::Result<_>>()?,
-            )),
+                    .map(|e| self.expr(e))
+                    .collect::<syn::Result<Vec<_>>>()?;
+                self.array(elements, a)
+            }
             Expr::Repeat(r) => {
                 let n = int_literal(&r.len).ok_or_else(|| {
                     self.error(&r.len, "an array length that is not an integer literal")
                 })?;
-                let x = self.scalar(&r.expr)?;
-                Ok(Value::Vector(vec![x; n]))
+                let element = self.expr(&r.expr)?;
+                self.array(vec![element; n], r)
             }
             Expr::Block(b) if b.label.is_none() => self.block_value(&b.block),
             Expr::If(_) | Expr::Match(_) => self.branch_value(e),
@@ -188,11 +216,10 @@ impl Lowering<'_> {
             // A parameter: opaque, with its shape when it has one of the state shapes.
             return match self.parameter_shape(name) {
                 Some(Shape::Scalar) | None => Ok(Value::Scalar(self.opaque(f.to_token_stream()))),
-                Some(shape) => Ok(Value::Vector(
-                    (0..shape.len())
-                        .map(|i| self.opaque(quote!(#f[#i])))
-                        .collect(),
-                )),
+                Some(shape) => {
+                    let reads = shape.component_reads(&f.to_token_stream());
+                    Ok(self.shaped(shape, |l, i| l.opaque(reads[i].clone())))
+                }
             };
         }
         let base = self.expr(&f.base)?;

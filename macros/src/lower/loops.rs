@@ -35,6 +35,16 @@ impl Lowering<'_> {
         if self.depends(e) {
             return None;
         }
+        // Integer-only arithmetic the graph of numbers does not express (`(i + 1) % n`).
+        if let Expr::Binary(b) = e
+            && matches!(b.op, BinOp::Rem(_))
+        {
+            let (l, r) = (self.known_integer(&b.left)?, self.known_integer(&b.right)?);
+            return l.checked_rem(r);
+        }
+        if let Expr::Paren(p) = e {
+            return self.known_integer(&p.expr);
+        }
         let prologue = self.prologue.len();
         let value = self.expr(e).ok();
         // Whatever the attempt made opaque is not read.

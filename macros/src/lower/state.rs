@@ -25,11 +25,10 @@ impl Lowering<'_> {
             let offset = self
                 .offset(name)
                 .ok_or_else(|| self.error(name, "an unknown state field"))?;
-            let parts = match self.expr(&field.expr)? {
-                Value::Scalar(x) => vec![x],
-                Value::Vector(v) => v,
-                Value::Tuple(_) => return Err(self.error(&field.expr, "a tuple")),
-            };
+            let shape = self.model.field(name).expect("offset found it").shape;
+            let parts = components_of(self.expr(&field.expr)?, shape).ok_or_else(|| {
+                self.error(&field.expr, "a value whose shape does not match its field")
+            })?;
             for (i, part) in parts.into_iter().enumerate() {
                 components[offset + i] = Some(part);
             }
@@ -46,11 +45,6 @@ impl Lowering<'_> {
         value: Value,
         f: &syn::ImplItemFn,
     ) -> syn::Result<Vec<ExprId>> {
-        let flat = |v: Value| match v {
-            Value::Scalar(x) => Some(vec![x]),
-            Value::Vector(v) => Some(v),
-            Value::Tuple(_) => None,
-        };
         let mismatch = |l: &Self| {
             l.error(
                 &f.sig.output,
@@ -59,7 +53,13 @@ impl Lowering<'_> {
         };
         match self.model.order {
             Order::First => {
-                let v = flat(value).ok_or_else(|| mismatch(self))?;
+                // The state literal's value (already in layout), or the one number of a scalar
+                // state.
+                let v = match value {
+                    Value::Scalar(x) => vec![x],
+                    Value::Vector(v) => v,
+                    Value::Tuple(_) => return Err(mismatch(self)),
+                };
                 if v.len() == self.model.len() {
                     Ok(v)
                 } else {
@@ -70,7 +70,7 @@ impl Lowering<'_> {
                 let velocities: Vec<_> = self
                     .model
                     .with_role(Role::Velocity)
-                    .map(|f| f.shape.len())
+                    .map(|f| f.shape)
                     .collect();
                 let parts = match (value, velocities.len()) {
                     (Value::Tuple(parts), n) if n > 1 => parts,
@@ -78,12 +78,11 @@ impl Lowering<'_> {
                     _ => return Err(mismatch(self)),
                 };
                 let mut accelerations = Vec::new();
-                for (part, len) in parts.into_iter().zip(&velocities) {
-                    let v = flat(part).ok_or_else(|| mismatch(self))?;
-                    if v.len() != *len {
-                        return Err(mismatch(self));
-                    }
-                    accelerations.extend(v);
+                if parts.len() != velocities.len() {
+                    return Err(mismatch(self));
+                }
+                for (part, shape) in parts.into_iter().zip(velocities) {
+                    accelerations.extend(components_of(part, shape).ok_or_else(|| mismatch(self))?);
                 }
                 // y = [q; v], so f = [v; a].
                 let dof = accelerations.len();
@@ -106,13 +105,31 @@ impl Lowering<'_> {
     }
 
     pub(super) fn state_value(&mut self, offset: usize, shape: Shape) -> Value {
+        self.shaped(shape, |l, i| l.graph.var(offset + i))
+    }
+
+    /// A value of `shape` whose component `i` (in layout order) is `component(i)`: a number, a
+    /// vector, or rows as a tuple of vectors.
+    pub(super) fn shaped(
+        &mut self,
+        shape: Shape,
+        mut component: impl FnMut(&mut Self, usize) -> ExprId,
+    ) -> Value {
         match shape {
-            Shape::Scalar => Value::Scalar(self.graph.var(offset)),
-            _ => Value::Vector(
-                (0..shape.len())
-                    .map(|i| self.graph.var(offset + i))
-                    .collect(),
-            ),
+            Shape::Scalar => Value::Scalar(component(self, 0)),
+            Shape::Array(n) | Shape::Vector(n) => {
+                Value::Vector((0..n).map(|i| component(self, i)).collect())
+            }
+            Shape::Rows(n, row) => {
+                let m = row.len();
+                Value::Tuple(
+                    (0..n)
+                        .map(|i| {
+                            Value::Vector((0..m).map(|j| component(self, m * i + j)).collect())
+                        })
+                        .collect(),
+                )
+            }
         }
     }
 
@@ -125,6 +142,22 @@ impl Lowering<'_> {
             .iter()
             .find(|f| f.ident.as_ref() == Some(name))
             .and_then(|f| shape_of(&f.ty))
+    }
+}
+
+/// The components of `value`, in layout order, if it has the shape `shape`.
+fn components_of(value: Value, shape: Shape) -> Option<Vec<ExprId>> {
+    match (value, shape) {
+        (Value::Scalar(x), Shape::Scalar) => Some(vec![x]),
+        (Value::Vector(v), Shape::Array(n) | Shape::Vector(n)) if v.len() == n => Some(v),
+        (Value::Tuple(rows), Shape::Rows(n, row)) if rows.len() == n => {
+            let mut components = Vec::with_capacity(shape.len());
+            for r in rows {
+                components.extend(components_of(r, Shape::Vector(row.len()))?);
+            }
+            Some(components)
+        }
+        _ => None,
     }
 }
 

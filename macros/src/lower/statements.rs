@@ -197,25 +197,31 @@ impl Lowering<'_> {
         update: impl FnOnce(&mut Self, Value) -> syn::Result<Value>,
         rhs_dependent: bool,
     ) -> syn::Result<()> {
-        let (base, component) = match target {
-            Expr::Index(index) => (
-                &*index.expr,
-                Some(self.known_index(&index.index).ok_or_else(|| {
-                    self.error(
-                        &index.index,
-                        "an index that is not an integer literal (or a loop variable of an \
-                         unrolled loop)",
-                    )
-                })),
-            ),
-            Expr::Field(field) => (
-                &*field.base,
-                Some(super::expr::component_index(field).ok_or_else(|| {
-                    self.error(&field.member, "a field other than `x`, `y`, `z`, `w`")
-                })),
-            ),
-            other => (other, None),
-        };
+        // `a[i][j].x = …`: the local `a` and the components named on the way, outermost first.
+        let mut base = target;
+        let mut path = Vec::new();
+        loop {
+            match base {
+                Expr::Index(index) => {
+                    path.push(self.known_index(&index.index).ok_or_else(|| {
+                        self.error(
+                            &index.index,
+                            "an index that is not an integer literal (or a loop variable of an \
+                             unrolled loop)",
+                        )
+                    }));
+                    base = &index.expr;
+                }
+                Expr::Field(field) => {
+                    path.push(super::expr::component_index(field).ok_or_else(|| {
+                        self.error(&field.member, "a field other than `x`, `y`, `z`, `w`")
+                    }));
+                    base = &field.base;
+                }
+                _ => break,
+            }
+        }
+        path.reverse();
         let Some(name) = super::scope::path_name(base) else {
             return Err(self.error(target, "assigning to something other than a local"));
         };
@@ -228,10 +234,9 @@ impl Lowering<'_> {
         let dependent = old.dependent || rhs_dependent;
         // Whether odyn follows the target: a local it has a value for, and the component of a
         // vector or tuple named by a literal.
-        let followed = !matches!(
-            (&old.value, &component),
-            (None, _) | (_, Some(Err(_))) | (Some(Value::Scalar(_)), Some(Ok(_)))
-        );
+        let followed = old.value.as_ref().is_some_and(|v| {
+            path.iter().all(Result::is_ok) && (path.is_empty() || !matches!(v, Value::Scalar(_)))
+        });
         if !dependent && !followed {
             // State-free code odyn does not follow: it runs in the prologue, and the local is the
             // user's from then on, read by name.
@@ -254,28 +259,11 @@ impl Lowering<'_> {
                 ),
             ));
         };
-        let value = match component {
-            None => update(self, old_value)?,
-            Some(i) => {
-                let i = i?;
-                if let Value::Scalar(_) = old_value {
-                    return Err(self.component_of_a_number(target, &name, i));
-                }
-                let part = self.component(&old_value, i, target)?;
-                let new = update(self, part)?;
-                match (old_value, new) {
-                    (Value::Vector(mut v), Value::Scalar(x)) => {
-                        v[i] = x;
-                        Value::Vector(v)
-                    }
-                    (Value::Tuple(mut t), new) => {
-                        t[i] = new;
-                        Value::Tuple(t)
-                    }
-                    _ => return Err(self.error(target, "a component of another shape")),
-                }
-            }
-        };
+        let path = path.into_iter().collect::<syn::Result<Vec<_>>>()?;
+        if let (Value::Scalar(_), Some(&i)) = (&old_value, path.first()) {
+            return Err(self.component_of_a_number(target, &name, i));
+        }
+        let value = self.replace_at(old_value, &path, target, update)?;
         if !dependent {
             self.prologue.push(Prologue::Stmt(Box::new(stmt.clone())));
         }
@@ -287,6 +275,35 @@ impl Lowering<'_> {
             },
         );
         Ok(())
+    }
+
+    /// `whole` with its component at `path` (outermost first) replaced by `update` of it.
+    fn replace_at<F>(
+        &mut self,
+        whole: Value,
+        path: &[usize],
+        target: &Expr,
+        update: F,
+    ) -> syn::Result<Value>
+    where
+        F: FnOnce(&mut Self, Value) -> syn::Result<Value>,
+    {
+        let Some((&i, rest)) = path.split_first() else {
+            return update(self, whole);
+        };
+        let part = self.component(&whole, i, target)?;
+        let new = self.replace_at(part, rest, target, update)?;
+        match (whole, new) {
+            (Value::Vector(mut v), Value::Scalar(x)) => {
+                v[i] = x;
+                Ok(Value::Vector(v))
+            }
+            (Value::Tuple(mut t), new) => {
+                t[i] = new;
+                Ok(Value::Tuple(t))
+            }
+            _ => Err(self.error(target, "a component of another shape")),
+        }
     }
 
     /// The error for `name[i] = …` (or `name.x = …`) of a state-dependent value when odyn reads

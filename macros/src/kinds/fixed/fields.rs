@@ -3,7 +3,7 @@
 use syn::{Attribute, Fields, ItemStruct};
 
 use crate::errors::Errors;
-use crate::model::{Model, Order, Role, StateField, array_of_f64_with_computed_length, shape_of};
+use crate::model::{Model, Order, Role, StateField, array_with_computed_length, shape_of};
 use crate::syntax::no_arguments;
 
 /// Reads the model from its struct, reporting every problem to `errors`.
@@ -23,17 +23,18 @@ pub(crate) fn parse<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Option<Mod
                 declared.push((StateField { ident, role, shape }, field))
             }
             Some(_) => errors.at(&field.ty, "a state field needs at least one component"),
-            None if array_of_f64_with_computed_length(&field.ty) => errors.at(
+            None if array_with_computed_length(&field.ty) => errors.at(
                 &field.ty,
-                "the length of a state array must be an integer literal, such as `[f64; 64]`: \
-                 `#[system]` lays the state out before constants are evaluated, so write the \
-                 length out",
+                "the length of a state array must be an integer literal, such as `[f64; 64]` \
+                 or `[Vector3<f64>; 5]`: `#[system]` lays the state out before constants are \
+                 evaluated, so write the length out",
             ),
             None => errors.at(
                 &field.ty,
                 format_args!(
                     "unsupported type for a `#[{}]` field; supported: `f64`, `[f64; N]`, \
-                     `SVector<f64, N>`, `Vector1<f64>` … `Vector6<f64>`",
+                     `SVector<f64, N>`, `Vector1<f64>` … `Vector6<f64>`, and arrays of those \
+                     arrays and vectors (`[[f64; M]; N]`, `[Vector3<f64>; N]`)",
                     role.attribute()
                 ),
             ),

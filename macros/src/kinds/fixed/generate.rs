@@ -9,7 +9,7 @@ use super::functions::{Function, Functions};
 use super::layout::{inline_hint, state_args, state_params, time_param};
 use crate::args::Args;
 use crate::generate::ModelImpl;
-use crate::model::{Model, Order, Role, Shape};
+use crate::model::{Model, Order, Role};
 
 /// The typed state struct `<Model>State` and its runtime impls.
 pub(crate) fn state(model: &Model<'_>) -> TokenStream {
@@ -32,10 +32,10 @@ pub(crate) fn state(model: &Model<'_>) -> TokenStream {
         );
         quote!(#[doc = #doc] pub #ident: #ty)
     });
-    let components = model.states.iter().flat_map(|f| match f.shape {
-        Shape::Scalar => vec![f.ident.to_string()],
-        Shape::Array(n) | Shape::Vector(n) => (0..n).map(|i| format!("{}[{i}]", f.ident)).collect(),
-    });
+    let components = model
+        .states
+        .iter()
+        .flat_map(|f| f.shape.component_names(&f.ident.to_string()));
     let layout = match model.order {
         Order::Second => "every position, then every velocity",
         Order::First => "the `#[state]` fields in declaration order",

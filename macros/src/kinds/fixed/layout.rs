@@ -50,7 +50,7 @@ pub(super) fn state_params<'a>(model: &'a Model<'_>) -> impl Iterator<Item = Tok
         let ty = s.shape.to_type();
         match s.shape {
             Shape::Scalar => quote!(#local: #ty),
-            Shape::Array(_) | Shape::Vector(_) => quote!(#local: &#ty),
+            Shape::Array(_) | Shape::Vector(_) | Shape::Rows(..) => quote!(#local: &#ty),
         }
     })
 }
@@ -64,7 +64,7 @@ pub(super) fn state_args<'a>(
         let field = s.ident;
         match s.shape {
             Shape::Scalar => quote!(#from.#field),
-            Shape::Array(_) | Shape::Vector(_) => quote!(&#from.#field),
+            Shape::Array(_) | Shape::Vector(_) | Shape::Rows(..) => quote!(&#from.#field),
         }
     })
 }
@@ -76,10 +76,7 @@ pub(super) fn component_tokens(model: &Model<'_>) -> Vec<TokenStream> {
         .iter()
         .flat_map(|f| {
             let local = state_local(f.ident);
-            match f.shape {
-                Shape::Scalar => vec![quote!(#local)],
-                Shape::Array(n) | Shape::Vector(n) => (0..n).map(|i| quote!(#local[#i])).collect(),
-            }
+            f.shape.component_reads(&quote!(#local))
         })
         .collect()
 }
