@@ -763,3 +763,67 @@ fn loops_on_the_state_with_known_bounds_are_unrolled() {
         assert_eq!(f.x, g.x);
     }
 }
+
+/// Loops bounded by parameters: a `for` to `self.active` over the first masses of a chain (the
+/// rest at rest), a `while` on a counter up to `self.coupled`, and a `for … ..=` nested in it.
+/// The state's length (6) caps the iterations; each runs only when its test holds at run time.
+#[system]
+#[derive(Clone, Copy, Debug)]
+struct Partial {
+    #[state]
+    x: [f64; 6],
+    active: usize,
+    coupled: usize,
+    last: usize,
+    k: [f64; 6],
+}
+
+#[system]
+impl Partial {
+    fn derivative(&self) -> PartialState {
+        let mut out = [0.0; 6];
+        for i in 0..self.active {
+            out[i] = -self.k[i] * self.x[i] * self.x[i].abs();
+        }
+        let mut i = 1;
+        while i < self.coupled {
+            let spring = self.x[i] - self.x[i - 1];
+            out[i] -= spring;
+            out[i - 1] += spring;
+            i += 1;
+        }
+        let mut sum = 0.0;
+        for j in 2..=self.last {
+            sum += self.x[j].sin();
+        }
+        out[0] += sum;
+        PartialState { x: out }
+    }
+}
+
+#[test]
+fn loops_bounded_by_parameters_are_guarded() {
+    let mut rng = Rng(11);
+    // Every bound from none to all of the state (and `last` one short of the end).
+    for (active, coupled, last) in [(0, 0, 0), (3, 2, 4), (6, 6, 5), (1, 5, 2), (6, 0, 1)] {
+        let model = Partial {
+            x: [0.0; 6],
+            active,
+            coupled,
+            last,
+            k: [1.0, 2.0, 0.5, 1.5, 3.0, 0.7],
+        };
+        check(&model, 0.0, 30, |r| PartialState {
+            x: [(); 6].map(|()| r.uniform(-2.0, 2.0)),
+        });
+        // Entries outside the loops' reach are exactly zero: rows of inactive masses.
+        let x = [(); 6].map(|()| rng.uniform(-2.0, 2.0));
+        let mut j = model.jacobian_matrix(&PartialState { x });
+        model.jacobian(0.0, &PartialState { x }, &mut j);
+        for i in active.max(coupled)..6 {
+            for c in 0..6 {
+                assert_eq!(j[(i, c)], 0.0, "({i}, {c}) at {active}, {coupled}, {last}");
+            }
+        }
+    }
+}

@@ -234,6 +234,11 @@ impl Lowering<'_> {
         i: usize,
         at: impl ToTokens,
     ) -> syn::Result<Value> {
+        if matches!(base, Value::Vector(v) if i >= v.len())
+            || matches!(base, Value::Tuple(t) if i >= t.len())
+        {
+            self.past_end = true;
+        }
         match base {
             Value::Vector(v) if i < v.len() => Ok(Value::Scalar(v[i])),
             Value::Tuple(t) if i < t.len() => Ok(t[i].clone()),

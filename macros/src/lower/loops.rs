@@ -5,9 +5,16 @@
 //! Each iteration's body is lowered in a scope of its own, the loop variable bound to the
 //! iteration's number (so `self.x[k]` names a component); its state-free code goes to the
 //! prologue in a block of its own that starts by binding the loop variable, in order, so the
-//! prologue changes the locals the loop changes as the loop does. A bound that reads only
-//! parameters (`0..self.n`) is known only at run time, which a graph built at compile time
-//! cannot follow: such a loop, if its body reads the state, is refused at its bound.
+//! prologue changes the locals the loop changes as the loop does.
+//!
+//! A bound or condition that reads only parameters (`0..self.n`, `while i < self.n`) is known
+//! only at run time. Such a loop is unrolled as far as it can run without indexing past the end
+//! of a vector or array (the original code panics beyond that, so no run goes further), each
+//! iteration guarded by the loop's own test, a branch on parameters: `for k in a..end` becomes
+//! `let end' = end; if a < end' { let k = a; body } if a + 1 < end' { … } …`, and `while c { body }`
+//! becomes `if c { body; if c { body; … } }`, nested, since each test runs only after the
+//! iterations before it. The most iterations are found by lowering the body, unguarded, until
+//! an index goes past the end; a loop whose body indexes nothing of a known length is refused.
 
 use std::collections::HashMap;
 
@@ -21,6 +28,10 @@ use super::{Branch, BranchKind, Lowering, Prologue, Value};
 /// over the components of any state odyn differentiates symbolically, few enough that a typo
 /// (`0..100000`) is an error, not a compiler that runs out of memory.
 const MAX_ITERATIONS: usize = 4096;
+
+/// Most iterations of a `while` loop whose condition is known only at run time: each is nested
+/// in the test of the one before, and the generated code nests as deep.
+const MAX_NESTED: usize = 64;
 
 impl Lowering<'_> {
     /// The integer a state-free expression evaluates to at compile time: a literal, or a local
@@ -92,7 +103,7 @@ impl Lowering<'_> {
             _ => None,
         };
         let Some((start, end)) = bounds else {
-            return Err(self.unknown_bound(&l.expr, "for"));
+            return self.guarded_for(l, name);
         };
         let count = usize::try_from(end.saturating_sub(start)).unwrap_or(0);
         self.count_iterations(count, &l.expr)?;
@@ -114,7 +125,7 @@ impl Lowering<'_> {
         self.no_jumps(&w.body)?;
         loop {
             match self.known_condition(&w.cond) {
-                None => return Err(self.unknown_bound(&w.cond, "while")),
+                None => return self.guarded_while(w),
                 Some(false) => return Ok(()),
                 Some(true) => {
                     self.count_iterations(1, &w.cond)?;
@@ -149,6 +160,118 @@ impl Lowering<'_> {
             arms: vec![own],
         })));
         Ok(())
+    }
+
+    /// `for k in a..end` whose end reads parameters: guarded iterations, as many as the body can
+    /// run without indexing past an end.
+    fn guarded_for(&mut self, l: &ExprForLoop, name: Option<&syn::Ident>) -> syn::Result<()> {
+        let Expr::Range(r) = &*l.expr else {
+            return Err(self.unknown_bound(&l.expr, "for"));
+        };
+        let (Some(start), Some(end)) = (&r.start, &r.end) else {
+            return Err(self.unknown_bound(&l.expr, "for"));
+        };
+        let Some(first) = self.known_integer(start) else {
+            return Err(self.unknown_bound(&l.expr, "for"));
+        };
+        let bind = |k: i64| {
+            let literal = proc_macro2::Literal::i64_unsuffixed(k);
+            name.map(|n| -> syn::Stmt { syn::parse_quote!(let #n = #literal;) })
+        };
+        let count = self.most_iterations(&l.expr, |this, j| {
+            let k = first + j as i64;
+            let variable = bind(k).map(|stmt| {
+                let name = name.expect("a binding has a name").to_string();
+                (name, Value::Scalar(this.graph.num(k as f64)), stmt)
+            });
+            this.iteration(&l.body, variable).map(|()| true)
+        })?;
+        let end_name = quote::format_ident!("__odyn_end{}", self.selectors);
+        let mut stmts: Vec<syn::Stmt> = vec![syn::parse_quote!(let #end_name = #end;)];
+        let test = match r.limits {
+            RangeLimits::HalfOpen(_) => quote::quote!(<),
+            RangeLimits::Closed(_) => quote::quote!(<=),
+        };
+        for j in 0..count {
+            let k = first + j as i64;
+            let literal = proc_macro2::Literal::i64_unsuffixed(k);
+            let mut body: Vec<syn::Stmt> = bind(k).into_iter().collect();
+            body.extend(l.body.stmts.iter().cloned());
+            stmts.push(syn::parse_quote!(if #literal #test #end_name { #(#body)* }));
+        }
+        self.count_iterations(count, &l.expr)?;
+        self.run(&stmts, Context::Arm).map(|_| ())
+    }
+
+    /// `while c` whose condition reads parameters: guarded iterations, nested, as many as the
+    /// body can run without indexing past an end (or until `c` is known to be false).
+    fn guarded_while(&mut self, w: &ExprWhile) -> syn::Result<()> {
+        let count = self.most_iterations(&w.cond, |this, _| {
+            if this.known_condition(&w.cond) == Some(false) {
+                return Ok(false);
+            }
+            this.iteration(&w.body, None).map(|()| true)
+        })?;
+        if count > MAX_NESTED {
+            return Err(self.refuse(
+                &w.cond,
+                format_args!(
+                    "a `while` loop on the state whose condition is known only at run time and \
+                     that may run more than {MAX_NESTED} times (odyn nests one test per \
+                     iteration); write it as `for k in 0..n`"
+                ),
+            ));
+        }
+        let (cond, body) = (&w.cond, &w.body.stmts);
+        let mut nest: Vec<syn::Stmt> = Vec::new();
+        for _ in 0..count {
+            nest = vec![syn::parse_quote!(if #cond { if true { #(#body)* } #(#nest)* })];
+        }
+        self.count_iterations(count, &w.cond)?;
+        self.run(&nest, Context::Arm).map(|_| ())
+    }
+
+    /// How many iterations a loop bounded at run time can run: `iteration(self, j)` lowers
+    /// iteration j unguarded (or returns `false` when the loop is known to end there) until an
+    /// index goes past an end. Everything the trial lowered is undone.
+    fn most_iterations(
+        &mut self,
+        at: &Expr,
+        mut iteration: impl FnMut(&mut Self, usize) -> syn::Result<bool>,
+    ) -> syn::Result<usize> {
+        let (scopes, prologue, opaques, selectors) = (
+            self.scopes.clone(),
+            self.prologue.len(),
+            self.opaques,
+            self.selectors,
+        );
+        let (iterations, time_opaque, past_end) =
+            (self.iterations, self.time_opaque, self.past_end);
+        let mut count = 0;
+        let outcome = loop {
+            if self.iterations + count >= MAX_ITERATIONS {
+                break Err(self.refuse(
+                    at,
+                    "a loop on the state whose bound is known only at run time and whose body \
+                     indexes no array or vector of a known length with its variable (odyn \
+                     unrolls loops on the state: a run-time bound needs an index, such as \
+                     `self.x[k]` of `for k in 0..self.n`, that stops it; or write the bound \
+                     as an integer literal)",
+                ));
+            }
+            self.past_end = false;
+            match iteration(self, count) {
+                Ok(true) if !self.past_end => count += 1,
+                Ok(_) => break Ok(count),
+                Err(_) if self.past_end => break Ok(count),
+                Err(error) => break Err(error),
+            }
+        };
+        self.scopes = scopes;
+        self.prologue.truncate(prologue);
+        (self.opaques, self.selectors) = (opaques, selectors);
+        (self.iterations, self.time_opaque, self.past_end) = (iterations, time_opaque, past_end);
+        outcome
     }
 
     fn count_iterations(&mut self, count: usize, at: &Expr) -> syn::Result<()> {

@@ -136,6 +136,9 @@ struct Lowering<'m> {
     time_opaque: bool,
     /// Loop iterations unrolled so far (see [`loops`]).
     iterations: usize,
+    /// Set when an index went past the end of a vector or array (see
+    /// [`loops`]' loops bounded by parameters).
+    past_end: bool,
 }
 
 /// Lowers the body of `f`, the model's `acceleration` or `derivative`, inlining the `helpers` it
@@ -224,6 +227,7 @@ impl<'m> Lowering<'m> {
             too_deep: false,
             time_opaque: false,
             iterations: 0,
+            past_end: false,
         }
     }
 
