@@ -72,27 +72,15 @@ fn generated<M: Jacobian>((model, state): (M, M::State)) -> M::Matrix {
     j
 }
 
-/// Central differences: two derivative evaluations per state component.
+/// Central differences, as `#[system(jacobian = finite_differences)]` takes them: two
+/// derivative evaluations per state component (`odyn::__private::central_differences`).
 fn central<M: Jacobian>((model, y): (M, M::State)) -> M::Matrix
 where
     M::Matrix: std::ops::IndexMut<(usize, usize), Output = f64>,
+    M::State: Copy,
 {
     let mut j = model.jacobian_matrix(&y);
-    let n = y.as_slice().len();
-    let (mut plus, mut minus, mut f_plus, mut f_minus) =
-        (y.clone(), y.clone(), y.clone(), y.clone());
-    for c in 0..n {
-        let h = 1e-6 * (1.0 + y.as_slice()[c].abs());
-        plus.clone_from(&y);
-        minus.clone_from(&y);
-        plus.as_mut_slice()[c] += h;
-        minus.as_mut_slice()[c] -= h;
-        model.derivative(0.0, &plus, &mut f_plus);
-        model.derivative(0.0, &minus, &mut f_minus);
-        for r in 0..n {
-            j[(r, c)] = (f_plus.as_slice()[r] - f_minus.as_slice()[r]) / (2.0 * h);
-        }
-    }
+    odyn::__private::central_differences(&model, 0.0, &y, |r, c, v| j[(r, c)] = v);
     j
 }
 

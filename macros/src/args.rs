@@ -57,11 +57,14 @@ pub(crate) struct Args {
     pub(crate) atol: Option<Expr>,
     /// `jacobian = false` opts out of the generated Jacobian (and so of implicit methods).
     pub(crate) no_jacobian: Option<syn::LitBool>,
+    /// `jacobian = finite_differences`: a fixed-size model's Jacobian by central differences of
+    /// its own code, for code the macro cannot differentiate.
+    pub(crate) differences: Option<Ident>,
 }
 
 /// The arguments `#[system]` takes, for error messages.
 const SUPPORTED: &str = "`integrator = ...`, `dt = ...`, `rtol = ...`, `atol = ...`, \
-    `jacobian = false`";
+    `jacobian = false`, `jacobian = finite_differences`";
 
 /// Parses the attribute's arguments, reporting problems to `errors`. A problem with one
 /// argument hides none of the others: an unknown argument or a value of the wrong form is
@@ -134,7 +137,15 @@ fn read(name: &str, value: Expr, args: &mut Args, errors: &mut Errors) {
                     args.no_jacobian = Some(value.clone());
                 }
             }
-            _ => errors.at(&value, "`jacobian` takes `false` (or `true`, the default)"),
+            Expr::Path(p) if p.path.is_ident("finite_differences") => {
+                args.differences = p.path.get_ident().cloned();
+            }
+            _ => errors.at(
+                &value,
+                "`jacobian` takes `false` (explicit methods only), `finite_differences` (a \
+                 Jacobian of central differences of the model's code) or `true` (the default: \
+                 generated exactly)",
+            ),
         },
         _ => {
             check_number(name, &value, errors);

@@ -75,6 +75,7 @@ pub mod __private {
     pub mod grid {
         pub use crate::grid::glue::*;
     }
+    pub use crate::model::differences::central_differences;
     pub use crate::model::flat;
     pub use crate::model::flat::FlatState;
     pub use nalgebra;

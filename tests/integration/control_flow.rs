@@ -779,6 +779,10 @@ struct Partial {
 }
 
 #[system]
+#[allow(
+    clippy::needless_range_loop,
+    reason = "index loops bounded by a parameter are the form under test"
+)]
 impl Partial {
     fn derivative(&self) -> PartialState {
         let mut out = [0.0; 6];

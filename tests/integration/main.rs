@@ -18,6 +18,7 @@ mod big_models;
 mod compositions;
 mod control_flow;
 mod convergence;
+mod differences;
 mod energy;
 mod ensemble;
 mod extremes;

@@ -52,6 +52,10 @@ struct Cells {
 }
 
 #[system]
+#[allow(
+    clippy::needless_range_loop,
+    reason = "rows written component by component are the form under test"
+)]
 impl Cells {
     fn derivative(&self) -> CellsState {
         let mut dc = [[0.0; 2]; 3];

@@ -548,4 +548,23 @@ mod code_after_state_return_changes_outer_local {
     fn main() {}
 }
 
+mod unknown_jacobian_kind {
+    use odyn::system;
+
+    #[system(jacobian = numeric)]
+    struct Decay {
+        #[state]
+        c: f64,
+    }
+
+    #[system]
+    impl Decay {
+        fn derivative(&self) -> DecayState {
+            DecayState { c: -self.c }
+        }
+    }
+
+    fn main() {}
+}
+
 fn main() {}

@@ -103,4 +103,24 @@ mod param_on_a_grid_model {
     }
 }
 
+mod param_with_finite_differences {
+    use odyn::system;
+
+    // ∂f/∂p is generated exactly or not at all.
+    #[system(jacobian = finite_differences)]
+    struct Decay {
+        #[state]
+        c: f64,
+        #[param]
+        k: f64,
+    }
+
+    #[system]
+    impl Decay {
+        fn derivative(&self) -> DecayState {
+            DecayState { c: -self.k * self.c }
+        }
+    }
+}
+
 fn main() {}

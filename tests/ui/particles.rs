@@ -274,4 +274,30 @@ mod vec_of_f64 {
     fn main() {}
 }
 
+mod finite_differences_on_particles {
+    use odyn::nalgebra::Vector3;
+    use odyn::system;
+
+    // Particle and field models always get their sparse Jacobian from their kernels.
+    #[system(jacobian = finite_differences)]
+    struct Dust {
+        #[position]
+        x: Vec<Vector3<f64>>,
+        #[velocity]
+        v: Vec<Vector3<f64>>,
+        #[mass]
+        m: Vec<f64>,
+    }
+
+    #[system]
+    impl Dust {
+        #[particle]
+        fn weight(&self, _x: Vector3<f64>) -> Vector3<f64> {
+            Vector3::new(0.0, -9.81, 0.0)
+        }
+    }
+
+    fn main() {}
+}
+
 fn main() {}

@@ -50,6 +50,12 @@ pub(crate) trait FrontEnd: Sync {
         false
     }
 
+    /// Whether the kind can take its Jacobian by finite differences
+    /// (`jacobian = finite_differences`).
+    fn takes_finite_differences(&self) -> bool {
+        false
+    }
+
     /// The impl half: the items generated after the impl block, or the rejection.
     fn expand_impl(
         &self,
@@ -118,6 +124,15 @@ pub(crate) fn expand_struct(args_tokens: TokenStream, item: &ItemStruct) -> Toke
         let before = errors.len();
         if !kind.takes_parameters() {
             refuse_parameters(item, &mut errors);
+        }
+        if let Some(differences) = &args.differences
+            && !kind.takes_finite_differences()
+        {
+            errors.at(
+                differences,
+                "`jacobian = finite_differences` is for fixed-size models: particle and field \
+                 models get their sparse Jacobian generated from their kernels",
+            );
         }
         let accepted = kind.expand_struct(item, &mut errors);
         // A struct the front-end reported on is rejected whole, however it was returned.

@@ -256,7 +256,8 @@ impl Lowering<'_> {
                      indexes no array or vector of a known length with its variable (odyn \
                      unrolls loops on the state: a run-time bound needs an index, such as \
                      `self.x[k]` of `for k in 0..self.n`, that stops it; or write the bound \
-                     as an integer literal)",
+                     as an integer literal, or take the Jacobian by \
+                     `jacobian = finite_differences`)",
                 ));
             }
             self.past_end = false;

@@ -139,6 +139,8 @@ struct Lowering<'m> {
     /// Set when an index went past the end of a vector or array (see
     /// [`loops`]' loops bounded by parameters).
     past_end: bool,
+    /// A particle or grid kernel (no `jacobian = finite_differences` for those).
+    kernel: bool,
 }
 
 /// Lowers the body of `f`, the model's `acceleration` or `derivative`, inlining the `helpers` it
@@ -178,6 +180,7 @@ pub(crate) fn lower_kernel(
     time: Option<Ident>,
 ) -> syn::Result<Lowered> {
     let mut l = Lowering::new(model, helpers, f, time.map(|t| (t, inputs.len() * width)));
+    l.kernel = true;
     for (k, name) in inputs.iter().enumerate() {
         let value = if width == 1 {
             Value::Scalar(l.graph.var(k))
@@ -228,6 +231,7 @@ impl<'m> Lowering<'m> {
             time_opaque: false,
             iterations: 0,
             past_end: false,
+            kernel: false,
         }
     }
 
@@ -256,9 +260,15 @@ impl<'m> Lowering<'m> {
             tokens,
             format!(
                 "odyn cannot differentiate {what} in {}, so it cannot derive the Jacobian; {} \
-                 (or add `jacobian = false` to `#[system]` to use explicit methods only)",
+                 (or add {}`jacobian = false` to `#[system]` to use explicit methods only)",
                 self.place(),
-                methods::supported()
+                methods::supported(),
+                if self.kernel {
+                    ""
+                } else {
+                    "`jacobian = finite_differences` to `#[system]` to keep the implicit \
+                     methods on a Jacobian of central differences, or "
+                }
             ),
         )
     }

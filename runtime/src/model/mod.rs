@@ -4,6 +4,7 @@
 //! also [`SecondOrder`], q̈ = a(t, q, q̇): its state lays out every position, then every velocity,
 //! so the split methods see the two halves of [`State::as_slice`].
 
+pub mod differences;
 pub mod flat;
 mod parameters;
 mod unavailable;
@@ -114,8 +115,9 @@ pub trait Jacobian: Model {
     /// run time) for particle models.
     type Matrix: NewtonMatrix;
     /// The structural non-zeros (row, column), known at compile time; every other entry of the
-    /// Jacobian is zero at every state. Empty for particle models, whose pattern comes from
-    /// their topology at run time.
+    /// Jacobian is zero at every state. Empty when the pattern is not known at compile time:
+    /// particle models (it comes from their topology at run time), forward sensitivities, and a
+    /// Jacobian of finite differences.
     const NONZEROS: &'static [(usize, usize)];
 
     /// A Jacobian for states like `state`, every buffer allocated: called once per run.
@@ -127,7 +129,8 @@ pub trait Jacobian: Model {
     /// Whether every entry is exact: `#[system]` sets it false when the model's code calls a
     /// function it cannot see inside (a crate's, or the user's own not marked
     /// `#[odyn::function]`), whose derivative it then takes by a central difference of the
-    /// call (relative error ~1e-10 on smooth functions). Newton-based methods (implicit Euler,
+    /// call (relative error ~1e-10 on smooth functions), and for a model that asks for
+    /// `jacobian = finite_differences` (central differences of the whole f). Newton-based methods (implicit Euler,
     /// BDF) only iterate with J, so their results do not depend on it; Rosenbrock methods build
     /// it into their stages.
     const EXACT: bool = true;

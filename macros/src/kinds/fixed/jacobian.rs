@@ -148,6 +148,50 @@ pub(crate) fn jacobian(
     }
 }
 
+/// The `Jacobian` impl of a model that asked for `jacobian = finite_differences`: central
+/// differences of its own f ([`odyn::__private::central_differences`]), every entry, and ∂f/∂t
+/// by the runtime's central difference when f reads the time.
+pub(crate) fn differences(model: &Model<'_>, force: &Function, imp: &ItemImpl) -> TokenStream {
+    let self_ty = &imp.self_ty;
+    let state = model.state_ident();
+    let n = proc_macro2::Literal::usize_unsuffixed(model.len());
+    let (matrix, store) = if model.len() <= SMALL {
+        (
+            quote!(::odyn::__private::nalgebra::SMatrix<f64, #n, #n>),
+            quote!(|row, column, value| jacobian[(row, column)] = value),
+        )
+    } else {
+        (
+            quote!(::odyn::FaerDense<#n>),
+            quote!(|row, column, value| jacobian.set(row, column, value)),
+        )
+    };
+    let time = match force.time {
+        Some(_) => quote!(
+            const TIME_DEPENDENT: bool = true;
+        ),
+        None => time_independent(&state, "The model's function does not read the time"),
+    };
+    quote! {
+        #[automatically_derived]
+        impl ::odyn::Jacobian for #self_ty {
+            type Matrix = #matrix;
+            /// Not known: the Jacobian is taken by finite differences.
+            const NONZEROS: &'static [(usize, usize)] = &[];
+            /// False: `jacobian = finite_differences`, central differences of f.
+            const EXACT: bool = false;
+            fn jacobian_matrix(&self, _: &#state) -> #matrix {
+                <#matrix as ::odyn::DenseMatrix>::zeros()
+            }
+            #[inline]
+            fn jacobian(&self, t: f64, y: &#state, jacobian: &mut #matrix) {
+                ::odyn::__private::central_differences(self, t, y, #store)
+            }
+            #time
+        }
+    }
+}
+
 /// The derivative of each output by each of its `columns`, the structural zeros dropped.
 fn symbolic_entries<C: IntoIterator<Item = usize>>(
     graph: &mut crate::ir::Graph,

@@ -41,11 +41,15 @@ impl FrontEnd for Kind {
         &[]
     }
 
-    /// The struct half: the state type, and what the model asks of an integrator, when accepted.
     fn takes_parameters(&self) -> bool {
         true
     }
 
+    fn takes_finite_differences(&self) -> bool {
+        true
+    }
+
+    /// The struct half: the state type, and what the model asks of an integrator, when accepted.
     fn expand_struct(&self, item: &ItemStruct, errors: &mut Errors) -> Option<Struct> {
         // The `#[param]` fields' errors; the parameters themselves are the impl half's.
         let before = errors.len();
@@ -91,9 +95,10 @@ impl FrontEnd for Kind {
             })
         });
         validate::forces(args, velocity_read, errors);
-        let lowered = match (&functions.force, &args.no_jacobian) {
+        let generated_jacobian = args.no_jacobian.is_none() && args.differences.is_none();
+        let lowered = match &functions.force {
             // A helper with a problem has been reported; its calls are not followed.
-            (Some(force), None) if helpers_ok => {
+            Some(force) if generated_jacobian && helpers_ok => {
                 match lower::lower(&model, &helpers, &force.original) {
                     Ok(lowered) => Some(lowered),
                     Err(error) => {
@@ -114,6 +119,15 @@ impl FrontEnd for Kind {
                 ),
             );
         }
+        if let (Some(first), Some(differences)) = (params.first(), &args.differences) {
+            errors.at(
+                differences,
+                format_args!(
+                    "`jacobian = finite_differences` turns off the generated derivatives, ∂f/∂p \
+                     of `#[param]` `{first}` among them (sensitivities need them exact)"
+                ),
+            );
+        }
         // ∂f/∂p from a second lowering of the force: the Jacobian consumes the first.
         let parameters = match (&lowered, &functions.force) {
             (Some(_), Some(force)) if !params.is_empty() => {
@@ -130,9 +144,17 @@ impl FrontEnd for Kind {
         if !errors.is_empty() {
             return rejected;
         }
-        let generated = generate::model_impls(&model, args, &functions, imp, lowered.is_some());
+        let differences = args.differences.is_some();
+        let generated = generate::model_impls(
+            &model,
+            args,
+            &functions,
+            imp,
+            lowered.is_some() || differences,
+        );
         let jacobian = match (lowered, &functions.force) {
             (Some(lowered), Some(force)) => jacobian::jacobian(&model, lowered, force, imp),
+            (None, Some(force)) if differences => jacobian::differences(&model, force, imp),
             _ => TokenStream::new(),
         };
         Impl::Accepted(quote!(#generated #jacobian #parameters))
