@@ -25,10 +25,12 @@
 //!   at compile time.
 
 mod branches;
+mod calls;
 mod conditions;
 mod expr;
 mod inline;
 mod loops;
+mod merge;
 mod methods;
 mod scope;
 mod state;
