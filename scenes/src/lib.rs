@@ -8,6 +8,7 @@
 //! - [`chaos`] — [`Lorenz`].
 //! - [`pendulums`] — the [`DoublePendulum`].
 //! - [`orbits`] — [`Kepler`], the [`Arenstorf`] orbit, the [`Pleiades`].
+//! - [`solar_system`] — the outer [`SolarSystem`], and [`SolarSystemByAxis`].
 //! - [`stiff`] — [`VanDerPol`] and four problems of the Bari test set ([`Robertson`], [`Hires`],
 //!   [`Pollu`], [`Orego`]) with their references.
 //! - [`cloth`] — the Baraff–Witkin [`Cloth`] and the [`Sheet`] that builds it.
@@ -26,6 +27,7 @@ pub mod fluids;
 pub mod orbits;
 pub mod oscillators;
 pub mod pendulums;
+pub mod solar_system;
 pub mod stiff;
 
 pub use analysis::slope;
@@ -36,4 +38,5 @@ pub use fluids::dam_break;
 pub use orbits::*;
 pub use oscillators::*;
 pub use pendulums::*;
+pub use solar_system::*;
 pub use stiff::*;
