@@ -68,16 +68,29 @@ impl SolarSystemByAxis {
     /// [`SolarSystem::outer`], each axis an array.
     pub fn outer() -> Self {
         let s = SolarSystem::outer();
-        let axis = |q: &[Vector3<f64>; 6], k: usize| std::array::from_fn(|i| q[i][k]);
+        let SolarSystemByAxisState { x, y, z, u, v, w } = Self::by_axis(&s.state());
         SolarSystemByAxis {
+            x,
+            y,
+            z,
+            u,
+            v,
+            w,
+            m: s.m,
+            g: s.g,
+        }
+    }
+
+    /// A state of [`SolarSystem`], each axis an array.
+    pub fn by_axis(s: &SolarSystemState) -> SolarSystemByAxisState {
+        let axis = |q: &[Vector3<f64>; 6], k: usize| std::array::from_fn(|i| q[i][k]);
+        SolarSystemByAxisState {
             x: axis(&s.r, 0),
             y: axis(&s.r, 1),
             z: axis(&s.r, 2),
             u: axis(&s.v, 0),
             v: axis(&s.v, 1),
             w: axis(&s.v, 2),
-            m: s.m,
-            g: s.g,
         }
     }
 }

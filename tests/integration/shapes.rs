@@ -70,18 +70,6 @@ impl Cells {
     }
 }
 
-fn solar_system_state(s: &SolarSystemState) -> SolarSystemByAxisState {
-    let axis = |q: &[Vector3<f64>; 6], k: usize| std::array::from_fn(|i| q[i][k]);
-    SolarSystemByAxisState {
-        x: axis(&s.r, 0),
-        y: axis(&s.r, 1),
-        z: axis(&s.r, 2),
-        u: axis(&s.v, 0),
-        v: axis(&s.v, 1),
-        w: axis(&s.v, 2),
-    }
-}
-
 #[test]
 fn arrays_of_vectors_lay_out_row_after_row() {
     let s = SolarSystem::outer().state();
@@ -158,7 +146,7 @@ fn jacobians_of_arrays_of_vectors_match_finite_differences() {
 fn an_array_of_vectors_runs_every_method_as_the_axis_arrays_do() {
     let vectors = SolarSystem::outer();
     let axes = SolarSystemByAxis::outer();
-    assert_eq!(solar_system_state(&vectors.state()), axes.state());
+    assert_eq!(SolarSystemByAxis::by_axis(&vectors.state()), axes.state());
     let (dt, steps) = (10.0, 200_u64);
     // The by-axis form under DOP853 at rtol = atol = 1e-13 (its error is far below every
     // fixed-step error compared with it).
@@ -171,7 +159,7 @@ fn an_array_of_vectors_runs_every_method_as_the_axis_arrays_do() {
         .unwrap();
     let reference = reference.last().state;
     let error = |s: &SolarSystemState, steps: u64| {
-        let s = solar_system_state(s);
+        let s = SolarSystemByAxis::by_axis(s);
         let e = s
             .as_slice()
             .iter()
@@ -189,7 +177,7 @@ fn an_array_of_vectors_runs_every_method_as_the_axis_arrays_do() {
             .steps(steps)
             .run()
             .unwrap_or_else(|e| panic!("{method}: {e}"));
-        let last = solar_system_state(&run.last().state);
+        let last = SolarSystemByAxis::by_axis(&run.last().state);
         if method.info().needs_jacobian {
             // Halving the step divides the error by about 2ᵖ (p, the method's order).
             let half = vectors
