@@ -765,7 +765,9 @@ fn loops_on_the_state_with_known_bounds_are_unrolled() {
 }
 
 /// Loops bounded by parameters: a `for` to `self.active` over the first masses of a chain (the
-/// rest at rest), a `while` on a counter up to `self.coupled`, and a `for … ..=` nested in it.
+/// rest at rest) with a free end (an `if` on the bound that reads past the state's end in the
+/// arm the last iteration does not take), a `while` on a counter up to `self.coupled`, and a
+/// `for … ..=` after them.
 /// The state's length (6) caps the iterations; each runs only when its test holds at run time.
 #[system]
 #[derive(Clone, Copy, Debug)]
@@ -788,6 +790,14 @@ impl Partial {
         let mut out = [0.0; 6];
         for i in 0..self.active {
             out[i] = -self.k[i] * self.x[i] * self.x[i].abs();
+            // A free end: the last active mass has no right neighbour. At i = 5 the arm that
+            // reads `self.x[6]` cannot be taken, and the iteration still runs (active = 6).
+            let right = if i + 1 < self.active {
+                self.x[i + 1]
+            } else {
+                0.0
+            };
+            out[i] += 0.5 * (right - self.x[i]);
         }
         let mut i = 1;
         while i < self.coupled {

@@ -154,7 +154,9 @@ impl Lowering<'_> {
             for name in names {
                 self.bind(name, None, false);
             }
+            self.arms += 1;
             let result = each(self, &stmts);
+            self.arms -= 1;
             self.scopes.pop();
             let after = std::mem::replace(&mut self.scopes, before.clone());
             let prologue = std::mem::take(&mut self.prologue);

@@ -234,10 +234,24 @@ impl Lowering<'_> {
         i: usize,
         at: impl ToTokens,
     ) -> syn::Result<Value> {
-        if matches!(base, Value::Vector(v) if i >= v.len())
-            || matches!(base, Value::Tuple(t) if i >= t.len())
-        {
-            self.past_end = true;
+        let past_end = matches!(base, Value::Vector(v) if i >= v.len())
+            || matches!(base, Value::Tuple(t) if i >= t.len());
+        if past_end && let Some(level) = self.guard {
+            // In a loop bounded at run time: past the end at the iteration's own level, the
+            // iteration cannot run (the code would panic), which caps the loop; inside an arm
+            // of a branch, the arm cannot be taken (likewise), so its value is never used.
+            if self.arms == level {
+                self.past_end = true;
+            } else {
+                let zero = self.graph.num(0.0);
+                return Ok(match base {
+                    Value::Tuple(t) => match t.first() {
+                        Some(Value::Vector(row)) => Value::Vector(vec![zero; row.len()]),
+                        _ => Value::Scalar(zero),
+                    },
+                    _ => Value::Scalar(zero),
+                });
+            }
         }
         match base {
             Value::Vector(v) if i < v.len() => Ok(Value::Scalar(v[i])),

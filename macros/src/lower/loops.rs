@@ -14,7 +14,10 @@
 //! `let end' = end; if a < end' { let k = a; body } if a + 1 < end' { … } …`, and `while c { body }`
 //! becomes `if c { body; if c { body; … } }`, nested, since each test runs only after the
 //! iterations before it. The most iterations are found by lowering the body, unguarded, until
-//! an index goes past the end; a loop whose body indexes nothing of a known length is refused.
+//! an index goes past the end at the iteration's own level; a loop whose body indexes nothing
+//! of a known length is refused. Past an end inside a branch of such a loop's body (`if i + 1 <
+//! self.n { self.x[i + 1] } else { 0.0 }` at the last i), the arm cannot be taken — the code
+//! would panic if it were — so it reads zero there and the iteration still counts.
 
 use std::collections::HashMap;
 
@@ -200,7 +203,7 @@ impl Lowering<'_> {
             stmts.push(syn::parse_quote!(if #literal #test #end_name { #(#body)* }));
         }
         self.count_iterations(count, &l.expr)?;
-        self.run(&stmts, Context::Arm).map(|_| ())
+        self.guarded(&stmts)
     }
 
     /// `while c` whose condition reads parameters: guarded iterations, nested, as many as the
@@ -228,7 +231,16 @@ impl Lowering<'_> {
             nest = vec![syn::parse_quote!(if #cond { if true { #(#body)* } #(#nest)* })];
         }
         self.count_iterations(count, &w.cond)?;
-        self.run(&nest, Context::Arm).map(|_| ())
+        self.guarded(&nest)
+    }
+
+    /// Lowers a guarded loop's statements: every iteration inside its guard's arm, so an index
+    /// past an end there is in an arm that cannot be taken (see [`Lowering::component`]).
+    fn guarded(&mut self, stmts: &[syn::Stmt]) -> syn::Result<()> {
+        let outer = self.guard.replace(self.arms);
+        let result = self.run(stmts, Context::Arm).map(|_| ());
+        self.guard = outer;
+        result
     }
 
     /// How many iterations a loop bounded at run time can run: `iteration(self, j)` lowers
@@ -245,8 +257,9 @@ impl Lowering<'_> {
             self.opaques,
             self.selectors,
         );
-        let (iterations, time_opaque, past_end) =
-            (self.iterations, self.time_opaque, self.past_end);
+        let (iterations, time_opaque, past_end, guard) =
+            (self.iterations, self.time_opaque, self.past_end, self.guard);
+        self.guard = Some(self.arms);
         let mut count = 0;
         let outcome = loop {
             if self.iterations + count >= MAX_ITERATIONS {
@@ -272,6 +285,7 @@ impl Lowering<'_> {
         self.prologue.truncate(prologue);
         (self.opaques, self.selectors) = (opaques, selectors);
         (self.iterations, self.time_opaque, self.past_end) = (iterations, time_opaque, past_end);
+        self.guard = guard;
         outcome
     }
 

@@ -143,6 +143,11 @@ struct Lowering<'m> {
     past_end: bool,
     /// A particle or grid kernel (no `jacobian = finite_differences` for those).
     kernel: bool,
+    /// How many arms of branches chosen at run time (on parameters or on the state) enclose
+    /// the code being lowered.
+    arms: u32,
+    /// Inside a loop bounded at run time: the arm depth of its iterations (see [`loops`]).
+    guard: Option<u32>,
 }
 
 /// Lowers the body of `f`, the model's `acceleration` or `derivative`, inlining the `helpers` it
@@ -234,6 +239,8 @@ impl<'m> Lowering<'m> {
             iterations: 0,
             past_end: false,
             kernel: false,
+            arms: 0,
+            guard: None,
         }
     }
 
