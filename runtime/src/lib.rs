@@ -76,6 +76,14 @@ pub mod __private {
         pub use crate::grid::glue::*;
     }
     pub use crate::model::differences::central_differences;
+
+    /// `value`, of `like`'s type: the variable of a loop `#[system]` unrolls in a Jacobian's
+    /// prologue, typed like the loop's run-time end.
+    #[inline(always)]
+    pub fn same_type<T>(value: T, like: &T) -> T {
+        let _ = like;
+        value
+    }
     pub use crate::model::flat;
     pub use crate::model::flat::FlatState;
     pub use nalgebra;

@@ -841,3 +841,78 @@ fn loops_bounded_by_parameters_are_guarded() {
         }
     }
 }
+
+/// Forms a review found the guarded loops and rows mishandling: a test on the state after `&&`
+/// that reads past the end only when the bound test before it fails, a row set past the end in
+/// an arm that cannot be taken, the loop variable used as the end's integer type, and
+/// parameter-only rows changed in place (`w[k][0] = …`, `w[k] = [ … ]`) before the state reads
+/// them.
+#[system]
+#[derive(Clone, Copy, Debug)]
+struct Reviewed {
+    #[state]
+    x: [f64; 3],
+    n: usize,
+    c: [f64; 3],
+}
+
+#[system]
+#[allow(
+    clippy::needless_range_loop,
+    reason = "index loops bounded by a parameter are the form under test"
+)]
+impl Reviewed {
+    fn derivative(&self) -> ReviewedState {
+        let mut w = [[0.0; 2]; 3];
+        for k in 0..3 {
+            w[k][0] = self.c[k];
+        }
+        let mut v = [[0.0; 2]; 3];
+        for k in 0..3 {
+            v[k] = [self.c[k], 1.0];
+        }
+        let mut out = [0.0; 3];
+        let mut d = [0.0; 3];
+        for i in 0..self.n {
+            out[i] = -w[i][0] * self.x[i] - v[i][1] * (i.pow(2) as f64) * self.x[i];
+            if i + 1 < self.n && self.x[i + 1] > self.x[i] {
+                out[i] += self.x[i + 1] - self.x[i];
+            }
+            d[i] -= self.x[i];
+            if i + 1 < self.n {
+                d[i + 1] += self.x[i];
+            }
+        }
+        for i in 0..3 {
+            out[i] += 0.5 * d[i];
+        }
+        ReviewedState { x: out }
+    }
+}
+
+#[test]
+fn guarded_loops_follow_short_circuits_free_ends_and_rows_changed_in_place() {
+    for n in 0..=3 {
+        let model = Reviewed {
+            x: [0.0; 3],
+            n,
+            c: [1.5, -0.5, 2.0],
+        };
+        // Away from the switching surface x[i + 1] = x[i], where the `if` changes arm.
+        check(&model, 0.0, 40, |r| {
+            let a = r.uniform(-2.0, 2.0);
+            let b = a + r.uniform(0.1, 1.0) * if r.uniform(0.0, 1.0) < 0.5 { 1.0 } else { -1.0 };
+            let c = b + r.uniform(0.1, 1.0) * if r.uniform(0.0, 1.0) < 0.5 { 1.0 } else { -1.0 };
+            ReviewedState { x: [a, b, c] }
+        });
+        // Row n − 1 (the last active) reads x[n − 1] on its diagonal: never a zero row.
+        if n > 0 {
+            let y = ReviewedState {
+                x: [0.3, -0.2, 0.9],
+            };
+            let mut j = model.jacobian_matrix(&y);
+            model.jacobian(0.0, &y, &mut j);
+            assert!(j[(n - 1, n - 1)] != 0.0, "n = {n}: {j}");
+        }
+    }
+}

@@ -37,6 +37,8 @@ impl Lowering<'_> {
                 let zero = self.graph.num(0.0);
                 Ok(Value::Vector(vec![zero; vector_len(ty).expect("checked")]))
             }
+            // A guarded loop's variable (`loops::guarded_for`): its value, typed like the end.
+            ["odyn", "__private", "same_type"] if args.len() == 2 => self.expr(args[0]),
             [.., "f64", name] if !args.is_empty() => {
                 let receiver = self.expr(args[0])?;
                 let method = &path

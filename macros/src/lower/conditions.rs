@@ -22,7 +22,22 @@ pub(super) enum Condition {
 impl Lowering<'_> {
     /// The conditions of an `if` on the state, lowered in the scope before its arms.
     pub(super) fn conditions(&mut self, conditions: &[Expr]) -> syn::Result<Vec<Condition>> {
-        conditions.iter().map(|c| self.condition(c)).collect()
+        let mut lowered = Vec::with_capacity(conditions.len());
+        for (k, c) in conditions.iter().enumerate() {
+            // An `else if`'s condition runs only when those before it failed.
+            lowered.push(self.conditionally(k > 0, |l| l.condition(c))?);
+        }
+        Ok(lowered)
+    }
+
+    /// `lower`, counted as inside an arm when `conditional` (code that runs only in some runs:
+    /// an index past an end there does not cap a loop bounded at run time; see
+    /// [`Lowering::component`]).
+    fn conditionally<T>(&mut self, conditional: bool, lower: impl FnOnce(&mut Self) -> T) -> T {
+        self.arms += u32::from(conditional);
+        let result = lower(self);
+        self.arms -= u32::from(conditional);
+        result
     }
 
     /// Checks that `condition` is comparisons (`<`, `<=`, `>`, `>=`) and parameter-only
@@ -59,10 +74,9 @@ impl Lowering<'_> {
                 Ok(Condition::Not(Box::new(self.condition(&u.expr)?)))
             }
             Expr::Binary(b) if matches!(b.op, BinOp::And(_) | BinOp::Or(_)) => {
-                let (l, r) = (
-                    Box::new(self.condition(&b.left)?),
-                    Box::new(self.condition(&b.right)?),
-                );
+                // The right side runs only when the left does not decide.
+                let l = Box::new(self.condition(&b.left)?);
+                let r = Box::new(self.conditionally(true, |l| l.condition(&b.right))?);
                 Ok(match b.op {
                     BinOp::And(_) => Condition::And(l, r),
                     _ => Condition::Or(l, r),

@@ -87,11 +87,15 @@ impl Lowering<'_> {
         {
             return Ok(Value::Vector(numbers));
         }
-        let rows = elements
+        let rows: Option<Vec<Vec<ExprId>>> = elements
             .iter()
-            .all(|e| matches!((e, &elements[0]), (Value::Vector(a), Value::Vector(b)) if a.len() == b.len()));
-        if rows {
-            Ok(Value::Tuple(elements))
+            .map(|e| match (e, &elements[0]) {
+                (Value::Vector(a), Value::Vector(b)) if a.len() == b.len() => Some(a.clone()),
+                _ => None,
+            })
+            .collect();
+        if let Some(rows) = rows {
+            Ok(Value::Rows(rows))
         } else {
             Err(self.error(
                 at,
@@ -235,7 +239,8 @@ impl Lowering<'_> {
         at: impl ToTokens,
     ) -> syn::Result<Value> {
         let past_end = matches!(base, Value::Vector(v) if i >= v.len())
-            || matches!(base, Value::Tuple(t) if i >= t.len());
+            || matches!(base, Value::Tuple(t) if i >= t.len())
+            || matches!(base, Value::Rows(r) if i >= r.len());
         if past_end && let Some(level) = self.guard {
             // In a loop bounded at run time: past the end at the iteration's own level, the
             // iteration cannot run (the code would panic), which caps the loop; inside an arm
@@ -245,10 +250,7 @@ impl Lowering<'_> {
             } else {
                 let zero = self.graph.num(0.0);
                 return Ok(match base {
-                    Value::Tuple(t) => match t.first() {
-                        Some(Value::Vector(row)) => Value::Vector(vec![zero; row.len()]),
-                        _ => Value::Scalar(zero),
-                    },
+                    Value::Rows(r) => Value::Vector(vec![zero; r.first().map_or(0, Vec::len)]),
                     _ => Value::Scalar(zero),
                 });
             }
@@ -256,6 +258,11 @@ impl Lowering<'_> {
         match base {
             Value::Vector(v) if i < v.len() => Ok(Value::Scalar(v[i])),
             Value::Tuple(t) if i < t.len() => Ok(t[i].clone()),
+            Value::Rows(r) if i < r.len() => Ok(Value::Vector(r[i].clone())),
+            Value::Rows(r) => Err(self.refuse(
+                at,
+                format_args!("index {i} is past the end of an array of {} rows", r.len()),
+            )),
             Value::Vector(v) => Err(self.refuse(
                 at,
                 format_args!(
@@ -336,6 +343,11 @@ impl Lowering<'_> {
                 Value::Vector(v.into_iter().map(|x| f(&mut self.graph, x)).collect())
             }
             Value::Tuple(t) => Value::Tuple(t.into_iter().map(|v| self.map(v, f)).collect()),
+            Value::Rows(r) => Value::Rows(
+                r.into_iter()
+                    .map(|row| row.into_iter().map(|x| f(&mut self.graph, x)).collect())
+                    .collect(),
+            ),
         }
     }
 

@@ -23,8 +23,8 @@ fn fits(value: &Value, shape: Shape) -> bool {
     match (value, shape) {
         (Value::Scalar(_), Shape::Scalar) => true,
         (Value::Vector(v), Shape::Array(n) | Shape::Vector(n)) => v.len() == n,
-        (Value::Tuple(rows), Shape::Rows(n, row)) => {
-            rows.len() == n && rows.iter().all(|r| fits(r, Shape::Vector(row.len())))
+        (Value::Rows(rows), Shape::Rows(n, row)) => {
+            rows.len() == n && rows.iter().all(|r| r.len() == row.len())
         }
         _ => false,
     }

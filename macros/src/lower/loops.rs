@@ -177,9 +177,14 @@ impl Lowering<'_> {
         let Some(first) = self.known_integer(start) else {
             return Err(self.unknown_bound(&l.expr, "for"));
         };
+        let end_name = quote::format_ident!("__odyn_end{}", self.selectors);
+        // The loop variable has the end's type in the prologue, as in the user's loop (a bare
+        // literal would be `{integer}`, and `i.pow(2)` would not compile).
         let bind = |k: i64| {
             let literal = proc_macro2::Literal::i64_unsuffixed(k);
-            name.map(|n| -> syn::Stmt { syn::parse_quote!(let #n = #literal;) })
+            name.map(|n| -> syn::Stmt {
+                syn::parse_quote!(let #n = ::odyn::__private::same_type(#literal, &#end_name);)
+            })
         };
         let count = self.most_iterations(&l.expr, |this, j| {
             let k = first + j as i64;
@@ -189,7 +194,6 @@ impl Lowering<'_> {
             });
             this.iteration(&l.body, variable).map(|()| true)
         })?;
-        let end_name = quote::format_ident!("__odyn_end{}", self.selectors);
         let mut stmts: Vec<syn::Stmt> = vec![syn::parse_quote!(let #end_name = #end;)];
         let test = match r.limits {
             RangeLimits::HalfOpen(_) => quote::quote!(<),

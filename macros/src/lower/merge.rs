@@ -99,6 +99,20 @@ impl Lowering<'_> {
                     .map(|(x, y)| self.choose(chooser, arm, x, y))
                     .collect(),
             )),
+            (Value::Rows(a), Value::Rows(b)) if a.len() == b.len() => {
+                let mut rows = Vec::with_capacity(a.len());
+                for (x, y) in a.into_iter().zip(b) {
+                    match self.select_pair(chooser, arm, Value::Vector(x), Value::Vector(y), at)? {
+                        Value::Vector(row) => rows.push(row),
+                        _ => {
+                            return Err(
+                                self.error(at, "branch arms whose values have different shapes")
+                            );
+                        }
+                    }
+                }
+                Ok(Value::Rows(rows))
+            }
             (Value::Tuple(a), Value::Tuple(b)) if a.len() == b.len() => Ok(Value::Tuple(
                 a.into_iter()
                     .zip(b)

@@ -110,6 +110,8 @@ enum Value {
     Scalar(ExprId),
     Vector(Vec<ExprId>),
     Tuple(Vec<Value>),
+    /// An array of arrays or vectors (`[Vector3<f64>; 6]`, `[[f64; 2]; 3]`), row by row.
+    Rows(Vec<Vec<ExprId>>),
 }
 
 struct Lowering<'m> {

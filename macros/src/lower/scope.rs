@@ -57,7 +57,7 @@ impl Lowering<'_> {
                 let parts = match value {
                     Value::Tuple(parts) => parts,
                     Value::Vector(v) => v.into_iter().map(Value::Scalar).collect(),
-                    Value::Scalar(_) => return false,
+                    Value::Scalar(_) | Value::Rows(_) => return false,
                 };
                 parts.len() == t.elems.len()
                     && t.elems
@@ -71,6 +71,11 @@ impl Lowering<'_> {
                     .iter()
                     .zip(v)
                     .all(|(p, x)| self.bind_pattern(p, Value::Scalar(x), dependent)),
+                Value::Rows(r) if r.len() == s.elems.len() => s
+                    .elems
+                    .iter()
+                    .zip(r)
+                    .all(|(p, row)| self.bind_pattern(p, Value::Vector(row), dependent)),
                 _ => false,
             },
             _ => false,
@@ -94,6 +99,16 @@ impl Lowering<'_> {
                     .map(|(i, part)| {
                         let index = syn::Index::from(i);
                         self.read_back(quote!(#name.#index), part)
+                    })
+                    .collect(),
+            ),
+            Value::Rows(rows) => Value::Rows(
+                rows.iter()
+                    .enumerate()
+                    .map(|(i, row)| {
+                        (0..row.len())
+                            .map(|j| self.opaque(quote!(#name[#i][#j])))
+                            .collect()
                     })
                     .collect(),
             ),
@@ -178,6 +193,7 @@ fn flatten(value: &Value, out: &mut Vec<crate::ir::ExprId>) {
         Value::Scalar(id) => out.push(*id),
         Value::Vector(ids) => out.extend_from_slice(ids),
         Value::Tuple(parts) => parts.iter().for_each(|part| flatten(part, out)),
+        Value::Rows(rows) => rows.iter().for_each(|row| out.extend_from_slice(row)),
     }
 }
 
@@ -256,12 +272,16 @@ pub(super) struct Targets(pub(super) Vec<Ident>);
 
 impl Targets {
     fn target(&mut self, e: &Expr) {
-        let base = match e {
-            Expr::Index(i) => &*i.expr,
-            Expr::Field(f) => &*f.base,
-            Expr::Paren(p) => &*p.expr,
-            other => other,
-        };
+        // `w[k][0].x = …` changes `w`.
+        let mut base = e;
+        loop {
+            base = match base {
+                Expr::Index(i) => &i.expr,
+                Expr::Field(f) => &f.base,
+                Expr::Paren(p) => &p.expr,
+                _ => break,
+            };
+        }
         if let Expr::Path(p) = base
             && let Some(ident) = p.path.get_ident()
         {

@@ -58,7 +58,7 @@ impl Lowering<'_> {
                 let v = match value {
                     Value::Scalar(x) => vec![x],
                     Value::Vector(v) => v,
-                    Value::Tuple(_) => return Err(mismatch(self)),
+                    Value::Tuple(_) | Value::Rows(_) => return Err(mismatch(self)),
                 };
                 if v.len() == self.model.len() {
                     Ok(v)
@@ -122,11 +122,9 @@ impl Lowering<'_> {
             }
             Shape::Rows(n, row) => {
                 let m = row.len();
-                Value::Tuple(
+                Value::Rows(
                     (0..n)
-                        .map(|i| {
-                            Value::Vector((0..m).map(|j| component(self, m * i + j)).collect())
-                        })
+                        .map(|i| (0..m).map(|j| component(self, m * i + j)).collect())
                         .collect(),
                 )
             }
@@ -150,12 +148,10 @@ fn components_of(value: Value, shape: Shape) -> Option<Vec<ExprId>> {
     match (value, shape) {
         (Value::Scalar(x), Shape::Scalar) => Some(vec![x]),
         (Value::Vector(v), Shape::Array(n) | Shape::Vector(n)) if v.len() == n => Some(v),
-        (Value::Tuple(rows), Shape::Rows(n, row)) if rows.len() == n => {
-            let mut components = Vec::with_capacity(shape.len());
-            for r in rows {
-                components.extend(components_of(r, Shape::Vector(row.len()))?);
-            }
-            Some(components)
+        (Value::Rows(rows), Shape::Rows(n, row))
+            if rows.len() == n && rows.iter().all(|r| r.len() == row.len()) =>
+        {
+            Some(rows.concat())
         }
         _ => None,
     }

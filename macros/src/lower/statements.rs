@@ -293,7 +293,22 @@ impl Lowering<'_> {
         };
         let part = self.component(&whole, i, target)?;
         let new = self.replace_at(part, rest, target, update)?;
+        let len = match &whole {
+            Value::Vector(v) => v.len(),
+            Value::Tuple(t) => t.len(),
+            Value::Rows(r) => r.len(),
+            Value::Scalar(_) => 0,
+        };
+        if i >= len {
+            // Past the end in an arm of a loop bounded at run time that cannot be taken (see
+            // `Lowering::component`): nothing to change.
+            return Ok(whole);
+        }
         match (whole, new) {
+            (Value::Rows(mut r), Value::Vector(row)) => {
+                r[i] = row;
+                Ok(Value::Rows(r))
+            }
             (Value::Vector(mut v), Value::Scalar(x)) => {
                 v[i] = x;
                 Ok(Value::Vector(v))
