@@ -846,7 +846,7 @@ fn loops_bounded_by_parameters_are_guarded() {
 /// that reads past the end only when the bound test before it fails, a row set past the end in
 /// an arm that cannot be taken, the loop variable used as the end's integer type, and
 /// parameter-only rows changed in place (`w[k][0] = …`, `w[k] = [ … ]`) before the state reads
-/// them.
+/// them; and two nested loops bounded at run time.
 #[system]
 #[derive(Clone, Copy, Debug)]
 struct Reviewed {
@@ -885,6 +885,13 @@ impl Reviewed {
         }
         for i in 0..3 {
             out[i] += 0.5 * d[i];
+        }
+        // Nested loops both bounded at run time: the outer one indexes by `i` at its own level.
+        for i in 0..self.n {
+            out[i] -= 0.1 * self.x[i];
+            for j in 0..self.n {
+                out[i] += 0.05 * (self.x[j] - self.x[i]).powi(3);
+            }
         }
         ReviewedState { x: out }
     }

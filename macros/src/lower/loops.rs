@@ -270,11 +270,11 @@ impl Lowering<'_> {
                 break Err(self.refuse(
                     at,
                     "a loop on the state whose bound is known only at run time and whose body \
-                     indexes no array or vector of a known length with its variable (odyn \
-                     unrolls loops on the state: a run-time bound needs an index, such as \
-                     `self.x[k]` of `for k in 0..self.n`, that stops it; or write the bound \
-                     as an integer literal, or take the Jacobian by \
-                     `jacobian = finite_differences`)",
+                     indexes no array or vector of a known length with its variable, outside \
+                     branches and inner loops (odyn unrolls loops on the state: a run-time \
+                     bound needs an index, such as `self.x[k]` of `for k in 0..self.n`, that \
+                     stops it; or write the bound as an integer literal, or take the Jacobian \
+                     by `jacobian = finite_differences`)",
                 ));
             }
             self.past_end = false;
