@@ -859,7 +859,8 @@ struct Reviewed {
 #[system]
 #[allow(
     clippy::needless_range_loop,
-    reason = "index loops bounded by a parameter are the form under test"
+    clippy::explicit_counter_loop,
+    reason = "index loops and counters bounded by a parameter are the forms under test"
 )]
 impl Reviewed {
     fn derivative(&self) -> ReviewedState {
@@ -886,6 +887,14 @@ impl Reviewed {
         for i in 0..3 {
             out[i] += 0.5 * d[i];
         }
+        // A counter of the body's own, not the loop variable, indexes the state.
+        let mut j = 0;
+        let mut s = 0.0;
+        for _ in 0..self.n {
+            s += self.x[j] * self.x[j];
+            j += 1;
+        }
+        out[0] += 0.1 * s;
         // Nested loops both bounded at run time: the outer one indexes by `i` at its own level.
         for i in 0..self.n {
             out[i] -= 0.1 * self.x[i];

@@ -11,11 +11,14 @@
 //! only at run time. Such a loop is unrolled as far as it can run without indexing past the end
 //! of a vector or array (the original code panics beyond that, so no run goes further), each
 //! iteration guarded by the loop's own test, a branch on parameters: `for k in a..end` becomes
-//! `let end' = end; if a < end' { let k = a; body } if a + 1 < end' { … } …`, and `while c { body }`
-//! becomes `if c { body; if c { body; … } }`, nested, since each test runs only after the
-//! iterations before it. The most iterations are found by lowering the body, unguarded, until
-//! an index goes past the end at the iteration's own level; a loop whose body indexes nothing
-//! of a known length is refused. Past an end inside a branch of such a loop's body (`if i + 1 <
+//! `let end' = end; if a < end' { let k = a; body; if a + 1 < end' { … } }`, and
+//! `while c { body }` becomes `if c { body; if c { body; … } }`: nested, since each test runs
+//! only after the iterations before it, so locals the body changes (a counter) stay known from
+//! one iteration to the next. Up to 64 iterations nest; a longer `for` gets one flat test per
+//! iteration (a counter changed by its body is then refused), a longer `while` is refused. The
+//! most iterations are found by lowering the body, unguarded, until an index goes past the end
+//! at the iteration's own level; a loop whose body indexes nothing of a known length is
+//! refused. Past an end inside a branch of such a loop's body (`if i + 1 <
 //! self.n { self.x[i + 1] } else { 0.0 }` at the last i), the arm cannot be taken — the code
 //! would panic if it were — so it reads zero there and the iteration still counts.
 
@@ -199,13 +202,27 @@ impl Lowering<'_> {
             RangeLimits::HalfOpen(_) => quote::quote!(<),
             RangeLimits::Closed(_) => quote::quote!(<=),
         };
-        for j in 0..count {
+        // Up to MAX_NESTED iterations, each nested in the test of the one before (as `while`'s
+        // are), so a counter the body changes (`j += 1`) stays known in the next; above that,
+        // one flat test per iteration.
+        let mut nest: Vec<syn::Stmt> = Vec::new();
+        for j in (0..count).rev() {
             let k = first + j as i64;
             let literal = proc_macro2::Literal::i64_unsuffixed(k);
             let mut body: Vec<syn::Stmt> = bind(k).into_iter().collect();
             body.extend(l.body.stmts.iter().cloned());
-            stmts.push(syn::parse_quote!(if #literal #test #end_name { #(#body)* }));
+            if count <= MAX_NESTED {
+                nest = vec![syn::parse_quote!(
+                    if #literal #test #end_name { if true { #(#body)* } #(#nest)* }
+                )];
+            } else {
+                nest.insert(
+                    0,
+                    syn::parse_quote!(if #literal #test #end_name { #(#body)* }),
+                );
+            }
         }
+        stmts.extend(nest);
         self.count_iterations(count, &l.expr)?;
         self.guarded(&stmts)
     }
