@@ -854,6 +854,7 @@ struct Reviewed {
     x: [f64; 3],
     n: usize,
     c: [f64; 3],
+    v: Vector2<f64>,
 }
 
 #[system]
@@ -887,6 +888,14 @@ impl Reviewed {
         for i in 0..3 {
             out[i] += 0.5 * d[i];
         }
+        // A vector whose number type only its state-dependent uses fix (`zeros()`), and an
+        // index cast from a `u32` loop variable.
+        let mut z = Vector2::zeros();
+        z += self.v * self.x[1];
+        out[1] += z.x - z.y;
+        for k in 0..(self.n as u32) {
+            out[k as usize] -= 0.01 * self.x[k as usize].powi(2);
+        }
         // A counter of the body's own, not the loop variable, indexes the state.
         let mut j = 0;
         let mut s = 0.0;
@@ -913,6 +922,7 @@ fn guarded_loops_follow_short_circuits_free_ends_and_rows_changed_in_place() {
             x: [0.0; 3],
             n,
             c: [1.5, -0.5, 2.0],
+            v: Vector2::new(0.7, -1.3),
         };
         // Away from the switching surface x[i + 1] = x[i], where the `if` changes arm.
         check(&model, 0.0, 40, |r| {

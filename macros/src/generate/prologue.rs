@@ -71,7 +71,44 @@ pub(crate) fn prologue_tokens(prologue: &[Prologue], read: &HashSet<usize>) -> V
     statements
         .into_iter()
         .map(crate::math::route_statements)
+        .map(f64_zeros)
         .collect()
+}
+
+/// `Vector2::zeros()` → `Vector2::<f64>::zeros()` in the prologue's copies of the user's
+/// state-free code: there the later uses that fix the number type (state-dependent, so not
+/// copied) are missing, and rustc could not infer it.
+fn f64_zeros(tokens: TokenStream) -> TokenStream {
+    use syn::visit_mut::{self, VisitMut};
+    struct Zeros;
+    impl VisitMut for Zeros {
+        fn visit_expr_path_mut(&mut self, e: &mut syn::ExprPath) {
+            visit_mut::visit_expr_path_mut(self, e);
+            let segments = &mut e.path.segments;
+            let n = segments.len();
+            if n >= 2
+                && segments[n - 1].ident == "zeros"
+                && segments[n - 2]
+                    .ident
+                    .to_string()
+                    .strip_prefix("Vector")
+                    .and_then(|k| k.parse::<usize>().ok())
+                    .is_some_and(|k| (1..=6).contains(&k))
+                && segments[n - 2].arguments.is_none()
+            {
+                segments[n - 2].arguments =
+                    syn::PathArguments::AngleBracketed(syn::parse_quote!(::<f64>));
+            }
+        }
+    }
+    match syn::parse2::<syn::Block>(quote::quote!({ #tokens })) {
+        Ok(mut block) => {
+            Zeros.visit_block_mut(&mut block);
+            let statements = block.stmts;
+            quote::quote!(#(#statements)*)
+        }
+        Err(_) => tokens,
+    }
 }
 
 /// Collects the selectors and the opaque values (of those `read`) set inside `branch`, and their

@@ -35,6 +35,11 @@ use super::{Branch, BranchKind, Lowering, Prologue, Value};
 /// (`0..100000`) is an error, not a compiler that runs out of memory.
 const MAX_ITERATIONS: usize = 4096;
 
+/// The integer types a known integer may be cast to in an index (`k as usize`).
+const INTEGER_TYPES: [&str; 10] = [
+    "usize", "isize", "u8", "u16", "u32", "u64", "i8", "i16", "i32", "i64",
+];
+
 /// Most iterations of a `while` loop whose condition is known only at run time: each is nested
 /// in the test of the one before, and the generated code nests as deep.
 const MAX_NESTED: usize = 64;
@@ -61,6 +66,14 @@ impl Lowering<'_> {
         }
         if let Expr::Paren(p) = e {
             return self.known_integer(&p.expr);
+        }
+        // `k as usize` of an integer loop variable or counter.
+        if let Expr::Cast(c) = e
+            && INTEGER_TYPES
+                .iter()
+                .any(|t| crate::syntax::is_plain(&c.ty, t))
+        {
+            return self.known_integer(&c.expr);
         }
         let prologue = self.prologue.len();
         let value = self.expr(e).ok();
