@@ -567,4 +567,28 @@ mod unknown_jacobian_kind {
     fn main() {}
 }
 
+mod loop_over_an_iterator {
+    use odyn::system;
+
+    // A `for` over something other than a range the macro can unroll.
+    #[system]
+    struct Chain {
+        #[state]
+        x: [f64; 3],
+    }
+
+    #[system]
+    impl Chain {
+        fn derivative(&self) -> ChainState {
+            let mut out = [0.0; 3];
+            for k in (0..3).rev() {
+                out[k] = -self.x[k];
+            }
+            ChainState { x: out }
+        }
+    }
+
+    fn main() {}
+}
+
 fn main() {}

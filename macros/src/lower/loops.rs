@@ -24,8 +24,10 @@
 
 use std::collections::HashMap;
 
+use proc_macro2::TokenStream;
+use quote::ToTokens;
 use syn::visit::{self, Visit};
-use syn::{BinOp, Expr, ExprForLoop, ExprWhile, Lit, RangeLimits, UnOp};
+use syn::{BinOp, Expr, ExprForLoop, ExprWhile, Lit, RangeLimits, Stmt, UnOp};
 
 use super::statements::Context;
 use super::{Branch, BranchKind, Lowering, Prologue, Value};
@@ -40,9 +42,20 @@ const INTEGER_TYPES: [&str; 10] = [
     "usize", "isize", "u8", "u16", "u32", "u64", "i8", "i16", "i32", "i64",
 ];
 
-/// Most iterations of a `while` loop whose condition is known only at run time: each is nested
-/// in the test of the one before, and the generated code nests as deep.
+/// Most iterations of a loop bounded at run time whose tests nest (see [`nested`]): the
+/// generated code nests as deep. A longer `while` is refused, a longer `for` gets flat tests.
 const MAX_NESTED: usize = 64;
+
+/// `if test₀ { if true { body₀ } if test₁ { if true { body₁ } … } }`: each iteration's test runs
+/// only after the iterations before it ran, so the locals they change (a counter) stay known in
+/// the next; `if true` gives each body a scope of its own.
+fn nested(iterations: impl DoubleEndedIterator<Item = (TokenStream, Vec<Stmt>)>) -> Vec<Stmt> {
+    let mut nest: Vec<Stmt> = Vec::new();
+    for (test, body) in iterations.rev() {
+        nest = vec![syn::parse_quote!(if #test { if true { #(#body)* } #(#nest)* })];
+    }
+    nest
+}
 
 impl Lowering<'_> {
     /// The integer a state-free expression evaluates to at compile time: a literal, or a local
@@ -185,13 +198,13 @@ impl Lowering<'_> {
     /// run without indexing past an end.
     fn guarded_for(&mut self, l: &ExprForLoop, name: Option<&syn::Ident>) -> syn::Result<()> {
         let Expr::Range(r) = &*l.expr else {
-            return Err(self.unknown_bound(&l.expr, "for"));
+            return Err(self.unknown_bound(&l.expr));
         };
         let (Some(start), Some(end)) = (&r.start, &r.end) else {
-            return Err(self.unknown_bound(&l.expr, "for"));
+            return Err(self.unknown_bound(&l.expr));
         };
         let Some(first) = self.known_integer(start) else {
-            return Err(self.unknown_bound(&l.expr, "for"));
+            return Err(self.unknown_bound(&l.expr));
         };
         let end_name = quote::format_ident!("__odyn_end{}", self.selectors);
         // The loop variable has the end's type in the prologue, as in the user's loop (a bare
@@ -215,27 +228,22 @@ impl Lowering<'_> {
             RangeLimits::HalfOpen(_) => quote::quote!(<),
             RangeLimits::Closed(_) => quote::quote!(<=),
         };
-        // Up to MAX_NESTED iterations, each nested in the test of the one before (as `while`'s
-        // are), so a counter the body changes (`j += 1`) stays known in the next; above that,
-        // one flat test per iteration.
-        let mut nest: Vec<syn::Stmt> = Vec::new();
-        for j in (0..count).rev() {
+        let iterations = (0..count).map(|j| {
             let k = first + j as i64;
             let literal = proc_macro2::Literal::i64_unsuffixed(k);
             let mut body: Vec<syn::Stmt> = bind(k).into_iter().collect();
             body.extend(l.body.stmts.iter().cloned());
-            if count <= MAX_NESTED {
-                nest = vec![syn::parse_quote!(
-                    if #literal #test #end_name { if true { #(#body)* } #(#nest)* }
-                )];
-            } else {
-                nest.insert(
-                    0,
-                    syn::parse_quote!(if #literal #test #end_name { #(#body)* }),
-                );
-            }
+            (quote::quote!(#literal #test #end_name), body)
+        });
+        if count <= MAX_NESTED {
+            stmts.extend(nested(iterations));
+        } else {
+            // One flat test per iteration (a counter the body changes is then not followed).
+            stmts
+                .extend(iterations.map(|(test, body)| -> syn::Stmt {
+                    syn::parse_quote!(if #test { #(#body)* })
+                }));
         }
-        stmts.extend(nest);
         self.count_iterations(count, &l.expr)?;
         self.guarded(&stmts)
     }
@@ -260,10 +268,7 @@ impl Lowering<'_> {
             ));
         }
         let (cond, body) = (&w.cond, &w.body.stmts);
-        let mut nest: Vec<syn::Stmt> = Vec::new();
-        for _ in 0..count {
-            nest = vec![syn::parse_quote!(if #cond { if true { #(#body)* } #(#nest)* })];
-        }
+        let nest = nested((0..count).map(|_| (cond.to_token_stream(), body.clone())));
         self.count_iterations(count, &w.cond)?;
         self.guarded(&nest)
     }
@@ -337,20 +342,15 @@ impl Lowering<'_> {
         Ok(())
     }
 
-    fn unknown_bound(&self, at: &Expr, keyword: &str) -> syn::Error {
-        let what = if keyword == "for" {
-            "range"
-        } else {
-            "condition"
-        };
+    /// The refusal of a `for` on the state that is not over `a..end` (or `a..=end`) with a start
+    /// known at compile time.
+    fn unknown_bound(&self, at: &Expr) -> syn::Error {
         self.error(
             at,
-            format_args!(
-                "a loop whose body reads the state and whose {what} odyn cannot evaluate at \
-                 compile time (`{keyword}`; odyn unrolls a loop on the state, so its bounds must \
-                 be integer literals, or locals computed from them: `for k in 0..3`, \
-                 `while i < 3`)"
-            ),
+            "a loop whose body reads the state and whose range odyn cannot unroll (`for`; odyn \
+             unrolls a loop on the state, so it must run over a range whose start is an integer \
+             literal or a local computed from them and whose end is one too or reads only \
+             parameters: `for k in 0..3`, `for k in 1..self.n`)",
         )
     }
 
