@@ -1,6 +1,6 @@
 //! Expressions: literals, paths, fields and indices, operators, branch values (calls are
-//! [`super::calls`]), and the
-//! state literal `<Model>State { … }`; and the function's value as f(t, y) in state layout.
+//! [`super::calls`]), and the state literal `<Model>State { … }`; and the function's value as
+//! f(t, y) in state layout.
 
 use proc_macro2::TokenStream;
 use quote::ToTokens;
@@ -74,8 +74,7 @@ impl Lowering<'_> {
         }
     }
 
-    /// An array literal's value: a vector of numbers, or rows (a tuple) of vectors of one
-    /// length.
+    /// An array literal's value: a vector of numbers, or rows of vectors of one length.
     fn array(&self, elements: Vec<Value>, at: impl ToTokens) -> syn::Result<Value> {
         if let Some(numbers) = elements
             .iter()
