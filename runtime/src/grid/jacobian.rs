@@ -180,6 +180,8 @@ impl GridJacobian {
 }
 
 impl NewtonMatrix for GridJacobian {
+    const COSTLY_SOLVES: bool = true;
+
     fn configure(&mut self, newton: &crate::NewtonOptions, in_newton: bool) {
         self.solver.configure(
             &newton.linear,

@@ -16,7 +16,7 @@
 //! | [`Dop853`] | 8 | 12 (FSAL) | orders 5 and 3 | own, order 7 (3 more f) | slow drift, set by the tolerance | f(t, y) |
 //! | [`Rosenbrock23`] | 2 | 2 (FSAL), 1 J, 1 LU, 3 solves | order 3 | own, order 2 | damped (L-stable) | ∂f/∂y, ∂f/∂t |
 //! | [`Rodas5P`] | 5 | 8, 1 J, 1 LU, 8 solves | order 4 | own, order 4 | damped (L-stable) | ∂f/∂y, ∂f/∂t |
-//! | [`Bdf`] | 1–5 (2 at a fixed step) | 2–4 (Newton); J and LU kept across steps | order k + 1 difference | own, order k | damped (orders 1–2 A-stable) | ∂f/∂y |
+//! | [`Bdf`] | 1–5 (2 at a fixed step) | 2–4 (Newton; 1–3 on particle and field models); J and LU kept across steps | order k + 1 difference | own, order k | damped (orders 1–2 A-stable) | ∂f/∂y |
 //!
 //! Stability on an undamped oscillator of angular frequency ω: the split methods are stable for
 //! ω·dt < 2, RK4 for ω·dt < 2√2, explicit Euler for no dt at all, implicit Euler and the

@@ -39,8 +39,10 @@ pub struct NewtonOptions {
     pub linear: crate::LinearSolver,
     /// BDF only: the factorization of I − c·J (c = h/αₖ) is kept while c stays within this
     /// fraction of the c it was made with (default 0.3, CVODE's `DGMAX_LSETUP`), each Newton
-    /// update then scaled by 2/(1 + c/c_old) as CVODE does; 0 refactorizes whenever h or the
-    /// order changes, except for the retry after an error-test failure (SciPy's `BDF`).
+    /// update then scaled by 2/(1 + c/c_old) as CVODE does, and on particle and field models
+    /// Newton stops by CVODE's test; 0 is SciPy's `BDF` exactly: it refactorizes whenever h or
+    /// the order changes, except for the retry after an error-test failure, and stops Newton by
+    /// SciPy's tighter test ([`crate::integrators::Bdf`] has both).
     pub refactor_ratio: f64,
 }
 

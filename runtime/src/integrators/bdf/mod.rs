@@ -6,9 +6,10 @@ mod history;
 mod newton;
 
 use coefficients::{
-    ALPHA, BASIS, ERROR_CONST, FIXED_STEP_ORDER, GAMMA, MAX_FACTOR, MAX_ORDER, MIN_FACTOR,
-    NEWTON_MAXITER, change_d,
+    ALPHA, BASIS, CVODE_MAXCOR, CVODE_NLSCOEF, CVODE_SAFETY, ERROR_CONST, FIXED_STEP_ORDER, GAMMA,
+    MAX_FACTOR, MAX_ORDER, MIN_FACTOR, NEWTON_MAXITER, change_d,
 };
+use newton::Convergence;
 
 use crate::math::Transcendental;
 use super::DenseStep;
@@ -35,9 +36,22 @@ use crate::{
 ///   longer than the BDFs at the same accuracy at orders 1–3 (12 % at order 4; order 5 is BDF5)
 ///   for little loss of stability (NDF1, NDF2 are A-stable; NDF3–5 A(α)-stable, α = 80°, 66°,
 ///   51°).
-/// - **Newton**: at most 4 iterations; converged when rate/(1 − rate)·‖Δ‖ < tol (rate the ratio of
-///   successive ‖Δ‖), abandoned when the rate reaches 1 or cannot reach tol in the iterations
-///   left; tol = max(10ε/rtol, min(0.03, √rtol)), norms weighted by atol + rtol·|yₙ₊₁⁽⁰⁾|.
+/// - **Newton**, norms weighted by atol + rtol·|yₙ₊₁⁽⁰⁾| (so 1 is the error tolerance), SciPy's
+///   test: at most 4 iterations, converged when rate/(1 − rate)·‖Δ‖ < tol, tol = max(10ε/rtol,
+///   min(0.03, √rtol)) (rate the ratio of successive ‖Δ‖), abandoned when the rate reaches 1 or
+///   cannot reach tol in the iterations left. Where a solve is the cost — the sparse systems
+///   of particle and field models ([`NewtonMatrix::COSTLY_SOLVES`]) — and `refactor_ratio` is
+///   not 0, CVODE's test (Hindmarsh et al. 2005, §2.1; `cvNlsConvTest`) instead: at most 3
+///   iterations, converged when ‖Δ‖·min(1, R) ≤ 0.1/(κₖγₖ + 1/(k + 1)) — the correction's
+///   remaining error at most a tenth of the error test's allowance — with R the rate of
+///   convergence (max(0.3·R, ‖Δ‖/‖Δ_prev‖), 1 at the first iteration of each step), abandoned
+///   when ‖Δ‖ more than doubles. SciPy's tol is 300–1 000 times tighter at rtol 1e-6 and
+///   always takes two iterations. Measured on the Brusselator (README, "Big sparse systems"):
+///   at a final error of 1e-6 CVODE's test took half the solves and 0.63–0.72× the time at
+///   32², 64² and 128² cells. On small dense systems it was no better: at rtol 1e-6 on
+///   Robertson, HIRES and van der Pol μ = 1000 16–26 % more steps for 22–31 % fewer f
+///   evaluations and solves, and at equal error the stiff peers' bench moved 0.79–1.45× and
+///   Robertson's sensitivities to t = 10⁵ 1.59× slower, so dense models keep SciPy's.
 /// - **Reuse**: the LU of I − c·J is kept while c = h/αₖ stays within
 ///   [`NewtonOptions::refactor_ratio`] (default 0.3) of the c it was made with, each Newton
 ///   update then scaled by 2/(1 + c/c_old) (CVODE's rule: Hindmarsh et al., "SUNDIALS", ACM
@@ -48,8 +62,10 @@ use crate::{
 ///   with a fresh one, the step is halved ([`Error::NewtonDidNotConverge`], its residual the
 ///   max-norm of c·f − ψ − d, is the retriable failure the driver sees).
 /// - **Error**: err = (κₖγₖ + 1/(k + 1))·d ≈ (κₖγₖ + 1/(k + 1))·∇ᵏ⁺¹yₙ₊₁, in the tolerances'
-///   norm at yₙ₊₁. A rejected step shrinks h by max(0.2, s·err^(−1/(k+1))), s =
-///   0.9·(2·4 + 1)/(2·4 + Newton iterations).
+///   norm at yₙ₊₁. A rejected step shrinks h by max(0.2, s·err^(−1/(k+1))), with the safety
+///   s = 0.9·(2·4 + 1)/(2·4 + Newton iterations) under SciPy's Newton test and s = 0.7 under
+///   CVODE's (odyn's choice: SciPy's formula with it rejected 6–12 % of the Brusselator's
+///   attempts and about 1 % with 0.7).
 /// - **Order and step**: after k + 1 steps at the same h, the estimates of orders k − 1, k and
 ///   k + 1 (from ∇ᵏyₙ₊₁, d and ∇ᵏ⁺²yₙ₊₁) each propose a step, h·err_q^(−1/(q+1)); the largest
 ///   wins, times s, at most ×10. When h changes, D is re-sampled at the new spacing from the
@@ -199,7 +215,8 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
         for q in psi.iter_mut() {
             *q /= ALPHA[k];
         }
-        let (max_iters, tol) = match s.tolerances {
+        let ratio = self.newton.refactor_ratio;
+        let test = match s.tolerances {
             Some(tolerances) => {
                 // A component left out of the error test (atol +∞) is weighed by the smallest
                 // finite atol: found once, not per component.
@@ -215,21 +232,31 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
                     let atol = if atol.is_finite() { atol } else { fallback };
                     *w = atol + tolerances.rtol * p.abs();
                 }
-                let rtol = tolerances.rtol.max(100.0 * f64::EPSILON);
-                (
-                    NEWTON_MAXITER,
-                    (10.0 * f64::EPSILON / rtol).max(0.03f64.min(rtol.sqrt())),
-                )
+                if ratio > 0.0 && <M::Matrix as NewtonMatrix>::COSTLY_SOLVES {
+                    // The error estimate is ‖ERROR_CONST[k]·d‖: d's own error may use a tenth.
+                    Convergence::Cvode {
+                        tol: CVODE_NLSCOEF / ERROR_CONST[k],
+                        max_iters: CVODE_MAXCOR,
+                    }
+                } else {
+                    let rtol = tolerances.rtol.max(100.0 * f64::EPSILON);
+                    Convergence::SciPy {
+                        tol: (10.0 * f64::EPSILON / rtol).max(0.03f64.min(rtol.sqrt())),
+                        max_iters: NEWTON_MAXITER,
+                    }
+                }
             }
             None => {
                 for (w, p) in self.scale.as_mut_slice().iter_mut().zip(&*predict) {
                     *w = 1.0 + p.abs();
                 }
-                (self.newton.max_iters as usize, self.newton.tol)
+                Convergence::SciPy {
+                    tol: self.newton.tol,
+                    max_iters: self.newton.max_iters as usize,
+                }
             }
         };
         let c = h / ALPHA[k];
-        let ratio = self.newton.refactor_ratio;
         // CVODE's rule holds after a rejection too (SciPy's keeps the LU however far c moved).
         if ratio > 0.0 && (c / self.factored_c - 1.0).abs() > ratio {
             self.factored = false;
@@ -252,7 +279,7 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
             } else {
                 1.0
             };
-            match self.solve(model, (t_new, h, c, scale), (max_iters, tol), y_new, s.stats) {
+            match self.solve(model, (t_new, h, c, scale), test, y_new, s.stats) {
                 Ok(iters) => break iters,
                 Err(_) if stale => {
                     // A matrix made with another c: refactorize with this one, same J, first.
@@ -272,7 +299,12 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
             self.next = Some(h);
             return Ok(0.0);
         };
-        let safety = 0.9 * (2 * NEWTON_MAXITER + 1) as f64 / (2 * NEWTON_MAXITER + iters) as f64;
+        let safety = match test {
+            Convergence::Cvode { .. } => CVODE_SAFETY,
+            Convergence::SciPy { .. } => {
+                0.9 * (2 * NEWTON_MAXITER + 1) as f64 / (2 * NEWTON_MAXITER + iters) as f64
+            }
+        };
         let y = y_new.as_slice();
         let d = self.correction.as_slice();
         let norm = |e: &dyn Fn(usize) -> f64| tolerances.norm_of(e, y, y);

@@ -32,6 +32,13 @@ pub trait NewtonMatrix: Clone + fmt::Debug {
     /// [`NewtonMatrix::factors`].
     type Factors: Clone + fmt::Debug;
 
+    /// Whether one solve costs about as much as the rest of a step — a sparse system of a
+    /// particle or field model, solved by substitution in big factors or by Krylov iterations —
+    /// rather than a dense substitution that is cheap next to f and the factorization. BDF then
+    /// stops its Newton iteration by CVODE's looser test, which takes half the solves
+    /// ([`crate::integrators::Bdf`]). Default false.
+    const COSTLY_SOLVES: bool = false;
+
     /// Room for the factors of a matrix like this one.
     fn factors(&self) -> Self::Factors;
 

@@ -118,6 +118,8 @@ impl<const D: usize> ParticleJacobian<D> {
 }
 
 impl<const D: usize> NewtonMatrix for ParticleJacobian<D> {
+    const COSTLY_SOLVES: bool = true;
+
     fn configure(&mut self, newton: &crate::NewtonOptions, in_newton: bool) {
         self.definite = newton.definite;
         self.solver.configure(
