@@ -51,7 +51,7 @@ pub use fingerprint::Fingerprint;
 pub use integrators::Integrator;
 pub use linalg::{
     DenseMatrix, FactorizeError, FaerDense, Krylov, KrylovCounts, LinearSolver, NewtonMatrix,
-    NewtonOptions, Preconditioner, SolveError,
+    NewtonOptions, Preconditioner, SolveError, Solves,
 };
 pub use method::{Method, MethodInfo};
 pub use model::{Jacobian, Model, Parameters, SecondOrder, State, Unavailable};

@@ -29,6 +29,7 @@ fn krylovs() -> [LinearSolver; 4] {
             preconditioner,
             rtol: 1e-12,
             newton_rtol: 1e-12,
+            bdf_rtol: 1e-12,
             ..Krylov::default()
         })
     })
@@ -50,7 +51,7 @@ fn solve<M: Jacobian>(
     b: &[f64],
 ) -> Vec<f64> {
     let mut matrix = model.jacobian_matrix(state);
-    matrix.configure(newton, false);
+    matrix.configure(newton, odyn::Solves::OneStep);
     model.jacobian(0.0, state, &mut matrix);
     let mut factors = matrix.factors();
     matrix.factorize(c, &mut factors).expect("W is regular");
@@ -394,6 +395,13 @@ fn bad_krylov_options_are_typed_errors() {
                 ..Krylov::default()
             },
             "Krylov::rtol",
+        ),
+        (
+            Krylov {
+                bdf_rtol: 1.0,
+                ..Krylov::default()
+            },
+            "Krylov::bdf_rtol",
         ),
         (
             Krylov {

@@ -182,11 +182,11 @@ impl GridJacobian {
 impl NewtonMatrix for GridJacobian {
     const COSTLY_SOLVES: bool = true;
 
-    fn configure(&mut self, newton: &crate::NewtonOptions, in_newton: bool) {
+    fn configure(&mut self, newton: &crate::NewtonOptions, solves: crate::Solves) {
         self.solver.configure(
             &newton.linear,
             crate::linalg::krylov::Structure::Field,
-            in_newton,
+            solves,
         );
     }
 

@@ -52,7 +52,14 @@ impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
         _: &mut Stats,
     ) -> Result<Self> {
         let mut jacobian = model.jacobian_matrix(y0);
-        jacobian.configure(newton, !newton.linearized);
+        jacobian.configure(
+            newton,
+            if newton.linearized {
+                crate::Solves::OneStep
+            } else {
+                crate::Solves::Newton
+            },
+        );
         Ok(ImplicitEuler {
             newton: *newton,
             force: y0.try_clone()?,

@@ -73,7 +73,7 @@ impl<M: Jacobian, T: RosenbrockTableau, const K: usize> Integrator<M> for Rosenb
         _: &mut Stats,
     ) -> Result<Self> {
         let mut linear = Linearization::new(model, y0)?;
-        crate::NewtonMatrix::configure(&mut linear.jacobian, newton, false);
+        crate::NewtonMatrix::configure(&mut linear.jacobian, newton, crate::Solves::OneStep);
         Ok(Rosenbrock {
             linear,
             f0: y0.try_clone()?,

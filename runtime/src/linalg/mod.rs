@@ -11,5 +11,5 @@ pub(crate) mod sparse;
 pub(crate) mod spd;
 
 pub use dense::{DenseMatrix, FactorizeError, FaerDense, NewtonMatrix, SolveError};
-pub use krylov::{Krylov, KrylovCounts, LinearSolver, Preconditioner};
+pub use krylov::{Krylov, KrylovCounts, LinearSolver, Preconditioner, Solves};
 pub use newton::NewtonOptions;

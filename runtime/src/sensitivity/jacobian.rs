@@ -103,8 +103,8 @@ impl<J: NewtonMatrix + DenseMatrix> NewtonMatrix for AugmentedJacobian<J> {
         Ok(())
     }
 
-    fn configure(&mut self, newton: &NewtonOptions, in_newton: bool) {
-        self.jacobian.configure(newton, in_newton);
+    fn configure(&mut self, newton: &NewtonOptions, solves: crate::Solves) {
+        self.jacobian.configure(newton, solves);
     }
 }
 

@@ -152,7 +152,13 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
         stats: &mut Stats,
     ) -> Result<Self> {
         let mut jacobian = model.jacobian_matrix(y0);
-        jacobian.configure(newton, true);
+        // CVODE's Newton test where solves are the cost (`attempt`), with solves to match.
+        let solves = if newton.refactor_ratio > 0.0 && <M::Matrix as NewtonMatrix>::COSTLY_SOLVES {
+            crate::Solves::LooseNewton
+        } else {
+            crate::Solves::Newton
+        };
+        jacobian.configure(newton, solves);
         model.jacobian(t0, y0, &mut jacobian);
         stats.jacobian_evaluations += 1;
         let mut bdf = Bdf {

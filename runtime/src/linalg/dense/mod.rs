@@ -55,11 +55,10 @@ pub trait NewtonMatrix: Clone + fmt::Debug {
     fn solve(&mut self, factors: &mut Self::Factors, b: &mut [f64]) -> Result<(), SolveError>;
 
     /// Takes the options of the run that will solve with this matrix (dense matrices have none
-    /// to take; particle Jacobians read [`crate::NewtonOptions::definite`]). `in_newton`: the
-    /// solves are the updates of a Newton iteration, which corrects their error (BDF, full-Newton
-    /// implicit Euler), so an iterative solve may stop at [`crate::Krylov::newton_rtol`].
-    fn configure(&mut self, newton: &crate::NewtonOptions, in_newton: bool) {
-        let _ = (newton, in_newton);
+    /// to take; particle Jacobians read [`crate::NewtonOptions::definite`]). `solves` says what
+    /// the solves are for, which decides where an iterative solve stops ([`crate::Solves`]).
+    fn configure(&mut self, newton: &crate::NewtonOptions, solves: crate::Solves) {
+        let _ = (newton, solves);
     }
 }
 

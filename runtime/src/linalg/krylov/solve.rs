@@ -10,7 +10,7 @@ use faer::matrix_free::{InitialGuessStatus, Precond};
 use faer::{MatMut, MatRef, Par};
 
 use super::bicgstab::{Vectors, bicgstab};
-use super::{Krylov, KrylovCounts, Preconditioner};
+use super::{Krylov, KrylovCounts, Preconditioner, Solves};
 use crate::linalg::precond::Column;
 use crate::linalg::sparse::RowMatrix;
 
@@ -34,8 +34,8 @@ pub(crate) struct KrylovSolver {
     pub(crate) direct_above: Option<usize>,
     /// Iterations of the last solve.
     pub(crate) last_iterations: usize,
-    /// The solves are a Newton iteration's updates: they stop at `newton_rtol`.
-    pub(crate) in_newton: bool,
+    /// What the solves are for: where they stop.
+    pub(crate) solves: Solves,
 }
 
 /// A Krylov solve that did not converge within `max_iters`, broke down, or ended on a
@@ -56,7 +56,7 @@ impl KrylovSolver {
             refresh: false,
             direct_above: None,
             last_iterations: 0,
-            in_newton: false,
+            solves: Solves::OneStep,
         }
     }
 
@@ -83,7 +83,11 @@ impl KrylovSolver {
             warm_start,
             ..
         } = self.options;
-        let rtol = if self.in_newton { newton_rtol } else { rtol };
+        let rtol = match self.solves {
+            Solves::OneStep => rtol,
+            Solves::Newton => newton_rtol,
+            Solves::LooseNewton => self.options.bdf_rtol,
+        };
         // The warm start's scale, found once (one product) for whichever method runs.
         let scale = if warm_start {
             warm_scale(a, &self.guess, &mut self.product, &self.rhs)
@@ -201,7 +205,7 @@ impl Clone for KrylovSolver {
             refresh: self.refresh,
             direct_above: self.direct_above,
             last_iterations: self.last_iterations,
-            in_newton: self.in_newton,
+            solves: self.solves,
         }
     }
 }

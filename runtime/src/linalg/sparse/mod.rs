@@ -19,7 +19,7 @@ use faer::sparse::linalg::lu::{NumericLu, SymbolicLu};
 use faer::sparse::{Pair, SparseColMatRef, SymbolicSparseColMat};
 
 use super::dense::FactorizeError;
-use super::krylov::{KrylovCounts, KrylovSolver, LinearSolver, Preconditioner, Structure};
+use super::krylov::{KrylovCounts, KrylovSolver, LinearSolver, Preconditioner, Solves, Structure};
 use super::multigrid::Multigrid;
 use super::precond::{BlockJacobi, Ilu0};
 
@@ -164,12 +164,12 @@ impl SparseSolver {
         &mut self,
         linear: &LinearSolver,
         structure: Structure,
-        in_newton: bool,
+        solves: Solves,
     ) {
         let n = self.rhs.len();
         self.krylov = linear.krylov_for(n, structure);
         if let Some(krylov) = &mut self.krylov {
-            krylov.in_newton = in_newton;
+            krylov.solves = solves;
         }
         if self.krylov.is_some() && self.rows.is_none() {
             self.rows = RowMatrix::new(&self.pattern);

@@ -51,7 +51,7 @@ fn krylov_solves_agree_with_the_direct_solve() {
                 rtol: 1e-12,
                 ..Krylov::default()
             });
-            krylov.configure(&linear, Structure::Field, false);
+            krylov.configure(&linear, Structure::Field, Solves::OneStep);
             fill(&mut krylov);
             for _ in 0..2 {
                 krylov.factorize().expect("the matrix is regular");

@@ -120,12 +120,12 @@ impl<const D: usize> ParticleJacobian<D> {
 impl<const D: usize> NewtonMatrix for ParticleJacobian<D> {
     const COSTLY_SOLVES: bool = true;
 
-    fn configure(&mut self, newton: &crate::NewtonOptions, in_newton: bool) {
+    fn configure(&mut self, newton: &crate::NewtonOptions, solves: crate::Solves) {
         self.definite = newton.definite;
         self.solver.configure(
             &newton.linear,
             crate::linalg::krylov::Structure::Particles,
-            in_newton,
+            solves,
         );
     }
 
