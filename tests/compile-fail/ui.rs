@@ -4,7 +4,7 @@
 //! file of `tests/ui/<topic>/` for a case whose error rustc reports only when nothing else in the
 //! crate failed (a `const` evaluated after type checking, a type error after expansion). The
 //! expected output is the `.stderr` beside each file (regenerate with
-//! `TRYBUILD=overwrite cargo test -p odyn-tests --test ui` and review).
+//! `TRYBUILD=overwrite cargo test -p odyn-compile-fail --test ui` and review).
 
 /// The flags trybuild 1.0 gives rustc when it compiles the cases (`--cfg trybuild --verbose -A
 /// dead_code --diagnostic-width=140`), unit-separated as `CARGO_ENCODED_RUSTFLAGS` wants them.
