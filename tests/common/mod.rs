@@ -69,6 +69,13 @@ pub fn check<M: odyn::Jacobian>(
     }
 }
 
+/// max |xᵢ − yᵢ| over the pairs of two equally long slices.
+pub fn max_abs_difference(x: &[f64], y: &[f64]) -> f64 {
+    x.iter()
+        .zip(y)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()))
+}
+
 pub fn central<M: Model>(model: &M, t: f64, y: &M::State, row: usize, column: usize) -> f64 {
     let h = 1e-6 * (1.0 + y.as_slice()[column].abs());
     let (mut plus, mut minus) = (y.clone(), y.clone());

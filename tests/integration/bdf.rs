@@ -489,13 +489,7 @@ fn a_field_model_steps_with_its_sparse_jacobian() {
         .run()
         .unwrap();
     let exact = Grid::from_fn(n, n, Boundary::Dirichlet(0.0), |i, j| at(i, j, 0.5)).unwrap();
-    let error = run
-        .last()
-        .state
-        .as_slice()
-        .iter()
-        .zip(exact.values())
-        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    let error = common::max_abs_difference(run.last().state.as_slice(), exact.values());
     let stats = run.stats;
     eprintln!("heat: {stats}, error {error:.2e}");
     assert!(error < 1e-6, "{error:e}");
@@ -563,13 +557,7 @@ fn field_models_take_fewer_newton_iterations() {
         ),
     ] {
         let run = go(Method::Bdf, 1e-6, newton);
-        let error = run
-            .last()
-            .state
-            .as_slice()
-            .iter()
-            .zip(&reference)
-            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        let error = common::max_abs_difference(run.last().state.as_slice(), &reference);
         let stats = run.stats;
         let per_step = stats.linear_solves as f64 / (stats.steps + stats.rejected) as f64;
         eprintln!("{name}: {stats}, {per_step:.2} solves an attempt, error {error:.2e}");

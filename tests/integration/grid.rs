@@ -414,9 +414,7 @@ fn every_first_order_method_runs_on_a_field_model() {
             .run()
             .unwrap();
         let state = &run.samples.last().unwrap().state;
-        (state.as_slice().iter())
-            .zip(reference.as_slice())
-            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()))
+        crate::common::max_abs_difference(state.as_slice(), reference.as_slice())
     };
     for (method, order, dt) in [
         (Method::ExplicitEuler, 1.0, 1.0),

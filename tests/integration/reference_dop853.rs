@@ -97,10 +97,7 @@ fn arenstorf_steps_match_scipy() {
             .run()
             .unwrap();
         let s = run.last().state;
-        let error = [s.y1, s.y2, s.v1, s.v2]
-            .iter()
-            .zip(reference)
-            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        let error = common::max_abs_difference(&[s.y1, s.y2, s.v1, s.v2], &reference);
         let stats = run.stats;
         eprintln!(
             "Arenstorf tol {:e}: odyn {} accepted / {} rejected (SciPy {} / {}), error {error:.2e}",

@@ -12,6 +12,11 @@ pub(super) const CVODE_MAXCOR: usize = 3;
 /// CVODE's test accepts a correction whose remaining error, weighted by the step's error
 /// constant, is at most this fraction of the error tolerance (CVODE's `nlscoef`).
 pub(super) const CVODE_NLSCOEF: f64 = 0.1;
+/// CVODE's rate estimate falls by at most this factor an iteration: R = max(0.3·R, rate)
+/// (CVODE's `CRDOWN`).
+pub(super) const CVODE_CRDOWN: f64 = 0.3;
+/// CVODE's test abandons an iteration whose update grew more than this factor (`RDIV`).
+pub(super) const CVODE_RDIV: f64 = 2.0;
 /// The step-size safety factor with CVODE's test, in place of SciPy's 0.9 × (2·4 + 1)/(2·4 +
 /// iterations): odyn's choice, measured (`Bdf`'s doc): 0.9 stepped so close to the tolerance
 /// that the looser Newton solutions tipped 6–12 % of the attempts over it.

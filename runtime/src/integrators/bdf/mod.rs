@@ -47,7 +47,7 @@ use crate::{
 ///   convergence (max(0.3·R, ‖Δ‖/‖Δ_prev‖), 1 at the first iteration of each step), abandoned
 ///   when ‖Δ‖ more than doubles. SciPy's tol is 300–1 000 times tighter at rtol 1e-6 and
 ///   always takes two iterations. Measured on the Brusselator (README, "Big sparse systems"):
-///   at a final error of 1e-6 CVODE's test took half the solves and 0.63–0.72× the time at
+///   at a final error of 1e-6 CVODE's test took half the solves and 0.62–0.72× the time at
 ///   32², 64² and 128² cells. On small dense systems it was no better: at rtol 1e-6 on
 ///   Robertson, HIRES and van der Pol μ = 1000 16–26 % more steps for 22–31 % fewer f
 ///   evaluations and solves, and at equal error the stiff peers' bench moved 0.79–1.45× and
@@ -153,7 +153,7 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
     ) -> Result<Self> {
         let mut jacobian = model.jacobian_matrix(y0);
         // CVODE's Newton test where solves are the cost (`attempt`), with solves to match.
-        let solves = if newton.refactor_ratio > 0.0 && <M::Matrix as NewtonMatrix>::COSTLY_SOLVES {
+        let solves = if Self::cvode_test(newton) {
             crate::Solves::LooseNewton
         } else {
             crate::Solves::Newton
@@ -238,7 +238,7 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
                     let atol = if atol.is_finite() { atol } else { fallback };
                     *w = atol + tolerances.rtol * p.abs();
                 }
-                if ratio > 0.0 && <M::Matrix as NewtonMatrix>::COSTLY_SOLVES {
+                if Self::cvode_test(&self.newton) {
                     // The error estimate is ‖ERROR_CONST[k]·d‖: d's own error may use a tenth.
                     Convergence::Cvode {
                         tol: CVODE_NLSCOEF / ERROR_CONST[k],

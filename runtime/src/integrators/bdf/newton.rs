@@ -2,7 +2,8 @@
 //! reuses.
 
 use super::Bdf;
-use crate::{Error, Jacobian, NewtonFailure, NewtonMatrix, Result, State, Stats};
+use super::coefficients::{CVODE_CRDOWN, CVODE_RDIV};
+use crate::{Error, Jacobian, NewtonFailure, NewtonMatrix, NewtonOptions, Result, State, Stats};
 
 /// When the Newton iteration of a step has converged; ‖Δ‖ is the update's weighted RMS norm and
 /// the rate ‖Δ‖/‖Δ_prev‖ is measured within the step.
@@ -21,6 +22,12 @@ pub(super) enum Convergence {
 }
 
 impl<M: Jacobian> Bdf<M> {
+    /// Whether an adaptive run with `newton` stops Newton by CVODE's test: where a solve is the
+    /// cost ([`NewtonMatrix::COSTLY_SOLVES`]) and CVODE's rules are on (`refactor_ratio` > 0).
+    pub(super) fn cvode_test(newton: &NewtonOptions) -> bool {
+        newton.refactor_ratio > 0.0 && <M::Matrix as NewtonMatrix>::COSTLY_SOLVES
+    }
+
     /// The simplified Newton iteration for d = c·f(tₙ₊₁, y⁽⁰⁾ + d) − ψ from d = 0 (SciPy's
     /// `solve_bdf_system`), leaving yₙ₊₁ in `y` and d in `self.correction`; returns the
     /// iterations made. Each update is multiplied by `scale` (CVODE's correction for a matrix
@@ -98,7 +105,7 @@ impl<M: Jacobian> Bdf<M> {
                 {
                     Some(NewtonFailure::Iterations)
                 }
-                (Convergence::Cvode { .. }, Some(rate)) if rate > 2.0 => {
+                (Convergence::Cvode { .. }, Some(rate)) if rate > CVODE_RDIV => {
                     Some(NewtonFailure::Diverging)
                 }
                 _ => None,
@@ -121,7 +128,7 @@ impl<M: Jacobian> Bdf<M> {
                 }
                 Convergence::Cvode { tol, .. } => {
                     if let Some(rate) = rate {
-                        rate_bound = (0.3 * rate_bound).max(rate);
+                        rate_bound = (CVODE_CRDOWN * rate_bound).max(rate);
                     }
                     norm * rate_bound.min(1.0) <= tol
                 }
