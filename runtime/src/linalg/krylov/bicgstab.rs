@@ -13,7 +13,7 @@ use faer::dyn_stack::MemStack;
 
 use crate::linalg::krylov::NoConvergence;
 use crate::linalg::precond::Column;
-use crate::linalg::sparse::RowMatrix;
+use crate::linalg::sparse::Products;
 
 /// The vectors of one solve, kept between solves.
 #[derive(Clone, Debug)]
@@ -56,7 +56,7 @@ impl Vectors {
 /// non-finite ρ, r̂₀·v or ω).
 #[allow(clippy::too_many_arguments)] // reason: the operator, its preconditioner, the system and the stopping rule, each needed
 pub(super) fn bicgstab(
-    a: &RowMatrix,
+    a: Products<'_>,
     k: &impl Column,
     b: &[f64],
     x: &mut [f64],

@@ -12,7 +12,7 @@ use faer::{MatMut, MatRef, Par};
 use super::bicgstab::{Vectors, bicgstab};
 use super::{Krylov, KrylovCounts, Preconditioner, Solves};
 use crate::linalg::precond::Column;
-use crate::linalg::sparse::RowMatrix;
+use crate::linalg::sparse::Products;
 
 /// What a Krylov solve keeps between calls: the options, the previous solution for the warm
 /// start, and every buffer, allocated once.
@@ -67,7 +67,7 @@ impl KrylovSolver {
     /// Errors: [`NoConvergence`], with `x` holding b again.
     pub(crate) fn solve<P: Precond<f64> + Column + Copy>(
         &mut self,
-        a: &RowMatrix,
+        a: Products<'_>,
         symmetric: bool,
         precond: P,
         x: &mut [f64],
@@ -158,7 +158,7 @@ impl KrylovSolver {
     /// Makes the stack big enough for both methods with `precond` (allocates only when a
     /// bigger preconditioner appears: the first LU of a run, or multigrid taking over from block
     /// Jacobi under `Auto`, once).
-    fn reserve<P: Precond<f64> + Column + Copy>(&mut self, a: &RowMatrix, precond: P) {
+    fn reserve<P: Precond<f64> + Column + Copy>(&mut self, a: Products<'_>, precond: P) {
         let need =
             conjugate_gradient_scratch(precond, a, 1, Par::Seq).or(Column::scratch(&precond));
         if need.size_bytes() > self.scratch.size_bytes()
@@ -172,7 +172,7 @@ impl KrylovSolver {
 
 /// The α minimising ‖b − α·A·guess‖₂ (so α·guess never starts worse than zero): 0 when there is
 /// no guess yet or the product says nothing.
-fn warm_scale(a: &RowMatrix, guess: &[f64], product: &mut [f64], b: &[f64]) -> f64 {
+fn warm_scale(a: Products<'_>, guess: &[f64], product: &mut [f64], b: &[f64]) -> f64 {
     if guess.iter().all(|&v| v == 0.0) {
         return 0.0;
     }

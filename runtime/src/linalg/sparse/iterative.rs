@@ -4,24 +4,29 @@
 use faer::sparse::linalg::cholesky::LltRef;
 use faer::sparse::linalg::lu::LuRef;
 
-use super::{Factored, SparseSolver};
+use super::{Factored, Products, SparseSolver, StencilMatrix};
 use crate::linalg::krylov::{LinearSolver, NoConvergence, Preconditioner};
 use crate::linalg::multigrid::{Multigrid, MultigridRef};
 use crate::linalg::precond::{Factors, Ilu0Ref};
 
 impl SparseSolver {
-    /// The Krylov solve.
+    /// The Krylov solve, by `stencil`'s products when given, else by the rows'.
     ///
     /// Errors: [`NoConvergence`] (rhs unchanged then), also when the run has no Krylov solver.
-    pub(super) fn solve_iteratively(&mut self) -> Result<(), NoConvergence> {
+    pub(super) fn solve_iteratively(
+        &mut self,
+        stencil: Option<&StencilMatrix>,
+    ) -> Result<(), NoConvergence> {
         let Some(krylov) = &mut self.krylov else {
             return Err(NoConvergence);
         };
         if !self.rhs.iter().all(|b| b.is_finite()) {
             return Ok(()); // a non-finite right-hand side stays non-finite: the caller reports it
         }
-        let Some(rows) = &self.rows else {
-            return Err(NoConvergence);
+        let rows = match (stencil, &self.rows) {
+            (Some(stencil), _) => Products::Stencil(stencil),
+            (None, Some(rows)) => Products::Rows(rows),
+            (None, None) => return Err(NoConvergence),
         };
         let n = self.rhs.len();
         let outcome = match (krylov.options.preconditioner, self.factored, &self.lu) {

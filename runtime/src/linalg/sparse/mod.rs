@@ -25,11 +25,15 @@ use super::precond::{BlockJacobi, Ilu0};
 
 mod direct;
 mod iterative;
+mod products;
 mod rows;
+mod stencil;
 #[cfg(test)]
 mod tests;
 
+pub(crate) use products::Products;
 pub(crate) use rows::RowMatrix;
+pub(crate) use stencil::{Edge, StencilBlock, StencilMatrix};
 
 /// How often a sparse Newton matrix has factorized: the symbolic analyses happen once per run,
 /// the numeric factorizations once per Newton iteration (or Rosenbrock step).
@@ -72,8 +76,11 @@ pub(crate) struct SparseSolver {
     skip_cholesky: u32,
     /// The Krylov solver, when the run chose one ([`SparseSolver::configure`]).
     krylov: Option<KrylovSolver>,
-    /// The matrix by rows for the Krylov solver's products, made when a run first asks for them.
+    /// The matrix by rows for the Krylov solver's products, made when a run first asks for them
+    /// (unless the caller brings its own: [`SparseSolver::products_given`]).
     rows: Option<RowMatrix>,
+    /// The caller passes the Krylov solves' products to [`SparseSolver::substitute_with`].
+    products_given: bool,
     /// The diagonal blocks block Jacobi inverts (points until [`SparseSolver::set_blocks`]).
     jacobi: BlockJacobi,
     /// ILU(0)'s structure and factors, made when a run first asks for them.
@@ -142,6 +149,7 @@ impl SparseSolver {
             skip_cholesky: 0,
             krylov: None,
             rows: None,
+            products_given: false,
             ilu: None,
             multigrid: None,
             blocks: (1, (0..n).collect()),
@@ -158,6 +166,12 @@ impl SparseSolver {
         self.blocks = (size, index);
     }
 
+    /// The caller will pass the Krylov solves' products ([`SparseSolver::substitute_with`]): no
+    /// matrix by rows is made or filled.
+    pub(crate) fn products_given(&mut self) {
+        self.products_given = true;
+    }
+
     /// Chooses how the systems of this run are solved: direct, or the Krylov method `linear`
     /// gives for this size (its buffers allocated here).
     pub(crate) fn configure(
@@ -171,7 +185,7 @@ impl SparseSolver {
         if let Some(krylov) = &mut self.krylov {
             krylov.solves = solves;
         }
-        if self.krylov.is_some() && self.rows.is_none() {
+        if self.krylov.is_some() && self.rows.is_none() && !self.products_given {
             self.rows = RowMatrix::new(&self.pattern);
             if self.rows.is_none() {
                 // Beyond 32-bit indices (2³² entries): a size no Krylov run here has reached.
@@ -218,6 +232,11 @@ impl SparseSolver {
             .iter()
             .zip(&self.transpose)
             .all(|(&a, &t)| (a - self.values[t]).abs() <= tolerance)
+    }
+
+    /// The last factorization prepared a Krylov solve.
+    pub(crate) fn is_iterative(&self) -> bool {
+        self.iterative
     }
 
     /// Prepares to solve with the values: for a Krylov run, builds the block Jacobi
@@ -268,7 +287,13 @@ impl SparseSolver {
     /// the last factorization prepared one (redone directly if it fails; NaN if the matrix
     /// then turns out singular), else by substitution in the direct factors.
     pub(crate) fn substitute(&mut self) {
-        if self.iterative && self.solve_iteratively().is_ok() {
+        self.substitute_with(None);
+    }
+
+    /// [`SparseSolver::substitute`], a Krylov solve multiplying by `stencil` when given (it must
+    /// be the same matrix as the values).
+    pub(crate) fn substitute_with(&mut self, stencil: Option<&StencilMatrix>) {
+        if self.iterative && self.solve_iteratively(stencil).is_ok() {
             return;
         }
         if self.iterative {
@@ -308,6 +333,7 @@ impl Clone for SparseSolver {
             skip_cholesky: self.skip_cholesky,
             krylov: self.krylov.clone(),
             rows: self.rows.clone(),
+            products_given: self.products_given,
             ilu: self.ilu.clone(),
             multigrid: self.multigrid.clone(),
             blocks: self.blocks.clone(),
