@@ -179,6 +179,22 @@ fn save_at_records_the_requested_times() {
         let (x, _) = exact.state_at(1.0, 0.0, s.t);
         assert!((s.state.x - x).abs() < 1e-8, "t = {}", s.t);
     }
+    // A run that records only where asked keeps no interpolants (a big model's memory) unless
+    // asked; one that records every step keeps them.
+    assert!(run.dense.is_none() && run.at(1.1).is_err());
+    let every = spring.simulate().integrator(Method::Dop853).duration(1.0);
+    assert!(every.clone().run().unwrap().dense.is_some());
+    assert!(
+        every
+            .clone()
+            .record_every(10)
+            .run()
+            .unwrap()
+            .dense
+            .is_none()
+    );
+    let kept = every.save_at(&times).dense_output(true).run().unwrap();
+    assert!(kept.at(0.3).is_ok());
     // Fixed-step runs can save at chosen times too (cubic Hermite between grid points).
     let run = spring
         .simulate()

@@ -280,6 +280,7 @@ fn sensitivities_of_decay_match_the_closed_form() {
         .tolerances(1e-12, 1e-14)
         .duration(3.0)
         .save_at(&[1.0, 2.0, 3.0])
+        .dense_output(true)
         .run()
         .unwrap();
     assert_eq!(run.last().state.columns(), ["k", "c(t0)"]);

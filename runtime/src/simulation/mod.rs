@@ -116,13 +116,16 @@ impl<'m, M: Model> Simulation<'m, M> {
         self
     }
 
-    /// Records every `n`-th step.
+    /// Records every `n`-th step (and keeps no dense output unless
+    /// [`Simulation::dense_output`] asks).
     pub fn record_every(mut self, n: u64) -> Self {
         self.options.record_every = n;
         self
     }
 
-    /// Records the state only at `times` (and at the start and end), through the dense output.
+    /// Records the state only at `times` (and at the start and end), through each step's dense
+    /// output; keeps no dense output for [`Trajectory::at`] unless [`Simulation::dense_output`]
+    /// asks.
     pub fn save_at(mut self, times: &[f64]) -> Self {
         self.options.save_at = Some(times.to_vec());
         self
