@@ -94,9 +94,10 @@ fn stepping_a_field_model_allocates_nothing() {
         }),
         ..NewtonOptions::default()
     };
-    let (jacobi, multigrid) = (
+    let (jacobi, multigrid, fourier) = (
         krylov(Preconditioner::BlockJacobi),
         krylov(Preconditioner::Multigrid),
+        krylov(Preconditioner::Fourier),
     );
     // Multigrid on heat's 144 unknowns is its coarsest level alone (a dense LU); on Gray–Scott
     // at 24² cells (1 152 unknowns, above the 300 a dense LU takes) it has coarse levels: its
@@ -118,6 +119,11 @@ fn stepping_a_field_model_allocates_nothing() {
         (
             "implicit Euler, Gray–Scott, multigrid BiCGSTAB",
             allocations_with::<GrayScott, ImplicitEuler<_>>(&gray_scott(24), 5.0, &multigrid),
+        ),
+        (
+            // Its transforms and per-wave-number solves run in faer's work stack.
+            "implicit Euler, Gray–Scott, Fourier BiCGSTAB",
+            allocations_with::<GrayScott, ImplicitEuler<_>>(&gray_scott(24), 5.0, &fourier),
         ),
     ];
     for (method, count) in counts {

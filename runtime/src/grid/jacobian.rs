@@ -57,7 +57,6 @@ impl GridJacobian {
             entries.extend(blocks.iter().filter_map(|b| column(k, b)));
         }
         let mut solver = SparseSolver::new(n, &entries);
-        solver.products_given();
         // Block Jacobi inverts each cell's fields × fields block.
         let fields = boundaries.len();
         solver.set_blocks(
@@ -79,7 +78,7 @@ impl GridJacobian {
             Boundary::Neumann => Edge::Clamp,
             Boundary::Dirichlet(_) => Edge::Drop,
         };
-        let stencil = blocks
+        let stencil: Vec<StencilBlock> = blocks
             .iter()
             .map(|b| {
                 let (_, di, dj) = NEIGHBOURS[b.neighbour];
@@ -93,11 +92,13 @@ impl GridJacobian {
                 }
             })
             .collect();
+        let stencil = StencilMatrix::new(nx, ny, fields, stencil);
+        solver.on_grid(&stencil);
         GridJacobian {
             nx,
             ny,
             blocks: blocks.len(),
-            stencil: StencilMatrix::new(nx, ny, fields, stencil),
+            stencil,
             c: 0.0,
             slots,
             diagonal: (0..n).map(|i| solver.slot(i, i)).collect(),
@@ -186,11 +187,8 @@ impl GridJacobian {
     ///
     /// Errors: [`FactorizeError::Singular`].
     pub fn factorize(&mut self) -> Result<(), FactorizeError> {
-        self.solver.factorize()?;
-        if self.solver.is_iterative() {
-            self.stencil.prepare(self.c);
-        }
-        Ok(())
+        self.stencil.prepare(self.c);
+        self.solver.factorize_with(Some(&self.stencil))
     }
 
     /// Solves the last factorization against `b` in place: the "solve" of a step's cost.

@@ -222,6 +222,16 @@ pub enum Preconditioner {
     /// to nothing (unlinked or pinned particles) are lumped eight to an aggregate; a matrix that
     /// still does not coarsen to 1 000 unknowns is preconditioned by block Jacobi instead.
     Multigrid,
+    /// Field models on periodic grids: I − c·J with each of the cells' Jacobian blocks replaced
+    /// by its mean over the grid, which the two-dimensional discrete Fourier transform
+    /// diagonalises, inverted exactly wave number by wave number (T. Chan's optimal circulant
+    /// preconditioner, SIAM J. Sci. Stat. Comput. 9, 1988), rebuilt at every factorization: two
+    /// transforms of each field per application, O(N log N), with no coarse levels to set up.
+    /// Exact where J is the same at every cell (constant diffusion, a uniform reaction), so a
+    /// solve then takes one iteration; the more the reaction varies over the grid against the
+    /// diffusion, the more iterations it needs. A particle model, a field that is not periodic,
+    /// or more than 8 fields get [`Preconditioner::BlockJacobi`] instead.
+    Fourier,
     /// The sparse Cholesky or LU factors of an earlier matrix, applied by substitution, and
     /// refactorized when a solve needs more than `refresh_above` iterations: a factorization
     /// reused over many steps while the matrix changes slowly (the reuse of CVODE's and

@@ -7,6 +7,9 @@
 //! - [`Ilu0`]: the incomplete LU factorization on the matrix's own pattern (no fill), rebuilt
 //!   every factorization: a sparse product's cost per application, and far fewer iterations
 //!   than block Jacobi on diffusion-dominated matrices.
+//! - [`Fourier`]: on a periodic grid, I − c·J with every block averaged over the cells,
+//!   inverted exactly by the two-dimensional Fourier transform: O(N log N) per application,
+//!   exact for constant-coefficient diffusion and a uniform reaction.
 //! - [`Factors`]: the sparse Cholesky or LU factors of an earlier matrix, applied by
 //!   substitution: the strongest preconditioner odyn can offer for a slowly changing matrix,
 //!   refreshed when the Krylov iteration count says the matrix has moved on.
@@ -19,8 +22,11 @@ use faer::sparse::linalg::cholesky::LltRef;
 use faer::sparse::linalg::lu::LuRef;
 use faer::{Conj, MatMut, MatRef, Par};
 
+mod fourier;
 mod ilu;
 mod jacobi;
+
+pub(crate) use fourier::{Fourier, FourierRef};
 
 pub(crate) use ilu::{Ilu0, Ilu0Ref};
 use jacobi::BlockJacobiRef;
@@ -159,4 +165,5 @@ macro_rules! as_precond {
 as_precond!(BlockJacobiRef<'_>);
 as_precond!(Factors<'_>);
 as_precond!(Ilu0Ref<'_>);
+as_precond!(FourierRef<'_>);
 as_precond!(super::multigrid::MultigridRef<'_>);

@@ -7,7 +7,7 @@ use faer::sparse::linalg::lu::LuRef;
 use super::{Factored, Products, SparseSolver, StencilMatrix};
 use crate::linalg::krylov::{LinearSolver, NoConvergence, Preconditioner};
 use crate::linalg::multigrid::{Multigrid, MultigridRef};
-use crate::linalg::precond::{Factors, Ilu0Ref};
+use crate::linalg::precond::{Factors, FourierRef, Ilu0Ref};
 
 impl SparseSolver {
     /// The Krylov solve, by `stencil`'s products when given, else by the rows'.
@@ -42,6 +42,16 @@ impl SparseSolver {
                     rows,
                     self.symmetric,
                     Ilu0Ref(ilu),
+                    &mut self.rhs,
+                    &mut self.counts.krylov,
+                ),
+                None => Err(NoConvergence),
+            },
+            (Preconditioner::Fourier, ..) => match &self.fourier {
+                Some(fourier) => krylov.solve(
+                    rows,
+                    self.symmetric,
+                    FourierRef(fourier),
                     &mut self.rhs,
                     &mut self.counts.krylov,
                 ),

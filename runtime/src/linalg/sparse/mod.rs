@@ -21,7 +21,7 @@ use faer::sparse::{Pair, SparseColMatRef, SymbolicSparseColMat};
 use super::dense::FactorizeError;
 use super::krylov::{KrylovCounts, KrylovSolver, LinearSolver, Preconditioner, Solves, Structure};
 use super::multigrid::Multigrid;
-use super::precond::{BlockJacobi, Ilu0};
+use super::precond::{BlockJacobi, Fourier, Ilu0};
 
 mod direct;
 mod iterative;
@@ -81,6 +81,8 @@ pub(crate) struct SparseSolver {
     rows: Option<RowMatrix>,
     /// The caller passes the Krylov solves' products to [`SparseSolver::substitute_with`].
     products_given: bool,
+    /// The Fourier preconditioner, when the caller's grid is periodic ([`SparseSolver::on_grid`]).
+    fourier: Option<Fourier>,
     /// The diagonal blocks block Jacobi inverts (points until [`SparseSolver::set_blocks`]).
     jacobi: BlockJacobi,
     /// ILU(0)'s structure and factors, made when a run first asks for them.
@@ -150,6 +152,7 @@ impl SparseSolver {
             krylov: None,
             rows: None,
             products_given: false,
+            fourier: None,
             ilu: None,
             multigrid: None,
             blocks: (1, (0..n).collect()),
@@ -166,10 +169,14 @@ impl SparseSolver {
         self.blocks = (size, index);
     }
 
-    /// The caller will pass the Krylov solves' products ([`SparseSolver::substitute_with`]): no
-    /// matrix by rows is made or filled.
-    pub(crate) fn products_given(&mut self) {
+    /// The matrix is a field model's: the caller passes its stencil to
+    /// [`SparseSolver::factorize_with`] and [`SparseSolver::substitute_with`] for the Krylov
+    /// solves' products (no matrix by rows is made or filled) and, on a periodic grid, for
+    /// [`Preconditioner::Fourier`].
+    pub(crate) fn on_grid(&mut self, stencil: &StencilMatrix) {
         self.products_given = true;
+        let (nx, ny, fields) = stencil.shape();
+        self.fourier = Fourier::new(nx, ny, fields, stencil.blocks());
     }
 
     /// Chooses how the systems of this run are solved: direct, or the Krylov method `linear`
@@ -191,6 +198,13 @@ impl SparseSolver {
                 // Beyond 32-bit indices (2³² entries): a size no Krylov run here has reached.
                 self.krylov = None;
             }
+        }
+        if let Some(krylov) = &mut self.krylov
+            && krylov.options.preconditioner == Preconditioner::Fourier
+            && self.fourier.is_none()
+        {
+            // Not a periodic grid (see `Preconditioner::Fourier`).
+            krylov.options.preconditioner = Preconditioner::BlockJacobi;
         }
         if let Some(krylov) = &self.krylov
             && krylov.options.preconditioner == Preconditioner::Ilu0
@@ -234,17 +248,21 @@ impl SparseSolver {
             .all(|(&a, &t)| (a - self.values[t]).abs() <= tolerance)
     }
 
-    /// The last factorization prepared a Krylov solve.
-    pub(crate) fn is_iterative(&self) -> bool {
-        self.iterative
-    }
-
     /// Prepares to solve with the values: for a Krylov run, builds the block Jacobi
     /// preconditioner (or keeps an earlier factorization as the preconditioner until a solve
     /// asks for a fresh one); otherwise, or when a block is singular, factorizes directly.
     ///
     /// Errors: [`FactorizeError::Singular`].
     pub(crate) fn factorize(&mut self) -> Result<(), FactorizeError> {
+        self.factorize_with(None)
+    }
+
+    /// [`SparseSolver::factorize`] of a field model's matrix, `stencil` the same matrix by its
+    /// cells' blocks (prepared), which the Fourier preconditioner is built from.
+    pub(crate) fn factorize_with(
+        &mut self,
+        stencil: Option<&StencilMatrix>,
+    ) -> Result<(), FactorizeError> {
         self.iterative = false;
         let Some(krylov) = &mut self.krylov else {
             return self.factorize_direct();
@@ -268,6 +286,10 @@ impl SparseSolver {
                     .as_mut()
                     .is_some_and(|p| p.update(values).is_ok()),
             ),
+            Preconditioner::Fourier => Some(match (&mut self.fourier, stencil) {
+                (Some(fourier), Some(stencil)) => fourier.update(stencil).is_ok(),
+                _ => false,
+            }),
             Preconditioner::Factorization { .. } => None,
         };
         match built {
@@ -334,6 +356,7 @@ impl Clone for SparseSolver {
             krylov: self.krylov.clone(),
             rows: self.rows.clone(),
             products_given: self.products_given,
+            fourier: self.fourier.clone(),
             ilu: self.ilu.clone(),
             multigrid: self.multigrid.clone(),
             blocks: self.blocks.clone(),

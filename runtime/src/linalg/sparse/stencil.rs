@@ -70,6 +70,8 @@ pub(crate) struct StencilMatrix {
     values: Vec<f64>,
     /// Block b's value where every cell has the same, found by [`StencilMatrix::prepare`].
     uniform: Vec<Option<f64>>,
+    /// Block b's mean over the cells, found by [`StencilMatrix::prepare`].
+    mean: Vec<f64>,
     c: f64,
 }
 
@@ -82,6 +84,7 @@ impl StencilMatrix {
             fields,
             values: vec![0.0; blocks.len() * nx * ny],
             uniform: vec![None; blocks.len()],
+            mean: vec![0.0; blocks.len()],
             blocks,
             c: 0.0,
         }
@@ -94,14 +97,43 @@ impl StencilMatrix {
     }
 
     /// Makes the operator I − c·J of the values set: finds the blocks with one value for every
-    /// cell, whose products then read that value alone.
+    /// cell, whose products then read that value alone, and each block's mean.
     pub(crate) fn prepare(&mut self, c: f64) {
         self.c = c;
         let cells = self.nx * self.ny;
-        for (uniform, values) in self.uniform.iter_mut().zip(self.values.chunks_exact(cells)) {
+        for ((uniform, mean), values) in self
+            .uniform
+            .iter_mut()
+            .zip(&mut self.mean)
+            .zip(self.values.chunks_exact(cells))
+        {
             let first = values[0];
             *uniform = values.iter().all(|&v| v == first).then_some(first);
+            *mean = match *uniform {
+                Some(value) => value,
+                None => values.iter().sum::<f64>() / cells as f64,
+            };
         }
+    }
+
+    /// The grid and its fields, (nx, ny, fields).
+    pub(crate) fn shape(&self) -> (usize, usize, usize) {
+        (self.nx, self.ny, self.fields)
+    }
+
+    /// c of I − c·J.
+    pub(crate) fn c(&self) -> f64 {
+        self.c
+    }
+
+    /// Block b's mean over the cells.
+    pub(crate) fn mean(&self, b: usize) -> f64 {
+        self.mean[b]
+    }
+
+    /// The blocks.
+    pub(crate) fn blocks(&self) -> &[StencilBlock] {
+        &self.blocks
     }
 
     /// Block b's value for the whole grid, if it has one.
