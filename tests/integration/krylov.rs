@@ -517,7 +517,10 @@ fn fourier_solves_a_uniform_grid_in_one_iteration() {
     let counts = counts_of(&model, 10.0, &fourier);
     assert!(counts.krylov.solves >= 10, "{counts:?}");
     // At most one iteration a solve (none where the warm start already meets the tolerance).
-    assert!(counts.krylov.iterations <= counts.krylov.solves, "{counts:?}");
+    assert!(
+        counts.krylov.iterations <= counts.krylov.solves,
+        "{counts:?}"
+    );
     assert_eq!(counts.krylov.fallbacks, 0);
     // Zero-flux edges: block Jacobi instead, still Krylov, still converging.
     let neumann: GrayScott = gray_scott(32, Boundary::Neumann);
