@@ -8,6 +8,11 @@ if ! command -v node > /dev/null; then
   echo "determinism: node is not installed; the WebAssembly side cannot run" >&2
   exit 1
 fi
+# rust-toolchain.toml names the target, but a rustup that does not install on its own (as on a
+# fresh CI machine, RUSTUP_AUTO_INSTALL=0) leaves it out: add it here.
+if command -v rustup > /dev/null && ! rustup target list --installed | grep -qx wasm32-unknown-unknown; then
+  rustup target add wasm32-unknown-unknown
+fi
 out=target/determinism
 mkdir -p "$out"
 cargo build -q -p odyn-determinism --features deterministic --target wasm32-unknown-unknown
