@@ -13,3 +13,22 @@ pub(crate) mod spd;
 pub use dense::{DenseMatrix, FactorizeError, FaerDense, NewtonMatrix, SolveError};
 pub use krylov::{Krylov, KrylovCounts, LinearSolver, Preconditioner, Solves};
 pub use newton::NewtonOptions;
+
+/// A small linear congruential generator for tests (Knuth's MMIX constants), 31 bits a draw:
+/// the tests need variety, not quality.
+#[cfg(test)]
+pub(crate) fn generator(mut seed: u64) -> impl FnMut() -> usize {
+    move || {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (seed >> 33) as usize
+    }
+}
+
+/// Draws in [−1, 1) from [`generator`].
+#[cfg(test)]
+pub(crate) fn signed(seed: u64) -> impl FnMut() -> f64 {
+    let mut draw = generator(seed);
+    move || draw() as f64 / (1u64 << 31) as f64 * 2.0 - 1.0
+}

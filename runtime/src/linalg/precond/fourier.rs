@@ -255,13 +255,7 @@ mod tests {
     /// that varies is replaced by its mean (checked against a grid of the mean values).
     #[test]
     fn inverts_a_circulant_operator_exactly() {
-        let mut seed = 11u64;
-        let mut random = move || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut random = crate::linalg::signed(11);
         let offsets = [
             (0, 0),
             (1, 0),

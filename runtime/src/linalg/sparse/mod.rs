@@ -225,6 +225,11 @@ impl SparseSolver {
         }
     }
 
+    /// The run solves by a Krylov method (until `Auto` gives it up).
+    pub(crate) fn krylov_configured(&self) -> bool {
+        self.krylov.is_some()
+    }
+
     /// The index in [`SparseSolver::values`] of entry (row, column), which must be structural.
     pub(crate) fn slot(&self, row: usize, col: usize) -> usize {
         slot_in(&self.pattern, row, col)

@@ -162,16 +162,7 @@ mod tests {
     use faer::{Accum, MatMut, MatRef, Par};
 
     use super::*;
-
-    /// A small linear congruential generator: the tests need variety, not quality.
-    fn generator(mut seed: u64) -> impl FnMut() -> usize {
-        move || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 33) as usize
-        }
-    }
+    use crate::linalg::generator;
 
     /// The product by rows of the pattern of `pairs` and their transposes (with the diagonal),
     /// random values in [−1, 1] and x in [−10, 10], against faer's product by columns.
