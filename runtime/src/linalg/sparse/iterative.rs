@@ -1,5 +1,5 @@
 //! The Krylov solve of a sparse Newton matrix with the run's preconditioner, and `Auto`'s move
-//! to multigrid or to the direct solver when block Jacobi converges too slowly.
+//! to Fourier, multigrid or the direct solver when a preconditioner converges too slowly.
 
 use faer::sparse::linalg::cholesky::LltRef;
 use faer::sparse::linalg::lu::LuRef;
@@ -87,32 +87,54 @@ impl SparseSolver {
             && outcome.is_ok()
             && krylov.last_iterations > limit
         {
-            // `Auto`: this matrix is too ill-conditioned for block Jacobi to pay. A big one goes
-            // on with multigrid, a small one (or one multigrid does not tame) factorizes.
-            if krylov.options.preconditioner == Preconditioner::BlockJacobi
-                && n >= LinearSolver::MULTIGRID_FROM
-            {
-                let (size, index) = &self.blocks;
-                if self.multigrid.is_none() {
-                    self.multigrid = Multigrid::new(*size, index.clone(), &self.pattern);
-                }
-                let built = self
-                    .multigrid
-                    .as_mut()
-                    .is_some_and(|multigrid| multigrid.update(&self.values).is_ok());
-                if built {
-                    krylov.options.preconditioner = Preconditioner::Multigrid;
-                    self.counts.krylov.switched_to_multigrid = 1;
-                    self.counts.krylov.preconditioners += 1;
-                } else {
-                    self.krylov = None;
-                    self.counts.krylov.switched_to_direct = 1;
-                }
-            } else {
-                self.krylov = None;
-                self.counts.krylov.switched_to_direct = 1;
-            }
+            // `Auto`: this matrix is too ill-conditioned for the preconditioner to pay.
+            let from = krylov.options.preconditioner;
+            self.give_up(from, stencil);
         }
         outcome
+    }
+
+    /// `Auto`'s next solver after a solve of too many iterations with `from`: a periodic grid
+    /// goes on from block Jacobi with Fourier, a big matrix with multigrid (from block Jacobi
+    /// or Fourier), anything else (or a preconditioner that cannot be built) with the direct
+    /// solver, for the rest of the run.
+    fn give_up(&mut self, from: Preconditioner, stencil: Option<&StencilMatrix>) {
+        let n = self.rhs.len();
+        if from == Preconditioner::BlockJacobi
+            && let (Some(fourier), Some(stencil)) = (&mut self.fourier, stencil)
+            && fourier.update(stencil).is_ok()
+        {
+            self.switch(Preconditioner::Fourier);
+            self.counts.krylov.switched_to_fourier = 1;
+            return;
+        }
+        if matches!(from, Preconditioner::BlockJacobi | Preconditioner::Fourier)
+            && n >= LinearSolver::MULTIGRID_FROM
+        {
+            let (size, index) = &self.blocks;
+            if self.multigrid.is_none() {
+                self.multigrid = Multigrid::new(*size, index.clone(), &self.pattern);
+            }
+            let values = &self.values;
+            if self
+                .multigrid
+                .as_mut()
+                .is_some_and(|multigrid| multigrid.update(values).is_ok())
+            {
+                self.switch(Preconditioner::Multigrid);
+                self.counts.krylov.switched_to_multigrid = 1;
+                return;
+            }
+        }
+        self.krylov = None;
+        self.counts.krylov.switched_to_direct = 1;
+    }
+
+    /// The run's Krylov solves go on with `preconditioner`, built for the current values.
+    fn switch(&mut self, preconditioner: Preconditioner) {
+        if let Some(krylov) = &mut self.krylov {
+            krylov.options.preconditioner = preconditioner;
+            self.counts.krylov.preconditioners += 1;
+        }
     }
 }
