@@ -64,6 +64,11 @@ pub trait Model {
     const DEFAULT_RTOL: Option<f64> = None;
     /// The absolute tolerance named by `#[system(atol = ...)]`.
     const DEFAULT_ATOL: Option<f64> = None;
+    /// False only for [`Unavailable`], which has no values: the run's dispatch does not
+    /// instantiate a method's loop for a capability a model lacks (seven to eleven dead loops per
+    /// first-order or Jacobian-less model otherwise).
+    #[doc(hidden)]
+    const AVAILABLE: bool = true;
 
     /// The state held in the model's own fields: the usual initial state.
     fn state(&self) -> Self::State;

@@ -23,6 +23,7 @@ impl<M: Model> Model for Unavailable<M> {
     const DEFAULT_DT: Option<f64> = M::DEFAULT_DT;
     const DEFAULT_RTOL: Option<f64> = M::DEFAULT_RTOL;
     const DEFAULT_ATOL: Option<f64> = M::DEFAULT_ATOL;
+    const AVAILABLE: bool = false;
 
     fn state(&self) -> Self::State {
         self.never()

@@ -26,14 +26,25 @@ macro_rules! dispatch {
         $plan.drive::<M, crate::integrators::$variant<_>>($run.model)
     };
     (@drive Split $run:ident $plan:ident $variant:ident) => {
-        $plan.drive::<_, crate::integrators::$variant<_>>($run.split()?)
+        dispatch!(@capable SecondOrder $run $plan $variant $run.split()?)
     };
     (@drive VelocityFree $run:ident $plan:ident $variant:ident) => {
-        $plan.drive::<_, crate::integrators::$variant<_>>($run.split()?)
+        dispatch!(@capable SecondOrder $run $plan $variant $run.split()?)
     };
     (@drive Jacobian $run:ident $plan:ident $variant:ident) => {
-        $plan.drive::<_, crate::integrators::$variant<_>>($run.jacobian()?)
+        dispatch!(@capable Jacobian $run $plan $variant $run.jacobian()?)
     };
+    // `model` is the capability, which `split`/`jacobian` return only when the model has it:
+    // for `Unavailable` (no values) they return the error, so the `else` is never taken; the
+    // constant condition keeps the method's loop from being compiled for `Unavailable` at all.
+    (@capable $capability:ident $run:ident $plan:ident $variant:ident $model:expr) => {{
+        let model = $model;
+        if const { <M::$capability as Model>::AVAILABLE } {
+            $plan.drive::<_, crate::integrators::$variant<_>>(model)
+        } else {
+            Err($run.unsupported("it lacks the capability the method needs"))
+        }
+    }};
 }
 
 impl<'m, M: Model> Simulation<'m, M> {
@@ -134,13 +145,22 @@ impl<M: Model> Plan<'_, '_, M> {
         )?;
         let outcome = match &self.span {
             Span::Fixed { dt, steps } => driver.run_fixed(*dt, 0, *steps),
-            Span::Adaptive { tolerances, t_end } => driver.run_adaptive(
-                *t_end,
-                tolerances,
-                &o.adaptive,
-                I::CONTROLLER,
-                I::START_ORDER,
-            ),
+            // A method without an error estimate never gets here (`Options::check` refuses
+            // tolerances for it): the constant keeps the adaptive loop from being compiled for
+            // the fixed-step methods.
+            Span::Adaptive { tolerances, t_end } => {
+                if const { I::METHOD.is_adaptive() } {
+                    driver.run_adaptive(
+                        *t_end,
+                        tolerances,
+                        &o.adaptive,
+                        I::CONTROLLER,
+                        I::START_ORDER,
+                    )
+                } else {
+                    Err(self.simulation.unsupported("it cannot step to tolerances"))
+                }
+            }
         };
         let outcome = outcome.map_err(|error| driver.explain(error));
         let stats = driver.stats;
