@@ -319,50 +319,35 @@ fn auto_chooses_krylov_for_big_grids_only() {
     );
     // The same grid with cells 120× finer (h·D_u/Δx² = 125 at h = 1), linearized steps (solved
     // to `Krylov::rtol`, 1e-8): block Jacobi needs more than 50 iterations, so Auto moves on
-    // for the rest of the run. The grid is periodic: to Fourier, which needs no more than 50
-    // and never factorizes.
+    // for the rest of the run. Its moves (to Fourier, to multigrid, to the direct solver),
+    // then factorizations and fallbacks, on n² cells with `boundary`:
     let linearized = NewtonOptions {
         linearized: true,
         ..auto
     };
-    let mut fine: GrayScott = gray_scott(23, Boundary::Periodic);
-    fine.dx = 4e-4;
-    let counts = counts_of(&fine, 1.0, &linearized);
-    assert_eq!(
+    let moves = |n: usize, boundary: Boundary| {
+        let mut fine: GrayScott = gray_scott(n, boundary);
+        fine.dx = 4e-4;
+        let c = counts_of(&fine, 1.0, &linearized);
+        let k = c.krylov;
         (
-            counts.krylov.switched_to_fourier,
-            counts.krylov.switched_to_multigrid,
-            counts.krylov.switched_to_direct,
-            counts.lu + counts.cholesky,
-            counts.krylov.fallbacks
-        ),
-        (1, 0, 0, 0, 0),
-        "{counts:?}"
-    );
-    // Zero-flux edges instead (no Fourier): below `MULTIGRID_FROM`, Auto gives Krylov up and
-    // factorizes from then on.
-    let mut fine: GrayScott = gray_scott(23, Boundary::Neumann);
-    fine.dx = 4e-4;
-    let counts = counts_of(&fine, 1.0, &linearized);
-    assert_eq!(counts.krylov.switched_to_direct, 1, "{counts:?}");
-    assert_eq!(counts.krylov.switched_to_multigrid, 0, "{counts:?}");
-    assert!(counts.lu + counts.cholesky > 0, "{counts:?}");
-    // 64² cells (8 192 unknowns, `MULTIGRID_FROM`) as fine, zero-flux: Auto goes on with
-    // multigrid, which needs no more than 50 iterations, and never factorizes.
-    let mut big_fine: GrayScott = gray_scott(64, Boundary::Neumann);
-    big_fine.dx = 4e-4;
-    let counts = counts_of(&big_fine, 1.0, &linearized);
-    assert_eq!(
-        (
-            counts.krylov.switched_to_fourier,
-            counts.krylov.switched_to_multigrid,
-            counts.krylov.switched_to_direct,
-            counts.lu + counts.cholesky,
-            counts.krylov.fallbacks
-        ),
-        (0, 1, 0, 0, 0),
-        "{counts:?}"
-    );
+            k.switched_to_fourier,
+            k.switched_to_multigrid,
+            k.switched_to_direct,
+            c.lu + c.cholesky,
+            k.fallbacks,
+        )
+    };
+    // Periodic: to Fourier, which needs no more than 50 and never factorizes.
+    assert_eq!(moves(23, Boundary::Periodic), (1, 0, 0, 0, 0));
+    // Zero-flux edges (no Fourier) below `MULTIGRID_FROM`: Auto gives Krylov up and factorizes
+    // from then on.
+    let (fourier, multigrid, direct, factorizations, _) = moves(23, Boundary::Neumann);
+    assert_eq!((fourier, multigrid, direct), (0, 0, 1));
+    assert!(factorizations > 0);
+    // 64² cells (8 192 unknowns, `MULTIGRID_FROM`), zero-flux: on with multigrid, which needs
+    // no more than 50 iterations, and never factorizes.
+    assert_eq!(moves(64, Boundary::Neumann), (0, 1, 0, 0, 0));
     // A cloth of 20² particles (1 200 unknowns in the velocity form) stays direct.
     let cloth = cloth(20, 1e3, 0.0, 0.1);
     let counts = counts_of(&cloth, 1.0 / 60.0, &auto);
