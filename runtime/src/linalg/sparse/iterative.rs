@@ -29,58 +29,39 @@ impl SparseSolver {
             (None, None) => return Err(NoConvergence),
         };
         let n = self.rhs.len();
-        let outcome = match (krylov.options.preconditioner, self.factored, &self.lu) {
-            (Preconditioner::BlockJacobi, ..) => krylov.solve(
-                rows,
-                self.symmetric,
-                self.jacobi.as_precond(n),
-                &mut self.rhs,
-                &mut self.counts.krylov,
-            ),
-            (Preconditioner::Ilu0, ..) => match &self.ilu {
-                Some(ilu) => krylov.solve(
+        // One Krylov solve of the rows with preconditioner `$p` (each its own type).
+        macro_rules! solve {
+            ($p:expr) => {
+                krylov.solve(
                     rows,
                     self.symmetric,
-                    Ilu0Ref(ilu),
+                    $p,
                     &mut self.rhs,
                     &mut self.counts.krylov,
-                ),
+                )
+            };
+        }
+        let outcome = match (krylov.options.preconditioner, self.factored, &self.lu) {
+            (Preconditioner::BlockJacobi, ..) => solve!(self.jacobi.as_precond(n)),
+            (Preconditioner::Ilu0, ..) => match &self.ilu {
+                Some(ilu) => solve!(Ilu0Ref(ilu)),
                 None => Err(NoConvergence),
             },
             (Preconditioner::Fourier, ..) => match &self.fourier {
-                Some(fourier) => krylov.solve(
-                    rows,
-                    self.symmetric,
-                    FourierRef(fourier),
-                    &mut self.rhs,
-                    &mut self.counts.krylov,
-                ),
+                Some(fourier) => solve!(FourierRef(fourier)),
                 None => Err(NoConvergence),
             },
             (Preconditioner::Multigrid, ..) => match &self.multigrid {
-                Some(multigrid) => krylov.solve(
-                    rows,
-                    self.symmetric,
-                    MultigridRef(multigrid),
-                    &mut self.rhs,
-                    &mut self.counts.krylov,
-                ),
+                Some(multigrid) => solve!(MultigridRef(multigrid)),
                 None => Err(NoConvergence),
             },
-            (_, Some(Factored::Cholesky), _) => krylov.solve(
-                rows,
-                self.symmetric,
-                Factors::Cholesky(LltRef::new(&self.cholesky, &self.cholesky_values)),
-                &mut self.rhs,
-                &mut self.counts.krylov,
-            ),
-            (_, Some(Factored::Lu), Some((symbolic, numeric))) => krylov.solve(
-                rows,
-                self.symmetric,
-                Factors::Lu(LuRef::new_unchecked(symbolic, numeric)),
-                &mut self.rhs,
-                &mut self.counts.krylov,
-            ),
+            (_, Some(Factored::Cholesky), _) => solve!(Factors::Cholesky(LltRef::new(
+                &self.cholesky,
+                &self.cholesky_values
+            ))),
+            (_, Some(Factored::Lu), Some((symbolic, numeric))) => {
+                solve!(Factors::Lu(LuRef::new_unchecked(symbolic, numeric)))
+            }
             _ => Err(NoConvergence),
         };
         if let Some(limit) = krylov.direct_above
