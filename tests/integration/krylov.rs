@@ -320,14 +320,14 @@ fn auto_chooses_krylov_for_big_grids_only() {
     // The same grid with cells 120× finer (h·D_u/Δx² = 125 at h = 1), linearized steps (solved
     // to `Krylov::rtol`, 1e-8): block Jacobi needs more than 50 iterations, so Auto moves on
     // for the rest of the run. Its moves (to Fourier, to multigrid, to the direct solver),
-    // then factorizations and fallbacks, on n² cells with `boundary`:
+    // then factorizations and fallbacks, on n² cells of side `dx` with `boundary`:
     let linearized = NewtonOptions {
         linearized: true,
         ..auto
     };
-    let moves = |n: usize, boundary: Boundary| {
+    let moves = |n: usize, boundary: Boundary, dx: f64| {
         let mut fine: GrayScott = gray_scott(n, boundary);
-        fine.dx = 4e-4;
+        fine.dx = dx;
         let c = counts_of(&fine, 1.0, &linearized);
         let k = c.krylov;
         (
@@ -339,15 +339,21 @@ fn auto_chooses_krylov_for_big_grids_only() {
         )
     };
     // Periodic: to Fourier, which needs no more than 50 and never factorizes.
-    assert_eq!(moves(23, Boundary::Periodic), (1, 0, 0, 0, 0));
+    assert_eq!(moves(23, Boundary::Periodic, 4e-4), (1, 0, 0, 0, 0));
     // Zero-flux edges (no Fourier) below `MULTIGRID_FROM`: Auto gives Krylov up and factorizes
     // from then on.
-    let (fourier, multigrid, direct, factorizations, _) = moves(23, Boundary::Neumann);
+    let (fourier, multigrid, direct, factorizations, _) = moves(23, Boundary::Neumann, 4e-4);
     assert_eq!((fourier, multigrid, direct), (0, 0, 1));
     assert!(factorizations > 0);
     // 64² cells (8 192 unknowns, `MULTIGRID_FROM`), zero-flux: on with multigrid, which needs
     // no more than 50 iterations, and never factorizes.
-    assert_eq!(moves(64, Boundary::Neumann), (0, 1, 0, 0, 0));
+    assert_eq!(moves(64, Boundary::Neumann, 4e-4), (0, 1, 0, 0, 0));
+    // Cells 5× coarser than that (h·D_u/Δx² = 5): block Jacobi takes 26 iterations a solve on
+    // the periodic grid, 31 with zero-flux edges (10 steps, measured), more than
+    // `AUTO_FOURIER_ABOVE` but within `AUTO_DIRECT_ABOVE`. The periodic grid moves to Fourier
+    // (about 5 a solve then); the other keeps block Jacobi, which still pays there.
+    assert_eq!(moves(23, Boundary::Periodic, 2e-3), (1, 0, 0, 0, 0));
+    assert_eq!(moves(23, Boundary::Neumann, 2e-3), (0, 0, 0, 0, 0));
     // A cloth of 20² particles (1 200 unknowns in the velocity form) stays direct.
     let cloth = cloth(20, 1e3, 0.0, 0.1);
     let counts = counts_of(&cloth, 1.0 / 60.0, &auto);
@@ -531,4 +537,39 @@ fn fourier_solves_a_uniform_grid_in_one_iteration() {
         counts.krylov.solves >= 10 && counts.krylov.fallbacks == 0,
         "{counts:?}"
     );
+}
+
+/// `Auto`'s trial of Fourier on a periodic grid is decided by its first solve's cost: on
+/// Pearson's Gray–Scott at 64² with cells 0.3× as wide, h = 10, block Jacobi needs 18 iterations
+/// a linearized solve (to 1e-8) on average and more than `AUTO_FOURIER_ABOVE` on some, and
+/// Fourier about 7, each costing 0.33·log₂ 8192 = 4.3 block-Jacobi iterations: tried, and given
+/// back to block Jacobi for the rest of the run (10 steps, measured with the sweep that chose
+/// the case).
+#[test]
+fn auto_gives_fourier_back_when_its_solve_costs_more() {
+    let mut model = GrayScott::pearson(64, 0.0367, 0.0649).unwrap();
+    model.dx *= 0.3;
+    let counts = |linear| {
+        let newton = NewtonOptions {
+            linearized: true,
+            linear,
+            ..NewtonOptions::default()
+        };
+        counts_of(&model, 10.0, &newton)
+    };
+    let block_jacobi = LinearSolver::Krylov(Krylov::default());
+    let (auto, block_jacobi) = (counts(LinearSolver::Auto), counts(block_jacobi));
+    let (a, b) = (auto.krylov, block_jacobi.krylov);
+    assert_eq!(a.solves, b.solves);
+    // One solve was Fourier's (fewer iterations than block Jacobi's), and it was given back.
+    assert!(a.iterations < b.iterations, "{a:?} against {b:?}");
+    assert_eq!(
+        (
+            a.switched_to_fourier,
+            a.switched_to_multigrid,
+            a.switched_to_direct
+        ),
+        (0, 0, 0)
+    );
+    assert_eq!((auto.lu, auto.cholesky, a.fallbacks), (0, 0, 0));
 }

@@ -6,7 +6,7 @@
 mod bicgstab;
 mod solve;
 
-pub(crate) use solve::{KrylovSolver, NoConvergence};
+pub(crate) use solve::{FourierTrial, KrylovSolver, NoConvergence};
 
 /// How implicit methods (implicit Euler, Rosenbrock23, Rodas5P, BDF) solve the sparse linear
 /// systems of particle and field models; dense models always factorize.
@@ -23,10 +23,12 @@ pub(crate) use solve::{KrylovSolver, NoConvergence};
 pub enum LinearSolver {
     /// [`Krylov::default()`] (block Jacobi) for field models of at least
     /// [`LinearSolver::FIELD_KRYLOV_FROM`] unknowns, [`LinearSolver::Direct`] otherwise —
-    /// particle models included, for the reason above. A field model whose Krylov solve needs
+    /// particle models included, for the reason above. On a periodic grid a block-Jacobi
+    /// solve of more than [`LinearSolver::AUTO_FOURIER_ABOVE`] iterations has the next solve
+    /// tried with [`Preconditioner::Fourier`], which stays for the run if that solve cost less
+    /// ([`KrylovCounts::switched_to_fourier`]). A field model whose Krylov solve needs
     /// more than [`LinearSolver::AUTO_DIRECT_ABOVE`] iterations goes on, for the rest of the
-    /// run, with [`Preconditioner::Fourier`] on a periodic grid
-    /// ([`KrylovCounts::switched_to_fourier`]), else (or when Fourier too needs more) with
+    /// run, with [`Preconditioner::Fourier`] on a periodic grid, else (or when Fourier too needs more) with
     /// [`Preconditioner::Multigrid`] from [`LinearSolver::MULTIGRID_FROM`] unknowns
     /// ([`KrylovCounts::switched_to_multigrid`]), else with the direct solver
     /// ([`KrylovCounts::switched_to_direct`]), as it does when multigrid too needs more. The
@@ -64,6 +66,27 @@ impl LinearSolver {
     /// per full-Newton solve from 64² to 128² (and wins 40–46×), 30 for a linearized step at
     /// 256² to 1e-8 (and wins 28–31×).
     pub const AUTO_DIRECT_ABOVE: usize = 50;
+
+    /// Iterations of one block-Jacobi solve above which [`LinearSolver::Auto`] tries
+    /// [`Preconditioner::Fourier`] on a field model's periodic grid: 20. The first Fourier solve
+    /// decides: Fourier stays for the run unless its iterations, each costing
+    /// [`LinearSolver::fourier_iteration_cost`] block-Jacobi iterations, cost more than the
+    /// block-Jacobi solve did. The 2-D Brusselator under BDF at a final error of 1e-6 (rtol
+    /// 3e-8), whose block-Jacobi solves take 21–50 iterations at 32² and 64² cells: 0.137 s
+    /// and 0.438 s against 0.331 s and 0.46 s with the move at 50 alone. Gray–Scott at Pearson's
+    /// setup, h = 10: 6–12 iterations a full-Newton solve from 64² to 256², never tried; a
+    /// linearized step to 1e-8 at 256², 27 iterations with block Jacobi and 7.5 with Fourier
+    /// but 0.63 s against 0.91 s for ten steps: tried and given back.
+    pub const AUTO_FOURIER_ABOVE: usize = 20;
+
+    /// What one iteration preconditioned by [`Preconditioner::Fourier`] costs, in iterations
+    /// preconditioned by block Jacobi, on a system of `n` unknowns: 0.33·log₂ n — two
+    /// transforms of each field per application against a few flops per unknown. Measured on
+    /// Gray–Scott's linearized steps (2 fields): 3.2 at 128² cells, 5.4 at 256² (the model says
+    /// 5.0 and 5.6; 3.6 at 32²).
+    pub fn fourier_iteration_cost(n: usize) -> f64 {
+        0.33 * (n.max(2) as f64).log2()
+    }
 
     /// Unknowns from which [`LinearSolver::Auto`] answers block Jacobi's slow convergence with
     /// multigrid rather than a direct solve: 8 192. The Brusselator under BDF (rtol 1e-6): at 32²
@@ -257,7 +280,8 @@ pub struct KrylovCounts {
     /// Solves redone by the direct solver (no convergence within `max_iters`, or a
     /// breakdown).
     pub fallbacks: u64,
-    /// 1 when [`LinearSolver::Auto`] moved from block Jacobi to Fourier for this run.
+    /// 1 when [`LinearSolver::Auto`] moved from block Jacobi to Fourier for this run (0 again
+    /// when it tried Fourier and gave it back, [`LinearSolver::AUTO_FOURIER_ABOVE`]).
     pub switched_to_fourier: u64,
     /// 1 when [`LinearSolver::Auto`] moved from block Jacobi or Fourier to multigrid for this
     /// run.

@@ -34,8 +34,22 @@ pub(crate) struct KrylovSolver {
     pub(crate) direct_above: Option<usize>,
     /// Iterations of the last solve.
     pub(crate) last_iterations: usize,
+    /// Where `Auto`'s trial of the Fourier preconditioner stands.
+    pub(crate) fourier_trial: FourierTrial,
     /// What the solves are for: where they stop.
     pub(crate) solves: Solves,
+}
+
+/// `Auto`'s trial of [`Preconditioner::Fourier`] on a periodic grid after a slow block-Jacobi
+/// solve: the first Fourier solve decides whether it stays.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum FourierTrial {
+    /// Not tried yet.
+    Untried,
+    /// The next solve is Fourier's first, after a block-Jacobi solve of this many iterations.
+    Trying(usize),
+    /// Tried and kept, or tried and given back to block Jacobi: not tried again.
+    Settled,
 }
 
 /// A Krylov solve that did not converge within `max_iters`, broke down, or ended on a
@@ -56,6 +70,7 @@ impl KrylovSolver {
             refresh: false,
             direct_above: None,
             last_iterations: 0,
+            fourier_trial: FourierTrial::Untried,
             solves: Solves::OneStep,
         }
     }
@@ -205,6 +220,7 @@ impl Clone for KrylovSolver {
             refresh: self.refresh,
             direct_above: self.direct_above,
             last_iterations: self.last_iterations,
+            fourier_trial: self.fourier_trial,
             solves: self.solves,
         }
     }

@@ -5,7 +5,7 @@ use faer::sparse::linalg::cholesky::LltRef;
 use faer::sparse::linalg::lu::LuRef;
 
 use super::{Factored, Products, SparseSolver, StencilMatrix};
-use crate::linalg::krylov::{LinearSolver, NoConvergence, Preconditioner};
+use crate::linalg::krylov::{FourierTrial, LinearSolver, NoConvergence, Preconditioner};
 use crate::linalg::multigrid::{Multigrid, MultigridRef};
 use crate::linalg::precond::{Factors, FourierRef, Ilu0Ref};
 
@@ -66,13 +66,47 @@ impl SparseSolver {
         };
         if let Some(limit) = krylov.direct_above
             && outcome.is_ok()
-            && krylov.last_iterations > limit
         {
-            // `Auto`: this matrix is too ill-conditioned for the preconditioner to pay.
-            let from = krylov.options.preconditioner;
-            self.give_up(from, stencil);
+            let (from, iterations) = (krylov.options.preconditioner, krylov.last_iterations);
+            let trial = krylov.fourier_trial;
+            if let FourierTrial::Trying(_) = trial {
+                krylov.fourier_trial = FourierTrial::Settled;
+            }
+            if iterations > limit {
+                // `Auto`: this matrix is too ill-conditioned for the preconditioner to pay.
+                self.give_up(from, stencil);
+            } else if let FourierTrial::Trying(block_jacobi) = trial
+                && from == Preconditioner::Fourier
+                && iterations as f64 * LinearSolver::fourier_iteration_cost(n) > block_jacobi as f64
+                && self.jacobi.update(&self.values).is_ok()
+            {
+                // `Auto`: Fourier's solve cost more than block Jacobi's; back for the run, its
+                // blocks those of the current matrix.
+                self.switch(Preconditioner::BlockJacobi);
+                self.counts.krylov.switched_to_fourier = 0;
+            } else if from == Preconditioner::BlockJacobi
+                && trial == FourierTrial::Untried
+                && iterations > LinearSolver::AUTO_FOURIER_ABOVE
+                && self.move_to_fourier(stencil)
+                && let Some(krylov) = &mut self.krylov
+            {
+                // `Auto` on a periodic grid: Fourier is tried on the next solve.
+                krylov.fourier_trial = FourierTrial::Trying(iterations);
+            }
         }
         outcome
+    }
+
+    /// `Auto`'s move from block Jacobi to Fourier on a periodic grid: true if made.
+    fn move_to_fourier(&mut self, stencil: Option<&StencilMatrix>) -> bool {
+        if let (Some(fourier), Some(stencil)) = (&mut self.fourier, stencil)
+            && fourier.update(stencil).is_ok()
+        {
+            self.switch(Preconditioner::Fourier);
+            self.counts.krylov.switched_to_fourier = 1;
+            return true;
+        }
+        false
     }
 
     /// `Auto`'s next solver after a solve of too many iterations with `from`: a periodic grid
@@ -81,12 +115,7 @@ impl SparseSolver {
     /// solver, for the rest of the run.
     fn give_up(&mut self, from: Preconditioner, stencil: Option<&StencilMatrix>) {
         let n = self.rhs.len();
-        if from == Preconditioner::BlockJacobi
-            && let (Some(fourier), Some(stencil)) = (&mut self.fourier, stencil)
-            && fourier.update(stencil).is_ok()
-        {
-            self.switch(Preconditioner::Fourier);
-            self.counts.krylov.switched_to_fourier = 1;
+        if from == Preconditioner::BlockJacobi && self.move_to_fourier(stencil) {
             return;
         }
         if matches!(from, Preconditioner::BlockJacobi | Preconditioner::Fourier)
