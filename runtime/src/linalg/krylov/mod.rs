@@ -72,18 +72,22 @@ impl LinearSolver {
     /// decides: Fourier stays for the run unless its iterations, each costing
     /// [`LinearSolver::fourier_iteration_cost`] block-Jacobi iterations, cost more than the
     /// block-Jacobi solve did. The 2-D Brusselator under BDF at a final error of 1e-6 (rtol
-    /// 3e-8), whose block-Jacobi solves take 21–50 iterations at 32² and 64² cells: 0.137 s
-    /// and 0.438 s against 0.331 s and 0.46 s with the move at 50 alone. Gray–Scott at Pearson's
-    /// setup, h = 10: 6–12 iterations a full-Newton solve from 64² to 256², never tried; a
-    /// linearized step to 1e-8 at 256², 27 iterations with block Jacobi and 7.5 with Fourier
-    /// but 0.63 s against 0.91 s for ten steps: tried and given back.
+    /// 3e-8), whose block-Jacobi solves take 21–50 iterations at 32² and 64² cells: 0.097 s
+    /// and 0.41 s against 0.331 s and 0.46 s with the move at 50 alone (`brusselator
+    /// --reference`, best of 3). Gray–Scott at Pearson's setup, h = 10: 6–12 iterations a
+    /// full-Newton solve from 64² to 256², never tried; a linearized step to 1e-8 at 256², 27
+    /// iterations with block Jacobi and 7.5 with Fourier but 0.55–0.63 s against 0.87–0.91 s for
+    /// ten steps (two runs): tried and given back.
     pub const AUTO_FOURIER_ABOVE: usize = 20;
 
     /// What one iteration preconditioned by [`Preconditioner::Fourier`] costs, in iterations
     /// preconditioned by block Jacobi, on a system of `n` unknowns: 0.33·log₂ n — two
     /// transforms of each field per application against a few flops per unknown. Measured on
-    /// Gray–Scott's linearized steps (2 fields): 3.2 at 128² cells, 5.4 at 256² (the model says
-    /// 5.0 and 5.6; 3.6 at 32²).
+    /// ten linearized steps of Pearson's Gray–Scott (2 fields, h = 10, solves to 1e-8 without
+    /// the warm start, best of five, the steps' other work timed with solves to 0.999): 4.2 at
+    /// 32² cells, 7.4 at 128², 4.9 at 256² (the model: 3.6, 5.0, 5.6; the Fourier iterations
+    /// include its rebuild at every step): a coarse model, which the measurements scatter
+    /// about.
     pub fn fourier_iteration_cost(n: usize) -> f64 {
         0.33 * (n.max(2) as f64).log2()
     }
