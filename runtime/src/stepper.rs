@@ -155,7 +155,7 @@ impl<'m, M: Model, I: Integrator<M>> Stepper<'m, M, I> {
 
     /// What the steps so far cost.
     pub fn stats(&self) -> Stats {
-        self.driver.stats
+        self.driver.track.stats
     }
 
     /// The model being stepped.

@@ -16,43 +16,43 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
         controller: Controller,
         order: u32,
     ) -> Result<()> {
-        tolerances.check_against(&self.y)?;
+        tolerances.check_against(&self.track.y)?;
         let mut control_state = ControllerState::new(control.controller.unwrap_or(controller));
         let mut h = match control.dt_initial {
             Some(h) => h,
             None => {
-                let [f0, scratch] = &mut self.ends;
-                self.model.derivative(self.t, &self.y, f0);
-                self.stats.evaluations += 2;
+                let [f0, scratch] = &mut self.track.ends;
+                self.track.model.derivative(self.track.t, &self.track.y, f0);
+                self.track.stats.evaluations += 2;
                 let h = initial_step(
-                    self.model,
-                    self.t,
-                    &self.y,
+                    self.track.model,
+                    self.track.t,
+                    &self.track.y,
                     f0,
                     order,
                     tolerances,
                     control.dt_max,
-                    (&mut self.at, scratch),
+                    (&mut self.track.at, scratch),
                 );
-                self.f_start = true;
+                self.track.f_start = true;
                 h
             }
         };
-        let mut until_record = self.recording.every;
-        while self.t < t_end {
-            let stop = t_end.min(self.watch.next_stop());
+        let mut until_record = self.track.recording.every;
+        while self.track.t < t_end {
+            let stop = t_end.min(self.track.watch.next_stop());
             let mut h_try = h.min(control.dt_max);
             // Land exactly on the end or a time event; stretch by up to 1 % to get there rather
             // than leave a sliver of a step (Hairer's codes do the same).
-            let t1 = if self.t + 1.01 * h_try >= stop {
-                h_try = stop - self.t;
+            let t1 = if self.track.t + 1.01 * h_try >= stop {
+                h_try = stop - self.track.t;
                 stop
             } else {
-                self.t + h_try
+                self.track.t + h_try
             };
-            let resolution = 10.0 * ulp(self.t);
+            let resolution = 10.0 * ulp(self.track.t);
             let floor = control.dt_min.max(resolution);
-            let t = self.t;
+            let t = self.track.t;
             let too_small = |dt: f64| Error::StepSizeTooSmall {
                 t,
                 dt,
@@ -62,9 +62,9 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
             if h_try < floor && t1 != stop {
                 return Err(too_small(h_try));
             }
-            if self.stats.steps + self.stats.rejected >= control.max_steps {
+            if self.track.stats.steps + self.track.stats.rejected >= control.max_steps {
                 return Err(Error::MaxSteps {
-                    t: self.t,
+                    t: self.track.t,
                     steps: control.max_steps,
                 });
             }
@@ -78,17 +78,20 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
                     if flow == Flow::Stopped {
                         return Ok(());
                     }
-                    if !self.quiet && self.recording.save_at.is_none() && flow == Flow::Continue {
+                    if !self.track.quiet
+                        && self.track.recording.save_at.is_none()
+                        && flow == Flow::Continue
+                    {
                         until_record -= 1;
-                        if until_record == 0 || self.t >= t_end {
-                            self.push_sample();
-                            until_record = self.recording.every;
-                            self.report(t_end);
+                        if until_record == 0 || self.track.t >= t_end {
+                            self.track.push_sample();
+                            until_record = self.track.recording.every;
+                            self.track.report(t_end);
                         }
                     }
                 }
                 Ok(err) => {
-                    self.stats.rejected += 1;
+                    self.track.stats.rejected += 1;
                     let controlled = control_state.rejected(h_try, err);
                     h = self.integrator.next_step().unwrap_or(controlled);
                     if h < floor {
@@ -96,13 +99,13 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
                     }
                 }
                 Err(error) if error.is_retriable() => {
-                    self.stats.rejected += 1;
+                    self.track.stats.rejected += 1;
                     h = self.integrator.next_step().unwrap_or(0.25 * h_try);
                 }
                 Err(error) => return Err(error),
             }
         }
-        self.finish();
+        self.track.finish();
         Ok(())
     }
 }

@@ -7,19 +7,19 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
     /// Takes `steps` steps of the grid t₀ + n·dt (n counted from `first`), recording per
     /// [`Recording`]. Returns early when an event stops the run.
     pub(crate) fn run_fixed(&mut self, dt: f64, first: u64, steps: u64) -> Result<()> {
-        let mut until_record = self.recording.every;
+        let mut until_record = self.track.recording.every;
         let last = first.saturating_add(steps);
         let mut n = first;
         // Steps before this grid index go through the checked path (a block being retaken).
         let mut checked_until = first;
-        let recording = !self.quiet && self.recording.save_at.is_none();
+        let recording = !self.track.quiet && self.track.recording.save_at.is_none();
         while n < last {
             let block = (last - n)
                 .min(BLOCK)
                 .min(if recording { until_record } else { BLOCK });
             // Checked as the run goes: a run of `steps(u64::MAX)` stops at a divergence first.
-            check_resolution(self.t0, dt, n, n + block)?;
-            let taken = if n >= checked_until && block > 1 && self.plain() {
+            check_resolution(self.track.t0, dt, n, n + block)?;
+            let taken = if n >= checked_until && block > 1 && self.track.plain() {
                 if !self.run_block(dt, n, block) {
                     checked_until = n + block;
                     continue;
@@ -28,8 +28,8 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
             } else {
                 // Time as t₀ + n·dt, never accumulated: two runs that took the same steps are at
                 // bit-identical times.
-                let target = self.t0 + (n + 1) as f64 * dt;
-                self.grid = Some(n + 1);
+                let target = self.track.t0 + (n + 1) as f64 * dt;
+                self.track.grid = Some(n + 1);
                 loop {
                     match self.advance_to(target)? {
                         Flow::Continue => break,
@@ -43,23 +43,14 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
             if recording {
                 until_record -= taken;
                 if until_record == 0 || n == last {
-                    self.push_sample();
-                    until_record = self.recording.every;
-                    self.report(self.t);
+                    self.track.push_sample();
+                    until_record = self.track.recording.every;
+                    self.track.report(self.track.t);
                 }
             }
         }
-        self.finish();
+        self.track.finish();
         Ok(())
-    }
-
-    /// Whether steps need none of the per-step machinery: no events, no save times, no dense
-    /// output, no change from outside pending.
-    pub(super) fn plain(&self) -> bool {
-        self.watch.is_empty()
-            && self.recording.save_at.is_none()
-            && self.record.dense.is_none()
-            && !self.dirty
     }
 
     /// Takes `count` grid steps from index `n` as a bare loop — the same attempts at the same
@@ -70,55 +61,59 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
     /// block's start (the method restarted there) and the caller retakes the block on the
     /// checked path, which halves the failing step or names the diverging one.
     pub(super) fn run_block(&mut self, dt: f64, n: u64, count: u64) -> bool {
-        self.at.clone_from(&self.y);
-        let stats = self.stats;
+        self.track.at.clone_from(&self.track.y);
+        let stats = self.track.stats;
         let inside = bare_steps(
             &mut self.integrator,
-            self.model,
-            (self.t0, dt, n, count),
-            (&mut self.y, &mut self.y_new),
-            &mut self.stats,
-            self.limit,
+            self.track.model,
+            (self.track.t0, dt, n, count),
+            (&mut self.track.y, &mut self.track.y_new),
+            &mut self.track.stats,
+            self.track.limit,
         );
         if inside {
-            self.stats.steps += count;
-            self.t = self.t0 + (n + count) as f64 * dt;
-            self.grid = Some(n + count);
-            self.f_start = false;
+            self.track.stats.steps += count;
+            self.track.t = self.track.t0 + (n + count) as f64 * dt;
+            self.track.grid = Some(n + count);
+            self.track.f_start = false;
             return true;
         }
-        std::mem::swap(&mut self.y, &mut self.at);
-        self.stats = stats;
-        self.integrator
-            .restart(self.model, self.t, &self.y, &mut self.stats);
+        std::mem::swap(&mut self.track.y, &mut self.track.at);
+        self.track.stats = stats;
+        self.integrator.restart(
+            self.track.model,
+            self.track.t,
+            &self.track.y,
+            &mut self.track.stats,
+        );
         false
     }
 
     /// Steps from the current time to `target`, halving a step whose implicit solve fails and
     /// landing on any time event in between.
     pub(super) fn advance_to(&mut self, target: f64) -> Result<Flow> {
-        self.pending.clear();
-        self.pending.push((target, 0));
-        let stop = self.watch.next_stop();
-        if stop > self.t && stop < target {
-            self.pending.push((stop, 0));
+        self.track.pending.clear();
+        self.track.pending.push((target, 0));
+        let stop = self.track.watch.next_stop();
+        if stop > self.track.t && stop < target {
+            self.track.pending.push((stop, 0));
         }
-        while let Some(&(end, depth)) = self.pending.last() {
-            let h = end - self.t;
+        while let Some(&(end, depth)) = self.track.pending.last() {
+            let h = end - self.track.t;
             match self.attempt(h, None) {
                 Ok(_) => {
-                    self.pending.pop();
+                    self.track.pending.pop();
                     let flow = self.accept(end)?;
                     if flow != Flow::Continue {
                         return Ok(flow);
                     }
                 }
-                Err(error) if error.is_retriable() && depth < self.max_halvings => {
-                    self.stats.rejected += 1;
-                    let mid = self.t + 0.5 * h;
-                    self.pending.pop();
-                    self.pending.push((end, depth + 1));
-                    self.pending.push((mid, depth + 1));
+                Err(error) if error.is_retriable() && depth < self.track.max_halvings => {
+                    self.track.stats.rejected += 1;
+                    let mid = self.track.t + 0.5 * h;
+                    self.track.pending.pop();
+                    self.track.pending.push((end, depth + 1));
+                    self.track.pending.push((mid, depth + 1));
                 }
                 Err(error) => return Err(error.with_halvings(depth)),
             }

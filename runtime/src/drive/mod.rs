@@ -23,6 +23,7 @@ mod record;
 mod stats;
 mod step;
 mod tolerances;
+mod track;
 
 pub use crate::integrators::DenseStep;
 pub use controller::{AdaptiveOptions, Controller};
@@ -32,10 +33,8 @@ pub use stats::Stats;
 pub use tolerances::{Atol, Tolerances};
 
 use controller::{ControllerState, initial_step};
-use events::{Outcome, Watch};
-use record::sample;
+pub(crate) use track::{Start, Track};
 
-use crate::checks::first_outside;
 use crate::integrators::{Integrator, Step};
 use crate::{Error, Model, NewtonOptions, Result, Sample, State};
 
@@ -93,44 +92,19 @@ enum Flow {
     Stopped,
 }
 
-/// A run in progress: the model, the method, the state and everything recorded.
+/// A run in progress: the method and its [`Track`].
+///
+/// Only what calls the method is generic over it (the loops, one attempted step, its acceptance
+/// around the method's own `accept` and interpolant); everything else is on the track, generic
+/// over the model alone, so a model run by fifteen methods compiles it once, not fifteen times.
 pub(crate) struct Driver<'a, 'm, M: Model, I> {
-    model: &'m M,
     integrator: I,
-    t: f64,
-    t0: f64,
-    y: M::State,
-    y_new: M::State,
-    /// The state at an event.
-    at: M::State,
-    /// The state at a save time.
-    saved: M::State,
-    /// f at the start and end of the step, for the Hermite interpolant.
-    ends: [M::State; 2],
-    /// Whether `ends[0]` holds f(t, y).
-    f_start: bool,
-    dense: DenseStep<M::State>,
-    pub(crate) stats: Stats,
-    watch: Watch<'a, M::State>,
-    limit: f64,
-    max_halvings: u32,
-    /// Sub-step ends for halving: (end, depth).
-    pending: Vec<(f64, u32)>,
-    recording: Recording<'a>,
-    next_save: usize,
-    pub(crate) record: Record<M::State>,
-    /// Whether recording is off entirely (a bare stepper).
-    quiet: bool,
-    /// Whether the state was changed from outside since the last step.
-    dirty: bool,
-    /// The grid step being taken, for a fixed-step run: samples and errors number steps by the
-    /// grid (t = t₀ + n·dt), whatever sub-steps halving took.
-    grid: Option<u64>,
+    pub(crate) track: Track<'a, 'm, M>,
 }
 
 impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
-    /// Starts a run of `model` from (`t0`, `y0`): checks the state and the model, starts the
-    /// method and records the initial sample.
+    /// Starts a run of `model` from (`t0`, `y0`): checks the state and the model, records the
+    /// initial sample and prepares the method.
     // Called only from `Simulation::run` and `Stepper`, which pass their own option fields,
     // checked (`t0` included).
     #[allow(clippy::too_many_arguments)]
@@ -141,121 +115,40 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
         newton: &NewtonOptions,
         limit: f64,
         events: Vec<Event<'a, M::State>>,
-        (event_tolerance, max_events): (f64, u64),
+        event_options: (f64, u64),
         recording: Recording<'a>,
     ) -> Result<Self> {
-        if let Some((index, value)) = first_outside(&y0, limit)
-            && value.is_finite()
-        {
-            return Err(Error::invalid(
-                format!("initial state `{}`", y0.component_name(index)),
-                format!(
-                    "{value:e} is already beyond the divergence limit {limit:e}; raise \
-                     `divergence_limit` if such values are expected"
-                ),
-            ));
-        }
-        for event in &events {
-            event.check()?;
-        }
-        let mut stats = Stats::default();
-        let integrator = I::start(model, t0, &y0, newton, &mut stats)?;
-        let quiet = recording.every == 0;
-        let mut record = Record {
-            samples: Vec::new(),
-            events: Vec::new(),
-            dense: recording
-                .dense
-                .then(|| DenseOutput::new(y0.as_slice().len())),
-        };
-        let next_save = recording
-            .save_at
-            .map_or(0, |times| times.partition_point(|&s| s < t0));
-        // The run's copies of the state, allocated fallibly: a state that fits in memory once
-        // may not fit a dozen times over.
-        if !quiet {
-            record.samples.push(sample(model, 0, t0, y0.try_clone()?));
-        }
-        let mut driver = Driver {
-            model,
-            integrator,
-            t: t0,
+        let start = Start {
             t0,
-            y_new: y0.try_clone()?,
-            at: y0.try_clone()?,
-            saved: y0.try_clone()?,
-            ends: [y0.try_clone()?, y0.try_clone()?],
-            f_start: false,
-            dense: DenseStep::new(&y0, I::DENSE_DEGREE.max(3))?,
-            stats,
-            watch: Watch::new(events, t0, &y0, event_tolerance, max_events)?,
+            newton,
             limit,
-            max_halvings: newton.max_halvings,
-            pending: Vec::with_capacity(newton.max_halvings as usize + 2),
-            recording,
-            next_save,
-            record,
-            quiet,
-            dirty: false,
-            grid: None,
-            y: y0,
+            event_options,
+            dense_degree: I::DENSE_DEGREE,
         };
-        // A save time at t₀ itself is the initial sample.
-        if let Some(times) = driver.recording.save_at
-            && times.get(driver.next_save) == Some(&t0)
-        {
-            driver.next_save += 1;
-        }
-        Ok(driver)
+        Self::on(Track::new(model, y0, start, events, recording)?, newton)
+    }
+
+    /// Prepares the method on a started track.
+    pub(crate) fn on(mut track: Track<'a, 'm, M>, newton: &NewtonOptions) -> Result<Self> {
+        let integrator = I::prepare(track.model, track.t0, &track.y, newton, &mut track.stats)?;
+        Ok(Driver { integrator, track })
     }
 
     /// The current time.
     pub(crate) fn t(&self) -> f64 {
-        self.t
+        self.track.t
     }
 
     /// The current state.
     pub(crate) fn state(&self) -> &M::State {
-        &self.y
+        &self.track.y
     }
 
     /// The current state, to change between steps (a user's impulse): the method restarts from
     /// it at the next step.
     pub(crate) fn state_mut(&mut self) -> &mut M::State {
-        self.dirty = true;
-        &mut self.y
-    }
-
-    /// `error`, or the cause behind it when the run failed before its first step because the
-    /// model's derivative is not finite at the initial state (a non-finite parameter, or values
-    /// so large that the force overflows): the step-size, divergence and Newton errors would
-    /// blame the step for what the input did.
-    pub(crate) fn explain(&mut self, error: Error) -> Error {
-        let blames_the_step = matches!(
-            error,
-            Error::StepSizeTooSmall { .. }
-                | Error::Diverged { .. }
-                | Error::NewtonDidNotConverge { .. }
-                | Error::SingularMatrix { .. }
-        );
-        if !(blames_the_step && self.t == self.t0 && self.stats.steps == 0) {
-            return error;
-        }
-        let f = &mut self.ends[0];
-        self.model.derivative(self.t, &self.y, f);
-        match f.as_slice().iter().position(|x| !x.is_finite()) {
-            None => error,
-            Some(k) => Error::BadModel {
-                model: M::NAME,
-                what: format!("its derivative at the initial state (t = {:?})", self.t),
-                reason: format!(
-                    "is not finite: component `{}` of f is {:?}; a parameter or the initial \
-                     state is not finite, or so large that the derivative overflows — check them",
-                    self.y.component_name(k),
-                    f.as_slice()[k]
-                ),
-            },
-        }
+        self.track.dirty = true;
+        &mut self.track.y
     }
 
     /// The integrator.
@@ -265,7 +158,7 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
 
     /// The model.
     pub(crate) fn model(&self) -> &'m M {
-        self.model
+        self.track.model
     }
 }
 

@@ -2,7 +2,7 @@
 
 use super::*;
 
-impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
+impl<M: Model> Track<'_, '_, M> {
     /// Records the save times up to `end` (inclusive when the step went through to it).
     pub(super) fn save_until(&mut self, end: f64, inclusive: bool) {
         let Some(times) = self.recording.save_at else {

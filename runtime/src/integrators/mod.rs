@@ -162,14 +162,7 @@ pub trait Integrator<M: Model>: Sized {
         newton: &NewtonOptions,
         stats: &mut Stats,
     ) -> Result<Self> {
-        if let Some((index, value)) = crate::checks::first_outside(y0, f64::MAX) {
-            return Err(crate::Error::invalid(
-                format!("initial state `{}`", y0.component_name(index)),
-                format!("must be finite, got {value:?}"),
-            ));
-        }
-        newton.check()?;
-        model.check(y0)?;
+        check_start(model, y0, newton)?;
         Self::prepare(model, t0, y0, newton, stats)
     }
 
@@ -273,6 +266,24 @@ pub trait Integrator<M: Model>: Sized {
         let _ = (model, step, y_new, dense);
         false
     }
+}
+
+/// The checks every run begins with ([`Integrator::start`]'s, made once per run by the drivers,
+/// which then `prepare` the method): a finite initial state, valid Newton options and the
+/// model's own [`Model::check`].
+pub(crate) fn check_start<M: Model>(
+    model: &M,
+    y0: &M::State,
+    newton: &NewtonOptions,
+) -> Result<()> {
+    if let Some((index, value)) = crate::checks::first_outside(y0, f64::MAX) {
+        return Err(crate::Error::invalid(
+            format!("initial state `{}`", y0.component_name(index)),
+            format!("must be finite, got {value:?}"),
+        ));
+    }
+    newton.check()?;
+    model.check(y0)
 }
 
 /// `N` copies of `y`, each allocated fallibly ([`State::try_clone`]): an integrator's stages.

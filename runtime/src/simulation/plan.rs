@@ -3,7 +3,7 @@
 
 use super::Simulation;
 use super::options::Span;
-use crate::drive::{Driver, Recording};
+use crate::drive::{Driver, Recording, Start, Track};
 use crate::integrators::Integrator;
 use crate::{Error, Method, Model, Result, SecondOrder, State, Stepping, Trajectory};
 
@@ -117,7 +117,33 @@ struct Plan<'s, 'm, M: Model> {
     dense: bool,
 }
 
-impl<M: Model> Plan<'_, '_, M> {
+impl<'s, M: Model> Plan<'s, '_, M> {
+    /// The run's track on `model` (the model itself, or its split or Jacobian), for a method
+    /// whose interpolant has `dense_degree`; generic over the model only.
+    fn start<'n, N: Model<State = M::State>>(
+        self,
+        model: &'n N,
+        dense_degree: usize,
+    ) -> Result<(Track<'s, 'n, N>, Span)> {
+        let o = &self.simulation.options;
+        let recording = Recording {
+            every: o.record_every,
+            save_at: o.save_at.as_deref(),
+            dense: self.dense,
+            progress: self.simulation.progress.map(|p| p.0),
+        };
+        let start = Start {
+            t0: o.t0,
+            newton: &o.newton,
+            limit: self.limit,
+            event_options: (o.event_tolerance, o.max_events),
+            dense_degree,
+        };
+        let events = self.simulation.events.clone();
+        let track = Track::new(model, self.initial, start, events, recording)?;
+        Ok((track, self.span))
+    }
+
     // One function per integrator: inlined into `run_partial`'s dispatch, the run loops shared
     // one body and the cheap ones ran up to 1.7× slower (measured on leapfrog).
     #[inline(never)]
@@ -126,24 +152,11 @@ impl<M: Model> Plan<'_, '_, M> {
         N: Model<State = M::State>,
         I: Integrator<N>,
     {
-        let o = &self.simulation.options;
-        let recording = Recording {
-            every: o.record_every,
-            save_at: o.save_at.as_deref(),
-            dense: self.dense,
-            progress: self.simulation.progress.map(|p| p.0),
-        };
-        let mut driver = Driver::<N, I>::new(
-            model,
-            o.t0,
-            self.initial,
-            &o.newton,
-            self.limit,
-            self.simulation.events.clone(),
-            (o.event_tolerance, o.max_events),
-            recording,
-        )?;
-        let outcome = match &self.span {
+        let simulation = self.simulation;
+        let o = &simulation.options;
+        let (track, span) = self.start(model, I::DENSE_DEGREE)?;
+        let mut driver = Driver::<N, I>::on(track, &o.newton)?;
+        let outcome = match &span {
             Span::Fixed { dt, steps } => driver.run_fixed(*dt, 0, *steps),
             // A method without an error estimate never gets here (`Options::check` refuses
             // tolerances for it): the constant keeps the adaptive loop from being compiled for
@@ -158,25 +171,34 @@ impl<M: Model> Plan<'_, '_, M> {
                         I::START_ORDER,
                     )
                 } else {
-                    Err(self.simulation.unsupported("it cannot step to tolerances"))
+                    Err(simulation.unsupported("it cannot step to tolerances"))
                 }
             }
         };
-        let outcome = outcome.map_err(|error| driver.explain(error));
-        let stats = driver.stats;
-        let record = driver.record;
-        let trajectory = Trajectory {
-            model: N::NAME,
-            method: I::METHOD,
-            stepping: match self.span {
-                Span::Fixed { dt, .. } => Stepping::Fixed(dt),
-                Span::Adaptive { tolerances, .. } => Stepping::Adaptive(tolerances),
-            },
-            stats,
-            samples: record.samples,
-            events: record.events,
-            dense: record.dense,
-        };
-        Ok((trajectory, outcome.err()))
+        Ok(trajectory(driver.track, I::METHOD, span, outcome))
     }
+}
+
+/// The trajectory a run recorded on `track` with `method`, and the failure that stopped it;
+/// generic over the model only, like the track.
+fn trajectory<N: Model>(
+    mut track: Track<'_, '_, N>,
+    method: Method,
+    span: Span,
+    outcome: Result<()>,
+) -> (Trajectory<N::State>, Option<Error>) {
+    let failure = outcome.err().map(|error| track.explain(error));
+    let trajectory = Trajectory {
+        model: N::NAME,
+        method,
+        stepping: match span {
+            Span::Fixed { dt, .. } => Stepping::Fixed(dt),
+            Span::Adaptive { tolerances, .. } => Stepping::Adaptive(tolerances),
+        },
+        stats: track.stats,
+        samples: track.record.samples,
+        events: track.record.events,
+        dense: track.record.dense,
+    };
+    (trajectory, failure)
 }
