@@ -36,10 +36,10 @@ pub(crate) fn check_t0(t0: f64) -> Result<()> {
 /// non-finite state: it is kept as the largest finite number.
 ///
 /// Errors: [`Error::InvalidInput`] for a limit that is not positive (NaN included).
-pub(crate) fn divergence_limit<S: State>(option: Option<f64>, state: &S) -> Result<f64> {
+pub(crate) fn divergence_limit(option: Option<f64>, state: &[f64]) -> Result<f64> {
     match option {
         None => {
-            let scale = state.as_slice().iter().fold(1.0f64, |m, x| m.max(x.abs()));
+            let scale = state.iter().fold(1.0f64, |m, x| m.max(x.abs()));
             Ok((1e10 * scale).min(f64::MAX))
         }
         Some(limit) if limit > 0.0 => Ok(limit.min(f64::MAX)),

@@ -59,7 +59,7 @@ impl<'m, M: Model, I: Integrator<M>> Stepper<'m, M, I> {
         divergence_limit: Option<f64>,
     ) -> Result<Self> {
         check_dt(dt)?;
-        let limit = crate::checks::divergence_limit(divergence_limit, &state)?;
+        let limit = crate::checks::divergence_limit(divergence_limit, state.as_slice())?;
         crate::checks::check_t0(t0)?;
         let quiet = Recording {
             every: 0,

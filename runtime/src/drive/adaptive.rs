@@ -16,96 +16,129 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
         controller: Controller,
         order: u32,
     ) -> Result<()> {
-        tolerances.check_against(&self.track.y)?;
+        let mut h = self.track.first_step(tolerances, control, order)?;
         let mut control_state = ControllerState::new(control.controller.unwrap_or(controller));
-        let mut h = match control.dt_initial {
-            Some(h) => h,
-            None => {
-                let [f0, scratch] = &mut self.track.ends;
-                self.track.model.derivative(self.track.t, &self.track.y, f0);
-                self.track.stats.evaluations += 2;
-                let h = initial_step(
-                    self.track.model,
-                    self.track.t,
-                    &self.track.y,
-                    f0,
-                    order,
-                    tolerances,
-                    control.dt_max,
-                    (&mut self.track.at, scratch),
-                );
-                self.track.f_start = true;
-                h
-            }
-        };
         let mut until_record = self.track.recording.every;
         while self.track.t < t_end {
-            let stop = t_end.min(self.track.watch.next_stop());
-            let mut h_try = h.min(control.dt_max);
-            // Land exactly on the end or a time event; stretch by up to 1 % to get there rather
-            // than leave a sliver of a step (Hairer's codes do the same).
-            let t1 = if self.track.t + 1.01 * h_try >= stop {
-                h_try = stop - self.track.t;
-                stop
-            } else {
-                self.track.t + h_try
-            };
-            let resolution = 10.0 * ulp(self.track.t);
-            let floor = control.dt_min.max(resolution);
-            let t = self.track.t;
-            let too_small = |dt: f64| Error::StepSizeTooSmall {
-                t,
-                dt,
-                dt_min: control.dt_min,
-                resolution,
-            };
-            if h_try < floor && t1 != stop {
-                return Err(too_small(h_try));
-            }
-            if self.track.stats.steps + self.track.stats.rejected >= control.max_steps {
-                return Err(Error::MaxSteps {
-                    t: self.track.t,
-                    steps: control.max_steps,
-                });
-            }
+            let aim = self.track.aim(h, t_end, control)?;
             // A method that sizes its own steps (`Integrator::next_step`) overrides the
-            // controller after each outcome; the caps and landings above still apply.
-            match self.attempt(h_try, Some(tolerances)) {
+            // controller after each outcome; the caps and landings of `aim` still apply.
+            match self.attempt(aim.h, Some(tolerances)) {
                 Ok(err) if err <= 1.0 => {
-                    let controlled = control_state.accepted(h_try, err);
-                    let flow = self.accept(t1)?;
+                    let controlled = control_state.accepted(aim.h, err);
+                    let flow = self.accept(aim.t1)?;
                     h = self.integrator.next_step().unwrap_or(controlled);
                     if flow == Flow::Stopped {
                         return Ok(());
                     }
-                    if !self.track.quiet
-                        && self.track.recording.save_at.is_none()
-                        && flow == Flow::Continue
-                    {
-                        until_record -= 1;
-                        if until_record == 0 || self.track.t >= t_end {
-                            self.track.push_sample();
-                            until_record = self.track.recording.every;
-                            self.track.report(t_end);
-                        }
-                    }
+                    self.track.record_step(flow, &mut until_record, t_end);
                 }
                 Ok(err) => {
                     self.track.stats.rejected += 1;
-                    let controlled = control_state.rejected(h_try, err);
+                    let controlled = control_state.rejected(aim.h, err);
                     h = self.integrator.next_step().unwrap_or(controlled);
-                    if h < floor {
-                        return Err(too_small(h));
+                    if h < aim.floor {
+                        return Err(self.track.too_small(h, control));
                     }
                 }
                 Err(error) if error.is_retriable() => {
                     self.track.stats.rejected += 1;
-                    h = self.integrator.next_step().unwrap_or(0.25 * h_try);
+                    h = self.integrator.next_step().unwrap_or(0.25 * aim.h);
                 }
                 Err(error) => return Err(error),
             }
         }
         self.track.finish();
         Ok(())
+    }
+}
+
+/// The next attempt of an adaptive run.
+pub(super) struct Aim {
+    /// Its size.
+    h: f64,
+    /// Its end.
+    t1: f64,
+    /// The smallest step allowed from here.
+    floor: f64,
+}
+
+impl<M: Model> Track<'_, '_, M> {
+    /// The first step: `control`'s, or Hairer's estimate for a method of `order` (f at the start
+    /// then in `ends[0]`). Checks the tolerances against the state first.
+    fn first_step(
+        &mut self,
+        tolerances: &super::Tolerances,
+        control: &AdaptiveOptions,
+        order: u32,
+    ) -> Result<f64> {
+        tolerances.check_against(&self.y)?;
+        if let Some(h) = control.dt_initial {
+            return Ok(h);
+        }
+        let [f0, scratch] = &mut self.ends;
+        self.model.derivative(self.t, &self.y, f0);
+        self.stats.evaluations += 2;
+        let h = initial_step(
+            self.model,
+            self.t,
+            &self.y,
+            f0,
+            order,
+            tolerances,
+            control.dt_max,
+            (&mut self.at, scratch),
+        );
+        self.f_start = true;
+        Ok(h)
+    }
+
+    /// The next attempt from the proposed size `h`: capped by `dt_max`, landing exactly on the
+    /// end or a time event (stretched by up to 1 % to get there rather than leave a sliver of a
+    /// step, as Hairer's codes do). Errors when the step collapsed below its floor or the step
+    /// budget ran out.
+    fn aim(&self, h: f64, t_end: f64, control: &AdaptiveOptions) -> Result<Aim> {
+        let stop = t_end.min(self.watch.next_stop());
+        let mut h = h.min(control.dt_max);
+        let t1 = if self.t + 1.01 * h >= stop {
+            h = stop - self.t;
+            stop
+        } else {
+            self.t + h
+        };
+        let floor = control.dt_min.max(10.0 * ulp(self.t));
+        if h < floor && t1 != stop {
+            return Err(self.too_small(h, control));
+        }
+        if self.stats.steps + self.stats.rejected >= control.max_steps {
+            return Err(Error::MaxSteps {
+                t: self.t,
+                steps: control.max_steps,
+            });
+        }
+        Ok(Aim { h, t1, floor })
+    }
+
+    /// The error for a step of `dt` from the current time, below its floor.
+    fn too_small(&self, dt: f64, control: &AdaptiveOptions) -> Error {
+        Error::StepSizeTooSmall {
+            t: self.t,
+            dt,
+            dt_min: control.dt_min,
+            resolution: 10.0 * ulp(self.t),
+        }
+    }
+
+    /// Records an accepted step's end at the recording interval (and the last step's).
+    #[inline]
+    fn record_step(&mut self, flow: Flow, until_record: &mut u64, t_end: f64) {
+        if !self.quiet && self.recording.save_at.is_none() && flow == Flow::Continue {
+            *until_record -= 1;
+            if *until_record == 0 || self.t >= t_end {
+                self.push_sample();
+                *until_record = self.recording.every;
+                self.report(t_end);
+            }
+        }
     }
 }

@@ -41,12 +41,7 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
             };
             n += taken;
             if recording {
-                until_record -= taken;
-                if until_record == 0 || n == last {
-                    self.track.push_sample();
-                    until_record = self.track.recording.every;
-                    self.track.report(self.track.t);
-                }
+                self.track.record_grid(taken, &mut until_record, n == last);
             }
         }
         self.track.finish();
@@ -119,6 +114,19 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
             }
         }
         Ok(Flow::Continue)
+    }
+}
+
+impl<M: Model> Track<'_, '_, M> {
+    /// Records the grid step reached after `taken` more steps, at the recording interval (and
+    /// at the run's `last` step).
+    fn record_grid(&mut self, taken: u64, until_record: &mut u64, last: bool) {
+        *until_record -= taken;
+        if *until_record == 0 || last {
+            self.push_sample();
+            *until_record = self.recording.every;
+            self.report(self.t);
+        }
     }
 }
 

@@ -3,7 +3,7 @@
 
 use crate::checks::{check_dt, check_t0, divergence_limit};
 use crate::drive::AdaptiveOptions;
-use crate::{Error, Method, NewtonOptions, Result, State, Stepping, Tolerances};
+use crate::{Error, Method, NewtonOptions, Result, Stepping, Tolerances};
 
 /// How long a run lasts.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -101,10 +101,12 @@ pub(super) enum Span {
 impl RunOptions {
     /// Checks every option for a run from `initial`: the one place each is validated.
     /// `unsupported` makes the error for a method that cannot do what the options ask.
-    pub(super) fn check<S: State>(
+    // Not generic (the state as a slice, the error maker as an object): one copy for every
+    // model a program runs.
+    pub(super) fn check(
         &self,
-        initial: &S,
-        unsupported: impl FnOnce(&'static str) -> Error,
+        initial: &[f64],
+        unsupported: &dyn Fn(&'static str) -> Error,
     ) -> Result<Checked> {
         let o = self;
         let method = o.method;
@@ -114,7 +116,7 @@ impl RunOptions {
                 Stepping::Fixed(*dt)
             }
             (Some(Stepping::Adaptive(tolerances)), true) => {
-                tolerances.check(initial.as_slice().len())?;
+                tolerances.check(initial.len())?;
                 Stepping::Adaptive(tolerances.clone())
             }
             (Some(Stepping::Adaptive(_)), false) => {

@@ -97,7 +97,7 @@ impl<'m, M: Model> Simulation<'m, M> {
         };
         let checked = self
             .options
-            .check(&initial, |reason| self.unsupported(reason))?;
+            .check(initial.as_slice(), &|reason| self.unsupported(reason))?;
         Ok(Plan {
             initial,
             span: checked.span,
