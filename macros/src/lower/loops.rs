@@ -6,28 +6,11 @@
 //! iteration's number (so `self.x[k]` names a component); its state-free code goes to the
 //! prologue in a block of its own that starts by binding the loop variable, in order, so the
 //! prologue changes the locals the loop changes as the loop does.
-//!
-//! A bound or condition that reads only parameters (`0..self.n`, `while i < self.n`) is known
-//! only at run time. Such a loop is unrolled as far as it can run without indexing past the end
-//! of a vector or array (the original code panics beyond that, so no run goes further), each
-//! iteration guarded by the loop's own test, a branch on parameters: `for k in a..end` becomes
-//! `let end' = end; if a < end' { let k = a; body; if a + 1 < end' { … } }`, and
-//! `while c { body }` becomes `if c { body; if c { body; … } }`: nested, since each test runs
-//! only after the iterations before it, so locals the body changes (a counter) stay known from
-//! one iteration to the next. Up to 64 iterations nest; a longer `for` gets one flat test per
-//! iteration (a counter changed by its body is then refused), a longer `while` is refused. The
-//! most iterations are found by lowering the body, unguarded, until an index goes past the end
-//! at the iteration's own level; a loop whose body indexes nothing of a known length is
-//! refused. Past an end inside a branch of such a loop's body (`if i + 1 <
-//! self.n { self.x[i + 1] } else { 0.0 }` at the last i), the arm cannot be taken — the code
-//! would panic if it were — so it reads zero there and the iteration still counts.
 
 use std::collections::HashMap;
 
-use proc_macro2::TokenStream;
-use quote::ToTokens;
 use syn::visit::{self, Visit};
-use syn::{BinOp, Expr, ExprForLoop, ExprWhile, Lit, RangeLimits, Stmt, UnOp};
+use syn::{BinOp, Expr, ExprForLoop, ExprWhile, Lit, RangeLimits, UnOp};
 
 use super::statements::Context;
 use super::{Branch, BranchKind, Lowering, Prologue, Value};
@@ -35,27 +18,12 @@ use super::{Branch, BranchKind, Lowering, Prologue, Value};
 /// Most iterations the lowering of one function unrolls, all loops together: enough for a loop
 /// over the components of any state odyn differentiates symbolically, few enough that a typo
 /// (`0..100000`) is an error, not a compiler that runs out of memory.
-const MAX_ITERATIONS: usize = 4096;
+pub(super) const MAX_ITERATIONS: usize = 4096;
 
 /// The integer types a known integer may be cast to in an index (`k as usize`).
 const INTEGER_TYPES: [&str; 10] = [
     "usize", "isize", "u8", "u16", "u32", "u64", "i8", "i16", "i32", "i64",
 ];
-
-/// Most iterations of a loop bounded at run time whose tests nest (see [`nested`]): the
-/// generated code nests as deep. A longer `while` is refused, a longer `for` gets flat tests.
-const MAX_NESTED: usize = 64;
-
-/// `if test₀ { if true { body₀ } if test₁ { if true { body₁ } … } }`: each iteration's test runs
-/// only after the iterations before it ran, so the locals they change (a counter) stay known in
-/// the next; `if true` gives each body a scope of its own.
-fn nested(iterations: impl DoubleEndedIterator<Item = (TokenStream, Vec<Stmt>)>) -> Vec<Stmt> {
-    let mut nest: Vec<Stmt> = Vec::new();
-    for (test, body) in iterations.rev() {
-        nest = vec![syn::parse_quote!(if #test { if true { #(#body)* } #(#nest)* })];
-    }
-    nest
-}
 
 impl Lowering<'_> {
     /// The integer a state-free expression evaluates to at compile time: a literal, or a local
@@ -169,7 +137,7 @@ impl Lowering<'_> {
 
     /// One iteration: the body in a scope of its own (with the loop variable, if any), its
     /// prologue in a block of its own.
-    fn iteration(
+    pub(super) fn iteration(
         &mut self,
         body: &syn::Block,
         variable: Option<(String, Value, syn::Stmt)>,
@@ -194,141 +162,7 @@ impl Lowering<'_> {
         Ok(())
     }
 
-    /// `for k in a..end` whose end reads parameters: guarded iterations, as many as the body can
-    /// run without indexing past an end.
-    fn guarded_for(&mut self, l: &ExprForLoop, name: Option<&syn::Ident>) -> syn::Result<()> {
-        let Expr::Range(r) = &*l.expr else {
-            return Err(self.unknown_bound(&l.expr));
-        };
-        let (Some(start), Some(end)) = (&r.start, &r.end) else {
-            return Err(self.unknown_bound(&l.expr));
-        };
-        let Some(first) = self.known_integer(start) else {
-            return Err(self.unknown_bound(&l.expr));
-        };
-        let end_name = quote::format_ident!("__odyn_end{}", self.selectors);
-        // The loop variable has the end's type in the prologue, as in the user's loop (a bare
-        // literal would be `{integer}`, and `i.pow(2)` would not compile).
-        let bind = |k: i64| {
-            let literal = proc_macro2::Literal::i64_unsuffixed(k);
-            name.map(|n| -> syn::Stmt {
-                syn::parse_quote!(let #n = ::odyn::__private::same_type(#literal, &#end_name);)
-            })
-        };
-        let count = self.most_iterations(&l.expr, |this, j| {
-            let k = first + j as i64;
-            let variable = bind(k).map(|stmt| {
-                let name = name.expect("a binding has a name").to_string();
-                (name, Value::Scalar(this.graph.num(k as f64)), stmt)
-            });
-            this.iteration(&l.body, variable).map(|()| true)
-        })?;
-        let mut stmts: Vec<syn::Stmt> = vec![syn::parse_quote!(let #end_name = #end;)];
-        let test = match r.limits {
-            RangeLimits::HalfOpen(_) => quote::quote!(<),
-            RangeLimits::Closed(_) => quote::quote!(<=),
-        };
-        let iterations = (0..count).map(|j| {
-            let k = first + j as i64;
-            let literal = proc_macro2::Literal::i64_unsuffixed(k);
-            let mut body: Vec<syn::Stmt> = bind(k).into_iter().collect();
-            body.extend(l.body.stmts.iter().cloned());
-            (quote::quote!(#literal #test #end_name), body)
-        });
-        if count <= MAX_NESTED {
-            stmts.extend(nested(iterations));
-        } else {
-            // One flat test per iteration (a counter the body changes is then not followed).
-            stmts
-                .extend(iterations.map(|(test, body)| -> syn::Stmt {
-                    syn::parse_quote!(if #test { #(#body)* })
-                }));
-        }
-        self.count_iterations(count, &l.expr)?;
-        self.guarded(&stmts)
-    }
-
-    /// `while c` whose condition reads parameters: guarded iterations, nested, as many as the
-    /// body can run without indexing past an end (or until `c` is known to be false).
-    fn guarded_while(&mut self, w: &ExprWhile) -> syn::Result<()> {
-        let count = self.most_iterations(&w.cond, |this, _| {
-            if this.known_condition(&w.cond) == Some(false) {
-                return Ok(false);
-            }
-            this.iteration(&w.body, None).map(|()| true)
-        })?;
-        if count > MAX_NESTED {
-            return Err(self.refuse(
-                &w.cond,
-                format_args!(
-                    "a `while` loop on the state whose condition is known only at run time and \
-                     that may run more than {MAX_NESTED} times (odyn nests one test per \
-                     iteration); write it as `for k in 0..n`"
-                ),
-            ));
-        }
-        let (cond, body) = (&w.cond, &w.body.stmts);
-        let nest = nested((0..count).map(|_| (cond.to_token_stream(), body.clone())));
-        self.count_iterations(count, &w.cond)?;
-        self.guarded(&nest)
-    }
-
-    /// Lowers a guarded loop's statements: every iteration inside its guard's arm, so an index
-    /// past an end there is in an arm that cannot be taken (see [`Lowering::component`]).
-    fn guarded(&mut self, stmts: &[syn::Stmt]) -> syn::Result<()> {
-        let outer = self.guard.replace(self.arms);
-        let result = self.run(stmts, Context::Arm).map(|_| ());
-        self.guard = outer;
-        result
-    }
-
-    /// How many iterations a loop bounded at run time can run: `iteration(self, j)` lowers
-    /// iteration j unguarded (or returns `false` when the loop is known to end there) until an
-    /// index goes past an end. Everything the trial lowered is undone.
-    fn most_iterations(
-        &mut self,
-        at: &Expr,
-        mut iteration: impl FnMut(&mut Self, usize) -> syn::Result<bool>,
-    ) -> syn::Result<usize> {
-        let (scopes, prologue, opaques, selectors) = (
-            self.scopes.clone(),
-            self.prologue.len(),
-            self.opaques,
-            self.selectors,
-        );
-        let (iterations, time_opaque, past_end, guard) =
-            (self.iterations, self.time_opaque, self.past_end, self.guard);
-        self.guard = Some(self.arms);
-        let mut count = 0;
-        let outcome = loop {
-            if self.iterations + count >= MAX_ITERATIONS {
-                break Err(self.refuse(
-                    at,
-                    "a loop on the state whose bound is known only at run time and whose body \
-                     indexes no array or vector of a known length with its variable, outside \
-                     branches and inner loops (odyn unrolls loops on the state: a run-time \
-                     bound needs an index, such as `self.x[k]` of `for k in 0..self.n`, that \
-                     stops it; or write the bound as an integer literal, or take the Jacobian \
-                     by `jacobian = finite_differences`)",
-                ));
-            }
-            self.past_end = false;
-            match iteration(self, count) {
-                Ok(true) if !self.past_end => count += 1,
-                Ok(_) => break Ok(count),
-                Err(_) if self.past_end => break Ok(count),
-                Err(error) => break Err(error),
-            }
-        };
-        self.scopes = scopes;
-        self.prologue.truncate(prologue);
-        (self.opaques, self.selectors) = (opaques, selectors);
-        (self.iterations, self.time_opaque, self.past_end) = (iterations, time_opaque, past_end);
-        self.guard = guard;
-        outcome
-    }
-
-    fn count_iterations(&mut self, count: usize, at: &Expr) -> syn::Result<()> {
+    pub(super) fn count_iterations(&mut self, count: usize, at: &Expr) -> syn::Result<()> {
         self.iterations = self.iterations.saturating_add(count);
         if self.iterations > MAX_ITERATIONS {
             return Err(self.refuse(
@@ -344,7 +178,7 @@ impl Lowering<'_> {
 
     /// The refusal of a `for` on the state that is not over `a..end` (or `a..=end`) with a start
     /// known at compile time.
-    fn unknown_bound(&self, at: &Expr) -> syn::Error {
+    pub(super) fn unknown_bound(&self, at: &Expr) -> syn::Error {
         self.error(
             at,
             "a loop whose body reads the state and whose range odyn cannot unroll (`for`; odyn \

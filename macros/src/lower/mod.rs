@@ -28,6 +28,7 @@ mod branches;
 mod calls;
 mod conditions;
 mod expr;
+mod guarded;
 mod inline;
 mod loops;
 mod merge;

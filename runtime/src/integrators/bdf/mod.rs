@@ -4,10 +4,11 @@
 mod coefficients;
 mod history;
 mod newton;
+mod order;
 
 use coefficients::{
-    ALPHA, BASIS, CVODE_MAXCOR, CVODE_NLSCOEF, CVODE_SAFETY, ERROR_CONST, FIXED_STEP_ORDER, GAMMA,
-    MAX_FACTOR, MAX_ORDER, MIN_FACTOR, NEWTON_MAXITER, change_d,
+    ALPHA, BASIS, CVODE_SAFETY, ERROR_CONST, FIXED_STEP_ORDER, GAMMA, MAX_ORDER, MIN_FACTOR,
+    NEWTON_MAXITER, change_d,
 };
 use newton::Convergence;
 
@@ -222,46 +223,7 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
             *q /= ALPHA[k];
         }
         let ratio = self.newton.refactor_ratio;
-        let test = match s.tolerances {
-            Some(tolerances) => {
-                // A component left out of the error test (atol +∞) is weighed by the smallest
-                // finite atol: found once, not per component.
-                let fallback = tolerances.smallest_finite_atol();
-                for (i, (w, p)) in self
-                    .scale
-                    .as_mut_slice()
-                    .iter_mut()
-                    .zip(&*predict)
-                    .enumerate()
-                {
-                    let atol = tolerances.atol(i);
-                    let atol = if atol.is_finite() { atol } else { fallback };
-                    *w = atol + tolerances.rtol * p.abs();
-                }
-                if Self::cvode_test(&self.newton) {
-                    // The error estimate is ‖ERROR_CONST[k]·d‖: d's own error may use a tenth.
-                    Convergence::Cvode {
-                        tol: CVODE_NLSCOEF / ERROR_CONST[k],
-                        max_iters: CVODE_MAXCOR,
-                    }
-                } else {
-                    let rtol = tolerances.rtol.max(100.0 * f64::EPSILON);
-                    Convergence::SciPy {
-                        tol: (10.0 * f64::EPSILON / rtol).max(0.03f64.min(rtol.sqrt())),
-                        max_iters: NEWTON_MAXITER,
-                    }
-                }
-            }
-            None => {
-                for (w, p) in self.scale.as_mut_slice().iter_mut().zip(&*predict) {
-                    *w = 1.0 + p.abs();
-                }
-                Convergence::SciPy {
-                    tol: self.newton.tol,
-                    max_iters: self.newton.max_iters as usize,
-                }
-            }
-        };
+        let test = self.weigh(s.tolerances, k);
         let c = h / ALPHA[k];
         // CVODE's rule holds after a rejection too (SciPy's keeps the LU however far c moved).
         if ratio > 0.0 && (c / self.factored_c - 1.0).abs() > ratio {
@@ -324,37 +286,7 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
         self.next = Some(h);
         // This step, if accepted, is the (k + 1)-th at this h and order.
         if self.equal_steps >= k {
-            // The estimates of orders k − 1 and k + 1 from the differences the update will
-            // make: ∇ᵏyₙ₊₁ = ∇ᵏyₙ + d and ∇ᵏ⁺²yₙ₊₁ = d − ∇ᵏ⁺¹yₙ.
-            let max_order = self.max_order.unwrap_or(MAX_ORDER);
-            let lower = if k > 1 {
-                let dk = self.differences[k].as_slice();
-                norm(&|i| ERROR_CONST[k - 1] * (dk[i] + d[i]))
-            } else {
-                f64::INFINITY
-            };
-            let higher = if k < max_order {
-                let dk1 = self.differences[k + 1].as_slice();
-                norm(&|i| ERROR_CONST[k + 1] * (d[i] - dk1[i]))
-            } else {
-                f64::INFINITY
-            };
-            let factors = [
-                Transcendental::powf(lower, -1.0 / k as f64),
-                Transcendental::powf(error, -1.0 / (k + 1) as f64),
-                Transcendental::powf(higher, -1.0 / (k + 2) as f64),
-            ];
-            // The first largest, as NumPy's argmax.
-            let mut best = 0;
-            for (q, f) in factors.iter().enumerate() {
-                if *f > factors[best] {
-                    best = q;
-                }
-            }
-            let order = (k + best).saturating_sub(1).clamp(1, max_order);
-            let factor = MAX_FACTOR.min(safety * factors[best]);
-            self.change = Some(order);
-            self.next = Some(h * factor);
+            self.propose(h, (safety, error), tolerances, y);
         }
         Ok(error)
     }

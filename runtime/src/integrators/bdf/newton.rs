@@ -2,8 +2,12 @@
 //! reuses.
 
 use super::Bdf;
-use super::coefficients::{CVODE_CRDOWN, CVODE_RDIV};
-use crate::{Error, Jacobian, NewtonFailure, NewtonMatrix, NewtonOptions, Result, State, Stats};
+use super::coefficients::{
+    CVODE_CRDOWN, CVODE_MAXCOR, CVODE_NLSCOEF, CVODE_RDIV, ERROR_CONST, NEWTON_MAXITER,
+};
+use crate::{
+    Error, Jacobian, NewtonFailure, NewtonMatrix, NewtonOptions, Result, State, Stats, Tolerances,
+};
 
 /// When the Newton iteration of a step has converged; ‖Δ‖ is the update's weighted RMS norm and
 /// the rate ‖Δ‖/‖Δ_prev‖ is measured within the step.
@@ -26,6 +30,54 @@ impl<M: Jacobian> Bdf<M> {
     /// cost ([`NewtonMatrix::COSTLY_SOLVES`]) and CVODE's rules are on (`refactor_ratio` > 0).
     pub(super) fn cvode_test(newton: &NewtonOptions) -> bool {
         newton.refactor_ratio > 0.0 && <M::Matrix as NewtonMatrix>::COSTLY_SOLVES
+    }
+
+    /// Weighs the components for this step's norms (atol + rtol·|yₙ₊₁⁽⁰⁾| to tolerances, 1 + |y⁽⁰⁾|
+    /// at a fixed step), from the predictor in `self.predict`, and says when Newton converges
+    /// at order `k`: CVODE's test or SciPy's (see [`Bdf::cvode_test`]), or the fixed-step run's
+    /// [`NewtonOptions`].
+    pub(super) fn weigh(&mut self, tolerances: Option<&Tolerances>, k: usize) -> Convergence {
+        let predict = self.predict.as_slice();
+        match tolerances {
+            Some(tolerances) => {
+                // A component left out of the error test (atol +∞) is weighed by the smallest
+                // finite atol: found once, not per component.
+                let fallback = tolerances.smallest_finite_atol();
+                for (i, (w, p)) in self
+                    .scale
+                    .as_mut_slice()
+                    .iter_mut()
+                    .zip(predict)
+                    .enumerate()
+                {
+                    let atol = tolerances.atol(i);
+                    let atol = if atol.is_finite() { atol } else { fallback };
+                    *w = atol + tolerances.rtol * p.abs();
+                }
+                if Self::cvode_test(&self.newton) {
+                    // The error estimate is ‖ERROR_CONST[k]·d‖: d's own error may use a tenth.
+                    Convergence::Cvode {
+                        tol: CVODE_NLSCOEF / ERROR_CONST[k],
+                        max_iters: CVODE_MAXCOR,
+                    }
+                } else {
+                    let rtol = tolerances.rtol.max(100.0 * f64::EPSILON);
+                    Convergence::SciPy {
+                        tol: (10.0 * f64::EPSILON / rtol).max(0.03f64.min(rtol.sqrt())),
+                        max_iters: NEWTON_MAXITER,
+                    }
+                }
+            }
+            None => {
+                for (w, p) in self.scale.as_mut_slice().iter_mut().zip(predict) {
+                    *w = 1.0 + p.abs();
+                }
+                Convergence::SciPy {
+                    tol: self.newton.tol,
+                    max_iters: self.newton.max_iters as usize,
+                }
+            }
+        }
     }
 
     /// The simplified Newton iteration for d = c·f(tₙ₊₁, y⁽⁰⁾ + d) − ψ from d = 0 (SciPy's
