@@ -3,49 +3,44 @@
 
 use super::*;
 
+/// What the fixed-step loop needs of a driver: its track, a step of the method and a bare block
+/// of them. Object-safe, so the loop (`run`, `advance_to`) is compiled once per model, not once
+/// per (model, method); it calls the method through this at most once per grid step, or once per
+/// block of [`BLOCK`] steps on the bare path.
+pub(super) trait FixedSteps<'a, 'm, M: Model + 'm> {
+    /// The run's track.
+    fn track(&mut self) -> &mut Track<'a, 'm, M>;
+    /// Attempts a step of `h` and, if the method succeeds, accepts it (ending at `end`): the
+    /// flow after it, or inside `Ok` the method's failure, which [`advance_to`] may retry as
+    /// two half steps. `Err` is a failure of the acceptance (divergence, an event's error).
+    fn step(&mut self, h: f64, end: f64) -> Result<std::result::Result<Flow, Error>>;
+    /// [`Driver::run_block`].
+    fn run_block(&mut self, dt: f64, n: u64, count: u64) -> bool;
+}
+
+impl<'a, 'm, M: Model, I: Integrator<M>> FixedSteps<'a, 'm, M> for Driver<'a, 'm, M, I> {
+    fn track(&mut self) -> &mut Track<'a, 'm, M> {
+        &mut self.track
+    }
+
+    #[inline]
+    fn step(&mut self, h: f64, end: f64) -> Result<std::result::Result<Flow, Error>> {
+        match self.attempt(h, None) {
+            Ok(_) => self.accept(end).map(Ok),
+            Err(error) => Ok(Err(error)),
+        }
+    }
+
+    fn run_block(&mut self, dt: f64, n: u64, count: u64) -> bool {
+        Driver::run_block(self, dt, n, count)
+    }
+}
+
 impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
     /// Takes `steps` steps of the grid t₀ + n·dt (n counted from `first`), recording per
     /// [`Recording`]. Returns early when an event stops the run.
     pub(crate) fn run_fixed(&mut self, dt: f64, first: u64, steps: u64) -> Result<()> {
-        let mut until_record = self.track.recording.every;
-        let last = first.saturating_add(steps);
-        let mut n = first;
-        // Steps before this grid index go through the checked path (a block being retaken).
-        let mut checked_until = first;
-        let recording = !self.track.quiet && self.track.recording.save_at.is_none();
-        while n < last {
-            let block = (last - n)
-                .min(BLOCK)
-                .min(if recording { until_record } else { BLOCK });
-            // Checked as the run goes: a run of `steps(u64::MAX)` stops at a divergence first.
-            check_resolution(self.track.t0, dt, n, n + block)?;
-            let taken = if n >= checked_until && block > 1 && self.track.plain() {
-                if !self.run_block(dt, n, block) {
-                    checked_until = n + block;
-                    continue;
-                }
-                block
-            } else {
-                // Time as t₀ + n·dt, never accumulated: two runs that took the same steps are at
-                // bit-identical times.
-                let target = self.track.t0 + (n + 1) as f64 * dt;
-                self.track.grid = Some(n + 1);
-                loop {
-                    match self.advance_to(target)? {
-                        Flow::Continue => break,
-                        Flow::Changed => continue,
-                        Flow::Stopped => return Ok(()),
-                    }
-                }
-                1
-            };
-            n += taken;
-            if recording {
-                self.track.record_grid(taken, &mut until_record, n == last);
-            }
-        }
-        self.track.finish();
-        Ok(())
+        run(self, dt, first, steps)
     }
 
     /// Takes `count` grid steps from index `n` as a bare loop — the same attempts at the same
@@ -83,38 +78,90 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
         );
         false
     }
+}
 
-    /// Steps from the current time to `target`, halving a step whose implicit solve fails and
-    /// landing on any time event in between.
-    pub(super) fn advance_to(&mut self, target: f64) -> Result<Flow> {
-        self.track.pending.clear();
-        self.track.pending.push((target, 0));
-        let stop = self.track.watch.next_stop();
-        if stop > self.track.t && stop < target {
-            self.track.pending.push((stop, 0));
-        }
-        while let Some(&(end, depth)) = self.track.pending.last() {
-            let h = end - self.track.t;
-            match self.attempt(h, None) {
-                Ok(_) => {
-                    self.track.pending.pop();
-                    let flow = self.accept(end)?;
-                    if flow != Flow::Continue {
-                        return Ok(flow);
-                    }
-                }
-                Err(error) if error.is_retriable() && depth < self.track.max_halvings => {
-                    self.track.stats.rejected += 1;
-                    let mid = self.track.t + 0.5 * h;
-                    self.track.pending.pop();
-                    self.track.pending.push((end, depth + 1));
-                    self.track.pending.push((mid, depth + 1));
-                }
-                Err(error) => return Err(error.with_halvings(depth)),
+/// [`Driver::run_fixed`], once per model.
+fn run<'a, 'm, M: Model + 'm>(
+    d: &mut dyn FixedSteps<'a, 'm, M>,
+    dt: f64,
+    first: u64,
+    steps: u64,
+) -> Result<()> {
+    let mut until_record = d.track().recording.every;
+    let last = first.saturating_add(steps);
+    let mut n = first;
+    // Steps before this grid index go through the checked path (a block being retaken).
+    let mut checked_until = first;
+    let recording = !d.track().quiet && d.track().recording.save_at.is_none();
+    while n < last {
+        let block = (last - n)
+            .min(BLOCK)
+            .min(if recording { until_record } else { BLOCK });
+        // Checked as the run goes: a run of `steps(u64::MAX)` stops at a divergence first.
+        check_resolution(d.track().t0, dt, n, n + block)?;
+        let taken = if n >= checked_until && block > 1 && d.track().plain() {
+            if !d.run_block(dt, n, block) {
+                checked_until = n + block;
+                continue;
             }
+            block
+        } else {
+            // Time as t₀ + n·dt, never accumulated: two runs that took the same steps are at
+            // bit-identical times.
+            let target = d.track().t0 + (n + 1) as f64 * dt;
+            d.track().grid = Some(n + 1);
+            loop {
+                match advance_to(d, target)? {
+                    Flow::Continue => break,
+                    Flow::Changed => continue,
+                    Flow::Stopped => return Ok(()),
+                }
+            }
+            1
+        };
+        n += taken;
+        if recording {
+            d.track().record_grid(taken, &mut until_record, n == last);
         }
-        Ok(Flow::Continue)
     }
+    d.track().finish();
+    Ok(())
+}
+
+/// Steps from the current time to `target`, halving a step whose implicit solve fails and
+/// landing on any time event in between.
+fn advance_to<'a, 'm, M: Model + 'm>(
+    d: &mut dyn FixedSteps<'a, 'm, M>,
+    target: f64,
+) -> Result<Flow> {
+    let track = d.track();
+    track.pending.clear();
+    track.pending.push((target, 0));
+    let stop = track.watch.next_stop();
+    if stop > track.t && stop < target {
+        track.pending.push((stop, 0));
+    }
+    while let Some(&(end, depth)) = d.track().pending.last() {
+        let h = end - d.track().t;
+        match d.step(h, end)? {
+            Ok(flow) => {
+                d.track().pending.pop();
+                if flow != Flow::Continue {
+                    return Ok(flow);
+                }
+            }
+            Err(error) if error.is_retriable() && depth < d.track().max_halvings => {
+                let track = d.track();
+                track.stats.rejected += 1;
+                let mid = track.t + 0.5 * h;
+                track.pending.pop();
+                track.pending.push((end, depth + 1));
+                track.pending.push((mid, depth + 1));
+            }
+            Err(error) => return Err(error.with_halvings(depth)),
+        }
+    }
+    Ok(Flow::Continue)
 }
 
 impl<M: Model> Track<'_, '_, M> {
