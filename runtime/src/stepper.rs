@@ -1,7 +1,7 @@
 //! [`Stepper`]: a model, an integrator and a state, advanced one checked step at a time.
 
 use crate::checks::check_dt;
-use crate::drive::{Driver, Recording};
+use crate::drive::{Driver, Recording, Start, Track};
 use crate::{Error, Integrator, Model, NewtonOptions, Result, State, Stats};
 
 /// Advances one state with a fixed method and a fixed dt, refusing non-finite results.
@@ -71,18 +71,16 @@ impl<'m, M: Model, I: Integrator<M>> Stepper<'m, M, I> {
         // into each frame on the way to the bigger stack.
         let components = state.as_slice().len();
         let state = Box::new(state);
+        let start = Start {
+            t0,
+            newton,
+            limit,
+            event_options: (0.0, 0),
+            dense_degree: I::DENSE_DEGREE,
+        };
         let driver = crate::stack::with_room::<M::State, _>(move || {
-            Driver::new(
-                model,
-                t0,
-                *state,
-                newton,
-                limit,
-                Vec::new(),
-                (0.0, 0),
-                quiet,
-            )
-            .map(Box::new)
+            let track = Track::new(model, *state, start, Vec::new(), quiet)?;
+            Driver::on(track, newton).map(Box::new)
         })?;
         Ok(Stepper {
             driver,

@@ -14,7 +14,8 @@ pub(super) trait FixedSteps<'a, 'm, M: Model + 'm> {
     /// flow after it, or inside `Ok` the method's failure, which [`advance_to`] may retry as
     /// two half steps. `Err` is a failure of the acceptance (divergence, an event's error).
     fn step(&mut self, h: f64, end: f64) -> Result<std::result::Result<Flow, Error>>;
-    /// [`Driver::run_block`].
+    /// Takes `count` grid steps from index `n` as a bare loop; false when they must be retaken
+    /// on the checked path (see the implementation for `Driver`).
     fn run_block(&mut self, dt: f64, n: u64, count: u64) -> bool;
 }
 
@@ -31,18 +32,6 @@ impl<'a, 'm, M: Model, I: Integrator<M>> FixedSteps<'a, 'm, M> for Driver<'a, 'm
         }
     }
 
-    fn run_block(&mut self, dt: f64, n: u64, count: u64) -> bool {
-        Driver::run_block(self, dt, n, count)
-    }
-}
-
-impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
-    /// Takes `steps` steps of the grid t₀ + n·dt (n counted from `first`), recording per
-    /// [`Recording`]. Returns early when an event stops the run.
-    pub(crate) fn run_fixed(&mut self, dt: f64, first: u64, steps: u64) -> Result<()> {
-        run(self, dt, first, steps)
-    }
-
     /// Takes `count` grid steps from index `n` as a bare loop — the same attempts at the same
     /// (t, h) as the checked path — and tests the divergence limit once, on the block's last
     /// state (a state that left the limit is infinite, NaN or still growing there; one that
@@ -50,7 +39,7 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
     /// or the last state is outside the limit: the state, time and counts are then back at the
     /// block's start (the method restarted there) and the caller retakes the block on the
     /// checked path, which halves the failing step or names the diverging one.
-    pub(super) fn run_block(&mut self, dt: f64, n: u64, count: u64) -> bool {
+    fn run_block(&mut self, dt: f64, n: u64, count: u64) -> bool {
         self.track.at.clone_from(&self.track.y);
         let stats = self.track.stats;
         let inside = bare_steps(
@@ -77,6 +66,14 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
             &mut self.track.stats,
         );
         false
+    }
+}
+
+impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
+    /// Takes `steps` steps of the grid t₀ + n·dt (n counted from `first`), recording per
+    /// [`Recording`]. Returns early when an event stops the run.
+    pub(crate) fn run_fixed(&mut self, dt: f64, first: u64, steps: u64) -> Result<()> {
+        run(self, dt, first, steps)
     }
 }
 

@@ -103,32 +103,8 @@ pub(crate) struct Driver<'a, 'm, M: Model, I> {
 }
 
 impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
-    /// Starts a run of `model` from (`t0`, `y0`): checks the state and the model, records the
-    /// initial sample and prepares the method.
-    // Called only from `Simulation::run` and `Stepper`, which pass their own option fields,
-    // checked (`t0` included).
-    #[allow(clippy::too_many_arguments)]
-    pub(crate) fn new(
-        model: &'m M,
-        t0: f64,
-        y0: M::State,
-        newton: &NewtonOptions,
-        limit: f64,
-        events: Vec<Event<'a, M::State>>,
-        event_options: (f64, u64),
-        recording: Recording<'a>,
-    ) -> Result<Self> {
-        let start = Start {
-            t0,
-            newton,
-            limit,
-            event_options,
-            dense_degree: I::DENSE_DEGREE,
-        };
-        Self::on(Track::new(model, y0, start, events, recording)?, newton)
-    }
-
-    /// Prepares the method on a started track.
+    /// Prepares the method on a started track ([`Track::new`] checked the state and the model
+    /// and recorded the initial sample).
     pub(crate) fn on(mut track: Track<'a, 'm, M>, newton: &NewtonOptions) -> Result<Self> {
         let integrator = I::prepare(track.model, track.t0, &track.y, newton, &mut track.stats)?;
         Ok(Driver { integrator, track })

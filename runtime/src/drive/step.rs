@@ -33,8 +33,7 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
         self.track.check_limit(t1, I::METHOD)?;
         self.integrator.accept();
         let (events, saves) = self.track.scan(t1)?;
-        let hermite =
-            (events || saves || self.track.record.dense.is_some()) && self.build_dense(t1);
+        let hermite = self.track.looks_inside(events, saves) && self.build_dense(t1);
         let flow = self.track.conclude(t1, (events, saves), hermite)?;
         if flow == Flow::Changed {
             let track = &mut self.track;

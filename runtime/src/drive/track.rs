@@ -237,15 +237,32 @@ impl<'a, 'm, M: Model> Track<'a, 'm, M> {
         (events, saves): (bool, bool),
         hermite: bool,
     ) -> Result<Flow> {
-        if !(events || saves || self.record.dense.is_some()) {
+        if !self.looks_inside(events, saves) {
             // Most steps: nothing to look at inside the step.
             self.watch.advance();
-            std::mem::swap(&mut self.y, &mut self.y_new);
-            self.t = t1;
-            self.f_start = false;
+            self.move_on(t1, false);
             return Ok(Flow::Continue);
         }
         self.conclude_inside(t1, (events, saves), hermite)
+    }
+
+    /// Whether accepting a step needs its dense output: for its events, its save times, or to
+    /// store it.
+    #[inline]
+    pub(super) fn looks_inside(&self, events: bool, saves: bool) -> bool {
+        events || saves || self.record.dense.is_some()
+    }
+
+    /// Moves the run to the accepted step's end `t1`; `hermite` says whether `ends[1]` holds f
+    /// there (the Hermite interpolant evaluated it), which the next step then starts from.
+    #[inline]
+    fn move_on(&mut self, t1: f64, hermite: bool) {
+        std::mem::swap(&mut self.y, &mut self.y_new);
+        self.t = t1;
+        if hermite {
+            self.ends.swap(0, 1);
+        }
+        self.f_start = hermite;
     }
 
     /// [`Track::conclude`] for a step with events, save times or dense output to store.
@@ -280,15 +297,7 @@ impl<'a, 'm, M: Model> Track<'a, 'm, M> {
             store.push(&self.dense, end);
         }
         match flow {
-            Flow::Continue => {
-                std::mem::swap(&mut self.y, &mut self.y_new);
-                self.t = t1;
-                // The Hermite interpolant evaluated f at the end: the next step's start.
-                if hermite {
-                    self.ends.swap(0, 1);
-                }
-                self.f_start = hermite;
-            }
+            Flow::Continue => self.move_on(t1, hermite),
             Flow::Changed | Flow::Stopped => self.land(end, flow),
         }
         Ok(flow)
