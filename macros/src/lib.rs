@@ -7,7 +7,7 @@
 //!           struct and the functions, reporting what it rejects at its token
 //!        ─► validate (what the integrator asks: order, velocity-free forces, the Jacobian)
 //!        ─► model (state description) ─► helpers (#[odyn::function] methods)
-//!        ─► rewrite (self.x → state locals)
+//!        ─► rewrite (self.x → state locals) ─► unroll (literal-range loops, in emitted code)
 //!        ─► lower (body → expression graph, ir; helpers inlined, loops on the state unrolled)
 //!        ─► derivative / sparsity (∂f, pattern)
 //!        ─► generate: hidden (derivatives → hidden methods: code, prologue), model (the one
@@ -24,6 +24,8 @@
 //! - `helpers`: the model's helper functions, methods marked `#[odyn::function]`, which `lower`
 //!   inlines where they are called;
 //! - `rewrite`: function bodies with every read of state made explicit;
+//! - `unroll`: `for` loops over literal ranges copied out in the code emitted for a function,
+//!   so every index is a constant;
 //! - `lower`: a body to the expression graph `ir` (`lower` for a whole-state function,
 //!   `lower_kernel` for a kernel of its arguments);
 //! - `derivative`, `sparsity`: exact derivatives and structural patterns of the graph (pure: no
@@ -59,6 +61,7 @@ mod model;
 mod rewrite;
 mod sparsity;
 mod syntax;
+mod unroll;
 mod validate;
 
 use proc_macro::TokenStream;

@@ -40,5 +40,6 @@ mod shapes;
 mod sph;
 mod stability;
 mod state;
+mod unrolled;
 mod work_precision;
 mod xpbd;

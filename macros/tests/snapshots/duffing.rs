@@ -14,7 +14,13 @@ impl Duffing {
 impl Duffing {
     #[doc(hidden)]
     #[inline(always)]
-    #[allow(unused_variables, unused_parens, non_snake_case, clippy::all)]
+    #[allow(
+        unused_variables,
+        unused_assignments,
+        unused_parens,
+        non_snake_case,
+        clippy::all
+    )]
     fn __odyn_acceleration(&self, _: f64, __odyn_x: f64, __odyn_v: f64) -> f64 {
         self.restoring(__odyn_x) + Self::drag(self.b, __odyn_v)
     }

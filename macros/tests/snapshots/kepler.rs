@@ -8,7 +8,13 @@ impl Kepler {
 impl Kepler {
     #[doc(hidden)]
     #[inline(always)]
-    #[allow(unused_variables, unused_parens, non_snake_case, clippy::all)]
+    #[allow(
+        unused_variables,
+        unused_assignments,
+        unused_parens,
+        non_snake_case,
+        clippy::all
+    )]
     fn __odyn_acceleration(
         &self,
         _: f64,

@@ -11,7 +11,13 @@ impl Lorenz {
 impl Lorenz {
     #[doc(hidden)]
     #[inline(always)]
-    #[allow(unused_variables, unused_parens, non_snake_case, clippy::all)]
+    #[allow(
+        unused_variables,
+        unused_assignments,
+        unused_parens,
+        non_snake_case,
+        clippy::all
+    )]
     fn __odyn_derivative(
         &self,
         _: f64,

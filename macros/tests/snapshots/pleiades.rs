@@ -21,7 +21,13 @@ impl Pleiades {
 impl Pleiades {
     #[doc(hidden)]
     #[inline(always)]
-    #[allow(unused_variables, unused_parens, non_snake_case, clippy::all)]
+    #[allow(
+        unused_variables,
+        unused_assignments,
+        unused_parens,
+        non_snake_case,
+        clippy::all
+    )]
     fn __odyn_acceleration(
         &self,
         _: f64,
@@ -32,16 +38,271 @@ impl Pleiades {
     ) -> ([f64; 7], [f64; 7]) {
         let mut ax = [0.0; 7];
         let mut ay = [0.0; 7];
-        for i in 0..7 {
-            for j in (i + 1)..7 {
-                let dx = (*__odyn_x)[j] - (*__odyn_x)[i];
-                let dy = (*__odyn_y)[j] - (*__odyn_y)[i];
-                let r2 = dx * dx + dy * dy;
-                let w = 1.0 / (r2 * r2.sqrt());
-                ax[i] += self.m[j] * w * dx;
-                ay[i] += self.m[j] * w * dy;
-                ax[j] -= self.m[i] * w * dx;
-                ay[j] -= self.m[i] * w * dy;
+        {
+            {
+                let i = 0;
+                {
+                    {
+                        let j = [(i + 1), 7, 1][2];
+                        let dx = (*__odyn_x)[j] - (*__odyn_x)[i];
+                        let dy = (*__odyn_y)[j] - (*__odyn_y)[i];
+                        let r2 = dx * dx + dy * dy;
+                        let w = 1.0 / (r2 * r2.sqrt());
+                        ax[i] += self.m[j] * w * dx;
+                        ay[i] += self.m[j] * w * dy;
+                        ax[j] -= self.m[i] * w * dx;
+                        ay[j] -= self.m[i] * w * dy;
+                    }
+                    {
+                        let j = [(i + 1), 7, 2][2];
+                        let dx = (*__odyn_x)[j] - (*__odyn_x)[i];
+                        let dy = (*__odyn_y)[j] - (*__odyn_y)[i];
+                        let r2 = dx * dx + dy * dy;
+                        let w = 1.0 / (r2 * r2.sqrt());
+                        ax[i] += self.m[j] * w * dx;
+                        ay[i] += self.m[j] * w * dy;
+                        ax[j] -= self.m[i] * w * dx;
+                        ay[j] -= self.m[i] * w * dy;
+                    }
+                    {
+                        let j = [(i + 1), 7, 3][2];
+                        let dx = (*__odyn_x)[j] - (*__odyn_x)[i];
+                        let dy = (*__odyn_y)[j] - (*__odyn_y)[i];
+                        let r2 = dx * dx + dy * dy;
+                        let w = 1.0 / (r2 * r2.sqrt());
+                        ax[i] += self.m[j] * w * dx;
+                        ay[i] += self.m[j] * w * dy;
+                        ax[j] -= self.m[i] * w * dx;
+                        ay[j] -= self.m[i] * w * dy;
+                    }
+                    {
+                        let j = [(i + 1), 7, 4][2];
+                        let dx = (*__odyn_x)[j] - (*__odyn_x)[i];
+                        let dy = (*__odyn_y)[j] - (*__odyn_y)[i];
+                        let r2 = dx * dx + dy * dy;
+                        let w = 1.0 / (r2 * r2.sqrt());
+                        ax[i] += self.m[j] * w * dx;
+                        ay[i] += self.m[j] * w * dy;
+                        ax[j] -= self.m[i] * w * dx;
+                        ay[j] -= self.m[i] * w * dy;
+                    }
+                    {
+                        let j = [(i + 1), 7, 5][2];
+                        let dx = (*__odyn_x)[j] - (*__odyn_x)[i];
+                        let dy = (*__odyn_y)[j] - (*__odyn_y)[i];
+                        let r2 = dx * dx + dy * dy;
+                        let w = 1.0 / (r2 * r2.sqrt());
+                        ax[i] += self.m[j] * w * dx;
+                        ay[i] += self.m[j] * w * dy;
+                        ax[j] -= self.m[i] * w * dx;
+                        ay[j] -= self.m[i] * w * dy;
+                    }
+                    {
+                        let j = [(i + 1), 7, 6][2];
+                        let dx = (*__odyn_x)[j] - (*__odyn_x)[i];
+                        let dy = (*__odyn_y)[j] - (*__odyn_y)[i];
+                        let r2 = dx * dx + dy * dy;
+                        let w = 1.0 / (r2 * r2.sqrt());
+                        ax[i] += self.m[j] * w * dx;
+                        ay[i] += self.m[j] * w * dy;
+                        ax[j] -= self.m[i] * w * dx;
+                        ay[j] -= self.m[i] * w * dy;
+                    }
+                }
+            }
+            {
+                let i = 1;
+                {
+                    {
+                        let j = [(i + 1), 7, 2][2];
+                        let dx = (*__odyn_x)[j] - (*__odyn_x)[i];
+                        let dy = (*__odyn_y)[j] - (*__odyn_y)[i];
+                        let r2 = dx * dx + dy * dy;
+                        let w = 1.0 / (r2 * r2.sqrt());
+                        ax[i] += self.m[j] * w * dx;
+                        ay[i] += self.m[j] * w * dy;
+                        ax[j] -= self.m[i] * w * dx;
+                        ay[j] -= self.m[i] * w * dy;
+                    }
+                    {
+                        let j = [(i + 1), 7, 3][2];
+                        let dx = (*__odyn_x)[j] - (*__odyn_x)[i];
+                        let dy = (*__odyn_y)[j] - (*__odyn_y)[i];
+                        let r2 = dx * dx + dy * dy;
+                        let w = 1.0 / (r2 * r2.sqrt());
+                        ax[i] += self.m[j] * w * dx;
+                        ay[i] += self.m[j] * w * dy;
+                        ax[j] -= self.m[i] * w * dx;
+                        ay[j] -= self.m[i] * w * dy;
+                    }
+                    {
+                        let j = [(i + 1), 7, 4][2];
+                        let dx = (*__odyn_x)[j] - (*__odyn_x)[i];
+                        let dy = (*__odyn_y)[j] - (*__odyn_y)[i];
+                        let r2 = dx * dx + dy * dy;
+                        let w = 1.0 / (r2 * r2.sqrt());
+                        ax[i] += self.m[j] * w * dx;
+                        ay[i] += self.m[j] * w * dy;
+                        ax[j] -= self.m[i] * w * dx;
+                        ay[j] -= self.m[i] * w * dy;
+                    }
+                    {
+                        let j = [(i + 1), 7, 5][2];
+                        let dx = (*__odyn_x)[j] - (*__odyn_x)[i];
+                        let dy = (*__odyn_y)[j] - (*__odyn_y)[i];
+                        let r2 = dx * dx + dy * dy;
+                        let w = 1.0 / (r2 * r2.sqrt());
+                        ax[i] += self.m[j] * w * dx;
+                        ay[i] += self.m[j] * w * dy;
+                        ax[j] -= self.m[i] * w * dx;
+                        ay[j] -= self.m[i] * w * dy;
+                    }
+                    {
+                        let j = [(i + 1), 7, 6][2];
+                        let dx = (*__odyn_x)[j] - (*__odyn_x)[i];
+                        let dy = (*__odyn_y)[j] - (*__odyn_y)[i];
+                        let r2 = dx * dx + dy * dy;
+                        let w = 1.0 / (r2 * r2.sqrt());
+                        ax[i] += self.m[j] * w * dx;
+                        ay[i] += self.m[j] * w * dy;
+                        ax[j] -= self.m[i] * w * dx;
+                        ay[j] -= self.m[i] * w * dy;
+                    }
+                }
+            }
+            {
+                let i = 2;
+                {
+                    {
+                        let j = [(i + 1), 7, 3][2];
+                        let dx = (*__odyn_x)[j] - (*__odyn_x)[i];
+                        let dy = (*__odyn_y)[j] - (*__odyn_y)[i];
+                        let r2 = dx * dx + dy * dy;
+                        let w = 1.0 / (r2 * r2.sqrt());
+                        ax[i] += self.m[j] * w * dx;
+                        ay[i] += self.m[j] * w * dy;
+                        ax[j] -= self.m[i] * w * dx;
+                        ay[j] -= self.m[i] * w * dy;
+                    }
+                    {
+                        let j = [(i + 1), 7, 4][2];
+                        let dx = (*__odyn_x)[j] - (*__odyn_x)[i];
+                        let dy = (*__odyn_y)[j] - (*__odyn_y)[i];
+                        let r2 = dx * dx + dy * dy;
+                        let w = 1.0 / (r2 * r2.sqrt());
+                        ax[i] += self.m[j] * w * dx;
+                        ay[i] += self.m[j] * w * dy;
+                        ax[j] -= self.m[i] * w * dx;
+                        ay[j] -= self.m[i] * w * dy;
+                    }
+                    {
+                        let j = [(i + 1), 7, 5][2];
+                        let dx = (*__odyn_x)[j] - (*__odyn_x)[i];
+                        let dy = (*__odyn_y)[j] - (*__odyn_y)[i];
+                        let r2 = dx * dx + dy * dy;
+                        let w = 1.0 / (r2 * r2.sqrt());
+                        ax[i] += self.m[j] * w * dx;
+                        ay[i] += self.m[j] * w * dy;
+                        ax[j] -= self.m[i] * w * dx;
+                        ay[j] -= self.m[i] * w * dy;
+                    }
+                    {
+                        let j = [(i + 1), 7, 6][2];
+                        let dx = (*__odyn_x)[j] - (*__odyn_x)[i];
+                        let dy = (*__odyn_y)[j] - (*__odyn_y)[i];
+                        let r2 = dx * dx + dy * dy;
+                        let w = 1.0 / (r2 * r2.sqrt());
+                        ax[i] += self.m[j] * w * dx;
+                        ay[i] += self.m[j] * w * dy;
+                        ax[j] -= self.m[i] * w * dx;
+                        ay[j] -= self.m[i] * w * dy;
+                    }
+                }
+            }
+            {
+                let i = 3;
+                {
+                    {
+                        let j = [(i + 1), 7, 4][2];
+                        let dx = (*__odyn_x)[j] - (*__odyn_x)[i];
+                        let dy = (*__odyn_y)[j] - (*__odyn_y)[i];
+                        let r2 = dx * dx + dy * dy;
+                        let w = 1.0 / (r2 * r2.sqrt());
+                        ax[i] += self.m[j] * w * dx;
+                        ay[i] += self.m[j] * w * dy;
+                        ax[j] -= self.m[i] * w * dx;
+                        ay[j] -= self.m[i] * w * dy;
+                    }
+                    {
+                        let j = [(i + 1), 7, 5][2];
+                        let dx = (*__odyn_x)[j] - (*__odyn_x)[i];
+                        let dy = (*__odyn_y)[j] - (*__odyn_y)[i];
+                        let r2 = dx * dx + dy * dy;
+                        let w = 1.0 / (r2 * r2.sqrt());
+                        ax[i] += self.m[j] * w * dx;
+                        ay[i] += self.m[j] * w * dy;
+                        ax[j] -= self.m[i] * w * dx;
+                        ay[j] -= self.m[i] * w * dy;
+                    }
+                    {
+                        let j = [(i + 1), 7, 6][2];
+                        let dx = (*__odyn_x)[j] - (*__odyn_x)[i];
+                        let dy = (*__odyn_y)[j] - (*__odyn_y)[i];
+                        let r2 = dx * dx + dy * dy;
+                        let w = 1.0 / (r2 * r2.sqrt());
+                        ax[i] += self.m[j] * w * dx;
+                        ay[i] += self.m[j] * w * dy;
+                        ax[j] -= self.m[i] * w * dx;
+                        ay[j] -= self.m[i] * w * dy;
+                    }
+                }
+            }
+            {
+                let i = 4;
+                {
+                    {
+                        let j = [(i + 1), 7, 5][2];
+                        let dx = (*__odyn_x)[j] - (*__odyn_x)[i];
+                        let dy = (*__odyn_y)[j] - (*__odyn_y)[i];
+                        let r2 = dx * dx + dy * dy;
+                        let w = 1.0 / (r2 * r2.sqrt());
+                        ax[i] += self.m[j] * w * dx;
+                        ay[i] += self.m[j] * w * dy;
+                        ax[j] -= self.m[i] * w * dx;
+                        ay[j] -= self.m[i] * w * dy;
+                    }
+                    {
+                        let j = [(i + 1), 7, 6][2];
+                        let dx = (*__odyn_x)[j] - (*__odyn_x)[i];
+                        let dy = (*__odyn_y)[j] - (*__odyn_y)[i];
+                        let r2 = dx * dx + dy * dy;
+                        let w = 1.0 / (r2 * r2.sqrt());
+                        ax[i] += self.m[j] * w * dx;
+                        ay[i] += self.m[j] * w * dy;
+                        ax[j] -= self.m[i] * w * dx;
+                        ay[j] -= self.m[i] * w * dy;
+                    }
+                }
+            }
+            {
+                let i = 5;
+                {
+                    {
+                        let j = [(i + 1), 7, 6][2];
+                        let dx = (*__odyn_x)[j] - (*__odyn_x)[i];
+                        let dy = (*__odyn_y)[j] - (*__odyn_y)[i];
+                        let r2 = dx * dx + dy * dy;
+                        let w = 1.0 / (r2 * r2.sqrt());
+                        ax[i] += self.m[j] * w * dx;
+                        ay[i] += self.m[j] * w * dy;
+                        ax[j] -= self.m[i] * w * dx;
+                        ay[j] -= self.m[i] * w * dy;
+                    }
+                }
+            }
+            {
+                let i = 6;
+                {}
             }
         }
         (ax, ay)

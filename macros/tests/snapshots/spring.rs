@@ -10,13 +10,25 @@ impl Spring {
 impl Spring {
     #[doc(hidden)]
     #[inline(always)]
-    #[allow(unused_variables, unused_parens, non_snake_case, clippy::all)]
+    #[allow(
+        unused_variables,
+        unused_assignments,
+        unused_parens,
+        non_snake_case,
+        clippy::all
+    )]
     fn __odyn_acceleration(&self, _: f64, __odyn_x: f64, __odyn_v: f64) -> f64 {
         (-self.k * __odyn_x - self.b * __odyn_v) / self.m
     }
     #[doc(hidden)]
     #[inline(always)]
-    #[allow(unused_variables, unused_parens, non_snake_case, clippy::all)]
+    #[allow(
+        unused_variables,
+        unused_assignments,
+        unused_parens,
+        non_snake_case,
+        clippy::all
+    )]
     fn __odyn_energy(&self, __odyn_x: f64, __odyn_v: f64) -> f64 {
         0.5 * self.m * __odyn_v * __odyn_v + 0.5 * self.k * __odyn_x * __odyn_x
     }

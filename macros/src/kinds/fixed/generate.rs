@@ -176,7 +176,7 @@ fn hidden_fn(model: &Model<'_>, name: &syn::Ident, f: &Function, with_time: bool
     let time = time_param(f);
     let params = state_params(model);
     let output = &f.output;
-    let body = &f.body;
+    let body = crate::unroll::unroll(&f.body);
     let time = if with_time {
         quote!(#time,)
     } else {
@@ -190,8 +190,9 @@ fn hidden_fn(model: &Model<'_>, name: &syn::Ident, f: &Function, with_time: bool
         #[doc(hidden)]
         #inline
         // The original, emitted as written, draws the user's lints; its copy reads array fields
-        // as `(*local)`, whose parentheses may be redundant.
-        #[allow(unused_variables, unused_parens, non_snake_case, clippy::all)]
+        // as `(*local)`, whose parentheses may be redundant, and its unrolled loops' last copy
+        // may assign what only a next iteration would read.
+        #[allow(unused_variables, unused_assignments, unused_parens, non_snake_case, clippy::all)]
         fn #name(#receiver, #time #(#params),*) -> #output #body
     }
 }
