@@ -101,6 +101,14 @@ struct Cli {
     /// tolerance that meets it.
     #[arg(long)]
     reference: Option<std::path::PathBuf>,
+    /// Instead of the comparison, run BDF at rtol = atol = `--tol` and write the final state to
+    /// this file in the format of `--reference` (one value per line, 17 digits): how a reference
+    /// made by another code is cross-checked (`--write-final ours.csv --tol 1e-11`).
+    #[arg(long)]
+    write_final: Option<std::path::PathBuf>,
+    /// The tolerance of `--write-final`.
+    #[arg(long, default_value_t = 1e-10)]
+    tol: f64,
 }
 
 const T_END: f64 = 11.5;
@@ -117,6 +125,9 @@ fn main() -> odyn::Result<()> {
     let model = brusselator(cli.n, cli.forcing)?;
     if let Some(path) = &cli.reference {
         return calibrate(&model, cli.n, path);
+    }
+    if let Some(path) = &cli.write_final {
+        return write_final(&model, cli.tol, path);
     }
     let frames: Vec<f64> = (0..=4).map(|k| T_END * k as f64 / 4.0).collect();
     let unknowns = 2 * cli.n * cli.n;
@@ -224,6 +235,36 @@ fn main() -> odyn::Result<()> {
         &rows,
     )?;
     println!("wrote {}/u_0..4.png and brusselator.csv", dir.display());
+    Ok(())
+}
+
+/// `--write-final`: BDF at rtol = atol = `tol` to t = 11.5, the final state written atomically.
+fn write_final(model: &Brusselator, tol: f64, path: &Path) -> odyn::Result<()> {
+    let start = Instant::now();
+    let run = model
+        .simulate()
+        .integrator(Method::Bdf)
+        .tolerances(tol, tol)
+        .duration(T_END)
+        .save_at(&[T_END])
+        .run()?;
+    let text: String = run
+        .last()
+        .state
+        .as_slice()
+        .iter()
+        .map(|x| format!("{x:.17e}\n"))
+        .collect();
+    odyn::output::write_atomic(path, text.as_bytes())?;
+    let s = &run.stats;
+    println!(
+        "BDF at {tol:e}: {:.1} s, {} steps, {} factorizations, {} solves; wrote {}",
+        start.elapsed().as_secs_f64(),
+        s.steps,
+        s.factorizations,
+        s.linear_solves,
+        path.display()
+    );
     Ok(())
 }
 
