@@ -107,7 +107,7 @@ struct Cli {
     #[arg(long)]
     write_final: Option<std::path::PathBuf>,
     /// The tolerance of `--write-final`.
-    #[arg(long, default_value_t = 1e-10)]
+    #[arg(long, default_value_t = 1e-10, requires = "write_final")]
     tol: f64,
 }
 

@@ -90,7 +90,8 @@ impl Unroller {
             RangeLimits::HalfOpen(_) => self.value(end)?.checked_sub(1)?,
             RangeLimits::Closed(_) => self.value(end)?,
         };
-        let count = usize::try_from((last - first + 1).max(0)).ok()?;
+        // Checked: the macro never panics, whatever range a user writes (`0..u64::MAX`).
+        let count = usize::try_from(last.checked_sub(first)?.checked_add(1)?.max(0)).ok()?;
         let (name, tracked) = match &*l.pat {
             Pat::Ident(p) if p.by_ref.is_none() && p.subpat.is_none() => {
                 let name = p.ident.to_string();
@@ -101,8 +102,9 @@ impl Unroller {
             Pat::Wild(_) => (None, false),
             _ => return None,
         };
-        self.copies += count;
-        self.tokens += count * token_count(l.body.to_token_stream());
+        self.copies = self.copies.saturating_add(count);
+        self.tokens = (self.tokens)
+            .saturating_add(count.saturating_mul(token_count(l.body.to_token_stream())));
         if self.copies > MAX_COPIES || self.tokens > MAX_TOKENS {
             self.over_budget = true;
             return None;
@@ -110,29 +112,26 @@ impl Unroller {
         let pat = &l.pat;
         let bare = is_bare_literal(start) && is_bare_literal(end);
         let span = l.pat.span();
+        // No enclosing loop's value of the same name is known here: an enclosing loop whose body
+        // binds its name again (as this loop does) is not tracked.
         let mut blocks = Vec::with_capacity(count);
-        for k in 0..count {
-            let v = first + k as i128;
+        for v in (first..).take(count) {
             let value = if bare {
                 literal(v, span)
             } else {
                 let v = literal(v, span);
                 quote_spanned!(span=> [#start, #end, #v][2])
             };
-            let mut body = l.body.clone();
-            let shadowed = name.as_ref().map(|n| self.known.remove(n));
             if tracked && let Some(n) = &name {
                 self.known.insert(n.clone(), v);
             }
+            let mut body = l.body.clone();
             self.visit_block_mut(&mut body);
-            if let Some(n) = &name {
-                self.known.remove(n);
-                if let Some(Some(outer)) = shadowed {
-                    self.known.insert(n.clone(), outer);
-                }
-            }
             let stmts = &body.stmts;
             blocks.push(quote_spanned!(span=> { let #pat = #value; #(#stmts)* }));
+        }
+        if let Some(n) = &name {
+            self.known.remove(n);
         }
         let attrs = &l.attrs;
         syn::parse2(quote_spanned!(span=> #(#attrs)* { #(#blocks)* })).ok()

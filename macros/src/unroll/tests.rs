@@ -225,3 +225,50 @@ fn a_function_over_budget_is_emitted_as_written() {
     });
     same(&unroll(&body), &body);
 }
+
+#[test]
+fn ranges_too_long_to_count_are_emitted_as_written_without_a_panic() {
+    // Each of these overflows arithmetic on its bounds or the budget's product.
+    for body in [
+        parse_quote!({
+            for i in 0..18446744073709551615 {
+                f(i);
+            }
+        }),
+        parse_quote!({
+            for i in
+                -170141183460469231731687303715884105728..170141183460469231731687303715884105727
+            {
+                f(i);
+            }
+        }),
+        parse_quote!({
+            for i in 0..9223372036854775807 {
+                for j in 0..9223372036854775807 {
+                    f(i, j);
+                }
+            }
+        }),
+    ] {
+        same(&unroll(&body), &body);
+    }
+}
+
+#[test]
+fn an_inner_loop_of_the_same_name_hides_the_outer_value() {
+    // The outer `i` is bound again by the inner loop, so it is not known inside: the loop over
+    // `j`, bounded by it, stays a loop (it would read 5, never the inner loop's 0 or 1).
+    let body: Block = parse_quote!({
+        for i in 5..6 {
+            for i in 0..2 {
+                f(i);
+            }
+            for j in i..7 {
+                g(j);
+            }
+        }
+    });
+    let unrolled = unroll(&body).to_token_stream().to_string();
+    assert!(unrolled.contains("let i = 0 ; f (i) ;"), "{unrolled}");
+    assert_eq!(unrolled.matches("for j in i .. 7").count(), 1, "{unrolled}");
+}
