@@ -30,37 +30,80 @@ impl Role {
     }
 }
 
+/// A length in a state type: an integer literal, or a const parameter of a generic model
+/// (`N` in `[f64; N]` of `struct Chain<const N: usize>`), by its position among the struct's
+/// const parameters.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub(crate) enum Len {
+    Known(usize),
+    Param(usize),
+}
+
+impl Len {
+    /// The length, for code that lays out a concrete model: lowering, the Jacobian, the state's
+    /// component names. None of it runs on a generic model ([`Model::is_generic`]: its code is
+    /// emitted as written and its Jacobian taken by differences), so a parameter counts as 0.
+    pub(crate) fn count(self) -> usize {
+        match self {
+            Len::Known(n) => n,
+            Len::Param(_) => 0,
+        }
+    }
+
+    /// The length in generated code: the literal, or the parameter's name.
+    fn to_tokens(self, params: &[&Ident]) -> TokenStream {
+        match self {
+            Len::Known(n) => {
+                let n = proc_macro2::Literal::usize_unsuffixed(n);
+                quote!(#n)
+            }
+            Len::Param(i) => {
+                let name = params.get(i);
+                quote!(#name)
+            }
+        }
+    }
+
+    fn describe(self, params: &[&Ident]) -> String {
+        match self {
+            Len::Known(n) => n.to_string(),
+            Len::Param(i) => params.get(i).map_or_else(String::new, ToString::to_string),
+        }
+    }
+}
+
 /// The shape of a state field's value.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 pub(crate) enum Shape {
     /// `f64`
     Scalar,
     /// `[f64; N]`
-    Array(usize),
+    Array(Len),
     /// `SVector<f64, N>` or `VectorN<f64>`
-    Vector(usize),
+    Vector(Len),
     /// `[[f64; M]; N]` or `[SVector<f64, M>; N]` (`[Vector3<f64>; N]`): `N` rows of `M`, laid out
     /// row after row.
-    Rows(usize, Row),
+    Rows(Len, Row),
 }
 
 /// One row of a [`Shape::Rows`].
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 pub(crate) enum Row {
     /// `[f64; M]`
-    Array(usize),
+    Array(Len),
     /// `SVector<f64, M>` or `VectorM<f64>`
-    Vector(usize),
+    Vector(Len),
 }
 
 impl Row {
     pub(crate) fn len(self) -> usize {
         match self {
-            Row::Array(m) | Row::Vector(m) => m,
+            Row::Array(m) | Row::Vector(m) => m.count(),
         }
     }
 
-    fn shape(self) -> Shape {
+    /// The row as a shape of its own.
+    pub(crate) fn shape(self) -> Shape {
         match self {
             Row::Array(m) => Shape::Array(m),
             Row::Vector(m) => Shape::Vector(m),
@@ -69,36 +112,64 @@ impl Row {
 }
 
 impl Shape {
-    /// Number of `f64` components.
+    /// Number of `f64` components of a concrete model's field ([`Len::count`]).
     pub(crate) fn len(self) -> usize {
         match self {
             Shape::Scalar => 1,
-            Shape::Array(n) | Shape::Vector(n) => n,
-            Shape::Rows(n, row) => n * row.len(),
+            Shape::Array(n) | Shape::Vector(n) => n.count(),
+            Shape::Rows(n, row) => n.count() * row.len(),
         }
     }
 
-    /// The canonical type, with absolute paths.
-    pub(crate) fn to_type(self) -> TokenStream {
-        let n = proc_macro2::Literal::usize_unsuffixed(self.len());
+    /// Whether a length is a const parameter of the model.
+    pub(crate) fn is_generic(self) -> bool {
+        match self {
+            Shape::Scalar => false,
+            Shape::Array(n) | Shape::Vector(n) => matches!(n, Len::Param(_)),
+            Shape::Rows(n, row) => matches!(n, Len::Param(_)) || row.shape().is_generic(),
+        }
+    }
+
+    /// The number of components in generated code: `3`, `N`, `(N * 3)`.
+    pub(crate) fn len_tokens(self, params: &[&Ident]) -> TokenStream {
+        match self {
+            Shape::Scalar => quote!(1),
+            Shape::Array(n) | Shape::Vector(n) => n.to_tokens(params),
+            Shape::Rows(n, row) => {
+                let (n, m) = (n.to_tokens(params), row.shape().len_tokens(params));
+                quote!((#n * #m))
+            }
+        }
+    }
+
+    /// The canonical type, with absolute paths; lengths that are const parameters by the names
+    /// in `params`.
+    pub(crate) fn to_type(self, params: &[&Ident]) -> TokenStream {
         match self {
             Shape::Scalar => quote!(f64),
-            Shape::Array(_) => quote!([f64; #n]),
-            Shape::Vector(_) => quote!(::odyn::__private::nalgebra::SVector<f64, #n>),
+            Shape::Array(n) => {
+                let n = n.to_tokens(params);
+                quote!([f64; #n])
+            }
+            Shape::Vector(n) => {
+                let n = n.to_tokens(params);
+                quote!(::odyn::__private::nalgebra::SVector<f64, #n>)
+            }
             Shape::Rows(rows, row) => {
-                let (rows, row) = (proc_macro2::Literal::usize_unsuffixed(rows), row.shape());
-                let row = row.to_type();
+                let (rows, row) = (rows.to_tokens(params), row.shape().to_type(params));
                 quote!([#row; #rows])
             }
         }
     }
 
-    pub(crate) fn describe(self) -> String {
+    pub(crate) fn describe(self, params: &[&Ident]) -> String {
         match self {
             Shape::Scalar => "f64".to_owned(),
-            Shape::Array(n) => format!("[f64; {n}]"),
-            Shape::Vector(n) => format!("SVector<f64, {n}>"),
-            Shape::Rows(n, row) => format!("[{}; {n}]", row.shape().describe()),
+            Shape::Array(n) => format!("[f64; {}]", n.describe(params)),
+            Shape::Vector(n) => format!("SVector<f64, {}>", n.describe(params)),
+            Shape::Rows(n, row) => {
+                format!("[{}; {}]", row.shape().describe(params), n.describe(params))
+            }
         }
     }
 
@@ -107,8 +178,10 @@ impl Shape {
     pub(crate) fn component_names(self, name: &str) -> Vec<String> {
         match self {
             Shape::Scalar => vec![name.to_owned()],
-            Shape::Array(n) | Shape::Vector(n) => (0..n).map(|i| format!("{name}[{i}]")).collect(),
-            Shape::Rows(n, row) => (0..n)
+            Shape::Array(n) | Shape::Vector(n) => {
+                (0..n.count()).map(|i| format!("{name}[{i}]")).collect()
+            }
+            Shape::Rows(n, row) => (0..n.count())
                 .flat_map(|i| (0..row.len()).map(move |j| format!("{name}[{i}][{j}]")))
                 .collect(),
         }
@@ -119,8 +192,10 @@ impl Shape {
     pub(crate) fn component_reads(self, base: &TokenStream) -> Vec<TokenStream> {
         match self {
             Shape::Scalar => vec![base.clone()],
-            Shape::Array(n) | Shape::Vector(n) => (0..n).map(|i| quote!(#base[#i])).collect(),
-            Shape::Rows(n, row) => (0..n)
+            Shape::Array(n) | Shape::Vector(n) => {
+                (0..n.count()).map(|i| quote!(#base[#i])).collect()
+            }
+            Shape::Rows(n, row) => (0..n.count())
                 .flat_map(|i| (0..row.len()).map(move |j| quote!(#base[#i][#j])))
                 .collect(),
         }
@@ -147,6 +222,8 @@ pub(crate) struct Model<'a> {
     pub(crate) item: &'a ItemStruct,
     pub(crate) order: Order,
     pub(crate) states: Vec<StateField<'a>>,
+    /// The struct's const parameters (`N` of `struct Chain<const N: usize>`), in order.
+    pub(crate) params: Vec<&'a Ident>,
 }
 
 impl Model<'_> {
@@ -165,7 +242,45 @@ impl Model<'_> {
             item,
             order,
             states: Vec::new(),
+            params: const_params(item),
         }
+    }
+
+    /// Whether the struct has const parameters: its code is then emitted as written, never
+    /// lowered, and its Jacobian taken by central differences.
+    pub(crate) fn is_generic(&self) -> bool {
+        !self.params.is_empty()
+    }
+
+    /// The state type as generated code names it: `ChainState<N>`, or `SpringState`.
+    pub(crate) fn state_type(&self) -> TokenStream {
+        let name = self.state_ident();
+        let params = &self.params;
+        if params.is_empty() {
+            quote!(#name)
+        } else {
+            quote!(#name<#(#params),*>)
+        }
+    }
+
+    /// The number of components in generated code: `4`, or `(N + N)`.
+    pub(crate) fn len_tokens(&self) -> TokenStream {
+        if !self.is_generic() {
+            let n = proc_macro2::Literal::usize_unsuffixed(self.len());
+            return quote!(#n);
+        }
+        let parts = self.states.iter().map(|f| f.shape.len_tokens(&self.params));
+        quote!((0 #(+ #parts)*))
+    }
+
+    /// A field's canonical type.
+    pub(crate) fn type_of(&self, shape: Shape) -> TokenStream {
+        shape.to_type(&self.params)
+    }
+
+    /// A field's type as errors show it.
+    pub(crate) fn describe(&self, shape: Shape) -> String {
+        shape.describe(&self.params)
     }
 
     pub(crate) fn field(&self, name: &Ident) -> Option<&StateField<'_>> {
@@ -187,19 +302,25 @@ pub(crate) fn state_ident(model: &Ident) -> Ident {
     quote::format_ident!("{}State", model)
 }
 
-/// The shape of a supported state type.
+/// The shape of a supported state type whose lengths are integer literals.
 pub(crate) fn shape_of(ty: &Type) -> Option<Shape> {
+    shape_in(ty, &[])
+}
+
+/// The shape of a supported state type whose lengths are integer literals or the const
+/// parameters `params` of a generic model.
+pub(crate) fn shape_in(ty: &Type, params: &[&Ident]) -> Option<Shape> {
     match ty {
-        Type::Paren(p) => shape_of(&p.elem),
-        Type::Group(g) => shape_of(&g.elem),
-        Type::Array(a) if is_f64(&a.elem) => int_literal(&a.len).map(Shape::Array),
+        Type::Paren(p) => shape_in(&p.elem, params),
+        Type::Group(g) => shape_in(&g.elem, params),
+        Type::Array(a) if is_f64(&a.elem) => length(&a.len, params).map(Shape::Array),
         Type::Array(a) => {
-            let row = match shape_of(&a.elem)? {
+            let row = match shape_in(&a.elem, params)? {
                 Shape::Array(m) => Row::Array(m),
                 Shape::Vector(m) => Row::Vector(m),
                 Shape::Scalar | Shape::Rows(..) => return None,
             };
-            int_literal(&a.len).map(|n| Shape::Rows(n, row))
+            length(&a.len, params).map(|n| Shape::Rows(n, row))
         }
         Type::Path(p) if p.qself.is_none() => {
             let last = p.path.segments.last()?;
@@ -214,18 +335,57 @@ pub(crate) fn shape_of(ty: &Type) -> Option<Shape> {
             let args: Vec<_> = args.args.iter().collect();
             match (name.as_str(), args.as_slice()) {
                 ("SVector", [GenericArgument::Type(t), GenericArgument::Const(n)]) if is_f64(t) => {
-                    int_literal(n).map(Shape::Vector)
+                    length(n, params).map(Shape::Vector)
+                }
+                // `SVector<f64, N>`: a bare name parses as a type.
+                (
+                    "SVector",
+                    [
+                        GenericArgument::Type(t),
+                        GenericArgument::Type(Type::Path(n)),
+                    ],
+                ) if is_f64(t) && n.qself.is_none() => {
+                    let name = n.path.get_ident()?;
+                    param_index(name, params).map(|i| Shape::Vector(Len::Param(i)))
                 }
                 (vector, [GenericArgument::Type(t)]) if is_f64(t) => vector
                     .strip_prefix("Vector")
                     .and_then(|n| n.parse::<usize>().ok())
                     .filter(|n| (1..=6).contains(n))
-                    .map(Shape::Vector),
+                    .map(|n| Shape::Vector(Len::Known(n))),
                 _ => None,
             }
         }
         _ => None,
     }
+}
+
+/// An array length: an integer literal, or one of `params` named alone (`N`, `{ N }`).
+fn length(expr: &syn::Expr, params: &[&Ident]) -> Option<Len> {
+    if let Some(n) = int_literal(expr) {
+        return Some(Len::Known(n));
+    }
+    match expr {
+        syn::Expr::Path(p) if p.qself.is_none() => {
+            param_index(p.path.get_ident()?, params).map(Len::Param)
+        }
+        syn::Expr::Block(b) if b.block.stmts.len() == 1 => match &b.block.stmts[0] {
+            syn::Stmt::Expr(e, None) => length(e, params),
+            _ => None,
+        },
+        syn::Expr::Group(g) => length(&g.expr, params),
+        syn::Expr::Paren(p) => length(&p.expr, params),
+        _ => None,
+    }
+}
+
+fn param_index(name: &Ident, params: &[&Ident]) -> Option<usize> {
+    params.iter().position(|p| *p == name)
+}
+
+/// The const parameters of a model struct, in order (`N` of `struct Chain<const N: usize>`).
+pub(crate) fn const_params(item: &ItemStruct) -> Vec<&Ident> {
+    item.generics.const_params().map(|c| &c.ident).collect()
 }
 
 /// An array of a state shape whose length is not an integer literal (`[f64; N * N]`,

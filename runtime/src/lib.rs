@@ -85,10 +85,11 @@ pub mod __private {
         value
     }
     pub use crate::model::flat;
-    pub use crate::model::flat::FlatState;
+    pub use crate::model::flat::{FieldLayout, FlatState, component_name};
     pub use nalgebra;
 
     pub use crate::__flat_state as flat_state;
+    pub use crate::__generic_flat_state as generic_flat_state;
 
     /// The state type `#[system]` gives a struct it rejected, so the user's crate still
     /// type-checks around the real error: it has no values, and nothing of it ever runs.

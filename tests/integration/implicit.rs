@@ -323,8 +323,9 @@ fn large_models_solve_with_faer_exactly() {
         v: [0.0; 17],
     };
     // The generated Jacobian's matrix is faer-backed (this names its inherent method).
-    let mut j = <common::Bank as odyn::Jacobian>::Matrix::zeros();
+    let mut j = <common::Bank as odyn::Jacobian>::Matrix::zeros(34);
     j.fill_zero();
+    assert_eq!(j.dim(), 34);
     let h = 0.01;
     let run = bank
         .simulate()

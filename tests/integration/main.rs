@@ -16,6 +16,7 @@ mod adaptive;
 mod bdf;
 mod big_models;
 mod compositions;
+mod const_generic;
 mod control_flow;
 mod convergence;
 mod differences;

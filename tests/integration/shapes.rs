@@ -12,13 +12,13 @@ use scenes::{SolarSystem, SolarSystemByAxis, SolarSystemByAxisState, SolarSystem
 /// (`SolarSystem` itself is explicit-only).
 #[system]
 #[derive(Clone, Copy, Debug)]
-struct ThreeBodies {
+pub(crate) struct ThreeBodies {
     #[position]
-    r: [Vector3<f64>; 3],
+    pub(crate) r: [Vector3<f64>; 3],
     #[velocity]
-    v: [Vector3<f64>; 3],
-    m: [f64; 3],
-    g: f64,
+    pub(crate) v: [Vector3<f64>; 3],
+    pub(crate) m: [f64; 3],
+    pub(crate) g: f64,
 }
 
 #[system]
@@ -38,7 +38,7 @@ impl ThreeBodies {
     }
 }
 
-fn three_bodies() -> ThreeBodies {
+pub(crate) fn three_bodies() -> ThreeBodies {
     let s = SolarSystem::outer();
     ThreeBodies {
         r: [s.r[0], s.r[1], s.r[2]],
@@ -52,12 +52,12 @@ fn three_bodies() -> ThreeBodies {
 /// first spring anchored at the origin, under gravity.
 #[system]
 #[derive(Clone, Copy)]
-struct Chain {
+pub(crate) struct Chain {
     #[position]
-    q: [Vector2<f64>; 4],
+    pub(crate) q: [Vector2<f64>; 4],
     #[velocity]
-    p: [Vector2<f64>; 4],
-    k: f64,
+    pub(crate) p: [Vector2<f64>; 4],
+    pub(crate) k: f64,
 }
 
 #[system]

@@ -6,7 +6,7 @@ use quote::quote;
 
 /// The `Jacobian` items of an f that does not read the time: ∂f/∂t = 0, known at compile time.
 /// `why` is the doc's sentence, such as "Kernels do not read the time".
-pub(crate) fn time_independent(state: &syn::Ident, why: &str) -> TokenStream {
+pub(crate) fn time_independent(state: &impl quote::ToTokens, why: &str) -> TokenStream {
     let doc = format!(" {why}: ∂f/∂t = 0.");
     quote! {
         #[doc = #doc]

@@ -25,10 +25,8 @@ use syn::ItemStruct;
 pub(crate) use code::{lets, operand, straight_line};
 pub(crate) use hidden::{evaluation, hidden_fn, time_copy};
 pub(crate) use jacobian::{runtime_jacobian, time_independent};
-pub(crate) use model::{ModelImpl, stub_model};
+pub(crate) use model::{ModelImpl, stub_model, stub_model_with};
 pub(crate) use prologue::{opaques_read, prologue_tokens};
-
-use model::stub_model_with;
 
 /// The name of the `macro_rules!` through which a struct's expansion reaches its impl block's.
 ///
@@ -65,10 +63,23 @@ pub(crate) fn forwarder_name(model: &syn::Ident) -> syn::Ident {
 pub(crate) fn rejected_struct(item: &ItemStruct) -> TokenStream {
     let vis = &item.vis;
     let state = crate::model::state_ident(&item.ident);
-    let stub = stub_model_with(&item.ident, &state, &item.generics);
+    // A struct generic over lengths only keeps them on its state's name (`RodState<N>` in the
+    // impl block draws no error of its own).
+    let generics = &item.generics;
+    let lengths_only = generics
+        .params
+        .iter()
+        .all(|p| matches!(p, syn::GenericParam::Const(_)));
+    let (alias, state_type) = if lengths_only && !generics.params.is_empty() {
+        let (_, type_generics, _) = generics.split_for_impl();
+        (quote!(#state #generics), quote!(#state #type_generics))
+    } else {
+        (quote!(#state), quote!(#state))
+    };
+    let stub = stub_model_with(&item.ident, state_type, generics);
     quote! {
         #[doc(hidden)]
-        #vis type #state = ::odyn::__private::RejectedState;
+        #vis type #alias = ::odyn::__private::RejectedState;
         #stub
     }
 }

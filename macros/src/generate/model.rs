@@ -11,14 +11,16 @@ use crate::args::Args;
 
 /// One `impl ::odyn::Model`.
 pub(crate) struct ModelImpl<'a> {
-    /// The model's type as the impl names it (`Spring`, or the user's `self_ty`).
+    /// The model's type as the impl names it, with its generic arguments (`Spring`, the user's
+    /// `self_ty` such as `Chain<N>`).
     pub(crate) self_ty: TokenStream,
-    /// The struct's generics: empty except for the stand-in of a rejected generic struct.
+    /// The impl's generics: a const-generic model's (`<const N: usize>`), or a rejected generic
+    /// struct's for its stand-in; empty otherwise.
     pub(crate) generics: &'a syn::Generics,
     /// The model's name (`Model::NAME`).
     pub(crate) name: String,
-    /// `Model::State`.
-    pub(crate) state: &'a syn::Ident,
+    /// `Model::State` (`SpringState`, `ChainState<N>`).
+    pub(crate) state: TokenStream,
     /// The attribute's arguments, for `DEFAULT_METHOD`, `DEFAULT_DT`, `DEFAULT_RTOL` and
     /// `DEFAULT_ATOL`, whose values are also checked at compile time; `None` for a stand-in.
     pub(crate) args: Option<&'a Args>,
@@ -39,7 +41,7 @@ impl<'a> ModelImpl<'a> {
     pub(crate) fn for_impl(
         imp: &'a syn::ItemImpl,
         model: &syn::Ident,
-        state: &'a syn::Ident,
+        state: TokenStream,
         args: &'a Args,
     ) -> Self {
         ModelImpl {
@@ -69,7 +71,7 @@ impl<'a> ModelImpl<'a> {
             jacobian,
             check,
         } = self;
-        let (impl_generics, type_generics, where_clause) = generics.split_for_impl();
+        let (impl_generics, _, where_clause) = generics.split_for_impl();
         let defaults = attribute_defaults(args.unwrap_or(&Args::default()));
         let (second_order_type, as_second_order) = optional_self(
             second_order,
@@ -85,7 +87,8 @@ impl<'a> ModelImpl<'a> {
                 }
             }
         });
-        let evaluated = args.map(|_| {
+        // A generic model's constants are evaluated where it is instantiated.
+        let evaluated = args.filter(|_| generics.params.is_empty()).map(|_| {
             quote! {
                 // Evaluates the attribute's constants here, so a bad `dt` is an error even in a
                 // crate that never runs the model.
@@ -98,7 +101,7 @@ impl<'a> ModelImpl<'a> {
         });
         quote! {
             #[automatically_derived]
-            impl #impl_generics ::odyn::Model for #self_ty #type_generics #where_clause {
+            impl #impl_generics ::odyn::Model for #self_ty #where_clause {
                 type State = #state;
                 type SecondOrder = #second_order_type;
                 const NAME: &'static str = #name;
@@ -147,23 +150,24 @@ fn optional_self(
 /// compile), but with it the rest of the user's crate type-checks, so the user sees the real
 /// error and not "no method named `simulate`" at every call site.
 pub(crate) fn stub_model(model: &syn::Ident, state: &syn::Ident) -> TokenStream {
-    stub_model_with(model, state, &syn::Generics::default())
+    stub_model_with(model, quote!(#state), &syn::Generics::default())
 }
 
-/// [`stub_model`] for a struct with `generics`.
-pub(super) fn stub_model_with(
+/// [`stub_model`] for a struct with `generics`, whose state type is `state` (`ChainState<N>`).
+pub(crate) fn stub_model_with(
     model: &syn::Ident,
-    state: &syn::Ident,
+    state: TokenStream,
     generics: &syn::Generics,
 ) -> TokenStream {
     let never = quote!(::core::unreachable!(
         "odyn rejected this model at compile time"
     ));
+    let (_, type_generics, _) = generics.split_for_impl();
     ModelImpl {
-        self_ty: quote!(#model),
+        self_ty: quote!(#model #type_generics),
         generics,
         name: model.to_string(),
-        state,
+        state: state.clone(),
         args: None,
         methods: quote! {
             fn state(&self) -> #state {

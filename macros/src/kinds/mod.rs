@@ -22,7 +22,7 @@ pub(crate) mod grid;
 pub(crate) mod particles;
 
 use proc_macro2::TokenStream;
-use quote::quote;
+use quote::{ToTokens, quote};
 use syn::{ItemImpl, ItemStruct};
 
 use crate::args::{self, Args};
@@ -53,6 +53,12 @@ pub(crate) trait FrontEnd: Sync {
     /// Whether the kind can take its Jacobian by finite differences
     /// (`jacobian = finite_differences`).
     fn takes_finite_differences(&self) -> bool {
+        false
+    }
+
+    /// Whether the kind's struct may have const parameters (`struct Chain<const N: usize>`) for
+    /// the lengths of its state arrays.
+    fn takes_const_parameters(&self) -> bool {
         false
     }
 
@@ -113,7 +119,7 @@ pub(crate) fn expand_struct(args_tokens: TokenStream, item: &ItemStruct) -> Toke
     let args = args::parse(args_tokens.clone(), &mut errors);
     let item = &attributes::unknown_attributes(item, &mut errors);
     let stripped = strip_field_attributes(item);
-    let state = if let Some(refusal) = unsupported_shape(item) {
+    let state = if let Some(refusal) = unsupported_shape(item, front_end(item)) {
         // One error: the fields of a generic model (`[f64; N]`, `k: T`) would each be refused
         // only because of the generics, and a tuple struct's have no names to read.
         errors.push(refusal);
@@ -175,15 +181,35 @@ fn refuse_parameters(item: &ItemStruct, errors: &mut Errors) {
     }
 }
 
-/// The error for a struct no kind reads: a generic one, or one without named fields.
-fn unsupported_shape(item: &ItemStruct) -> Option<syn::Error> {
-    if !item.generics.params.is_empty() || item.generics.where_clause.is_some() {
-        return Some(syn::Error::new_spanned(
-            &item.generics,
-            "generic models are not supported: `#[system]` lays out the state and derives its \
-             Jacobian for one concrete struct; write array lengths as integer literals \
-             (`[f64; 3]`) and parameters as `f64` fields",
-        ));
+/// The error for a struct `kind` cannot read: one generic over more than array lengths, or one
+/// without named fields.
+fn unsupported_shape(item: &ItemStruct, kind: &dyn FrontEnd) -> Option<syn::Error> {
+    let generics = &item.generics;
+    let lengths_only = "a model's generic parameters can only be array lengths, `const N: usize`: \
+                        `#[system]` lays the state out in `f64` components and reads \
+                        parameters as `f64` fields";
+    for param in &generics.params {
+        match param {
+            syn::GenericParam::Const(c) if crate::syntax::is_plain(&c.ty, "usize") => {
+                if !kind.takes_const_parameters() {
+                    return Some(syn::Error::new_spanned(
+                        param,
+                        "const parameters are for fixed-size models: particle and grid models \
+                         are sized at run time, by their state",
+                    ));
+                }
+            }
+            syn::GenericParam::Const(c) => {
+                return Some(syn::Error::new_spanned(
+                    &c.ty,
+                    "a const parameter of a model is an array length, of type `usize`",
+                ));
+            }
+            other => return Some(syn::Error::new_spanned(other, lengths_only)),
+        }
+    }
+    if let Some(clause) = &generics.where_clause {
+        return Some(syn::Error::new_spanned(clause, lengths_only));
     }
     if !matches!(item.fields, syn::Fields::Named(_)) {
         return Some(syn::Error::new(
@@ -198,6 +224,16 @@ fn unsupported_shape(item: &ItemStruct) -> Option<syn::Error> {
 /// runtime trait impls of the struct's kind; or, rejected, the impl block, the errors, and a
 /// stand-in `Model` impl so the rest of the crate draws no follow-on errors.
 pub(crate) fn expand_impl(args: &Args, item: &ItemStruct, imp: &ItemImpl) -> TokenStream {
+    let generic_impl = !imp.generics.params.is_empty()
+        || matches!(&*imp.self_ty, syn::Type::Path(p)
+            if p.path.segments.iter().any(|s| !s.arguments.is_none()));
+    if generic_impl && item.generics.params.is_empty() {
+        // Generics on the impl of a plain struct: rustc reports them; the impl block stays, its
+        // bodies never run, and nothing more is said.
+        let known = method_attributes();
+        return generate::never_run(strip_method_attributes(imp, &known), |_| true)
+            .into_token_stream();
+    }
     let kind = front_end(item);
     let known = kind.method_attributes();
     let mut near_misses = Errors::default();
@@ -217,7 +253,13 @@ pub(crate) fn expand_impl(args: &Args, item: &ItemStruct, imp: &ItemImpl) -> Tok
             };
             let imp = generate::never_run(stripped, |f| Some(&f.sig.ident) == silenced.as_ref());
             let error = error.to_compile_error();
-            let stub = generate::stub_model(&item.ident, &state_ident(&item.ident));
+            let state = state_ident(&item.ident);
+            let (_, type_generics, _) = item.generics.split_for_impl();
+            let stub = generate::stub_model_with(
+                &item.ident,
+                quote!(#state #type_generics),
+                &item.generics,
+            );
             quote!(#imp #error #stub)
         }
     };

@@ -22,9 +22,9 @@ use crate::model::Shape;
 fn fits(value: &Value, shape: Shape) -> bool {
     match (value, shape) {
         (Value::Scalar(_), Shape::Scalar) => true,
-        (Value::Vector(v), Shape::Array(n) | Shape::Vector(n)) => v.len() == n,
+        (Value::Vector(v), Shape::Array(n) | Shape::Vector(n)) => v.len() == n.count(),
         (Value::Rows(rows), Shape::Rows(n, row)) => {
-            rows.len() == n && rows.iter().all(|r| r.len() == row.len())
+            rows.len() == n.count() && rows.iter().all(|r| r.len() == row.len())
         }
         _ => false,
     }

@@ -118,12 +118,12 @@ impl Lowering<'_> {
         match shape {
             Shape::Scalar => Value::Scalar(component(self, 0)),
             Shape::Array(n) | Shape::Vector(n) => {
-                Value::Vector((0..n).map(|i| component(self, i)).collect())
+                Value::Vector((0..n.count()).map(|i| component(self, i)).collect())
             }
             Shape::Rows(n, row) => {
                 let m = row.len();
                 Value::Rows(
-                    (0..n)
+                    (0..n.count())
                         .map(|i| (0..m).map(|j| component(self, m * i + j)).collect())
                         .collect(),
                 )
@@ -147,9 +147,9 @@ impl Lowering<'_> {
 fn components_of(value: Value, shape: Shape) -> Option<Vec<ExprId>> {
     match (value, shape) {
         (Value::Scalar(x), Shape::Scalar) => Some(vec![x]),
-        (Value::Vector(v), Shape::Array(n) | Shape::Vector(n)) if v.len() == n => Some(v),
+        (Value::Vector(v), Shape::Array(n) | Shape::Vector(n)) if v.len() == n.count() => Some(v),
         (Value::Rows(rows), Shape::Rows(n, row))
-            if rows.len() == n && rows.iter().all(|r| r.len() == row.len()) =>
+            if rows.len() == n.count() && rows.iter().all(|r| r.len() == row.len()) =>
         {
             Some(rows.concat())
         }

@@ -139,7 +139,7 @@ impl ::odyn::Jacobian for Duffing {
         &self,
         _: &DuffingState,
     ) -> ::odyn::__private::nalgebra::SMatrix<f64, 2, 2> {
-        <::odyn::__private::nalgebra::SMatrix<f64, 2, 2> as ::odyn::DenseMatrix>::zeros()
+        ::odyn::__private::nalgebra::SMatrix::<f64, 2, 2>::zeros()
     }
     #[inline]
     fn jacobian(

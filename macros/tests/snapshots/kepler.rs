@@ -156,7 +156,7 @@ impl ::odyn::Jacobian for Kepler {
         &self,
         _: &KeplerState,
     ) -> ::odyn::__private::nalgebra::SMatrix<f64, 4, 4> {
-        <::odyn::__private::nalgebra::SMatrix<f64, 4, 4> as ::odyn::DenseMatrix>::zeros()
+        ::odyn::__private::nalgebra::SMatrix::<f64, 4, 4>::zeros()
     }
     #[inline]
     fn jacobian(

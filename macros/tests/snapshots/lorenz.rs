@@ -130,7 +130,7 @@ impl ::odyn::Jacobian for Lorenz {
         &self,
         _: &LorenzState,
     ) -> ::odyn::__private::nalgebra::SMatrix<f64, 3, 3> {
-        <::odyn::__private::nalgebra::SMatrix<f64, 3, 3> as ::odyn::DenseMatrix>::zeros()
+        ::odyn::__private::nalgebra::SMatrix::<f64, 3, 3>::zeros()
     }
     #[inline]
     fn jacobian(

@@ -140,7 +140,7 @@ impl ::odyn::Jacobian for Spring {
         &self,
         _: &SpringState,
     ) -> ::odyn::__private::nalgebra::SMatrix<f64, 2, 2> {
-        <::odyn::__private::nalgebra::SMatrix<f64, 2, 2> as ::odyn::DenseMatrix>::zeros()
+        ::odyn::__private::nalgebra::SMatrix::<f64, 2, 2>::zeros()
     }
     #[inline]
     fn jacobian(

@@ -61,6 +61,151 @@ pub fn from_vector<T: FlatState, const N: usize>(vector: &SVector<f64, N>) -> T 
     unsafe { core::mem::transmute_copy(vector) }
 }
 
+/// How a field of a const-generic model's state is laid out, for its components' names.
+#[derive(Clone, Copy, Debug)]
+pub enum FieldLayout {
+    /// `f64`: one component, named as the field (`k`).
+    Scalar,
+    /// `[f64; N]` or `SVector<f64, N>`: `x[0]`, `x[1]`, …
+    Flat(usize),
+    /// `[[f64; M]; N]` or `[SVector<f64, M>; N]`: `r[0][0]`, `r[0][1]`, …, row after row.
+    Rows(usize, usize),
+}
+
+impl FieldLayout {
+    fn len(self) -> usize {
+        match self {
+            FieldLayout::Scalar => 1,
+            FieldLayout::Flat(n) => n,
+            FieldLayout::Rows(n, m) => n * m,
+        }
+    }
+}
+
+/// The name of component `index` of a state whose fields are `fields`, in layout order
+/// (`x[2]`), or `#index` past its end: `State::component_name` of a const-generic model, whose
+/// names the macro cannot list.
+pub fn component_name(fields: &[(&str, FieldLayout)], index: usize) -> String {
+    let mut offset = 0;
+    for &(name, layout) in fields {
+        let i = index - offset;
+        if i < layout.len() {
+            return match layout {
+                FieldLayout::Scalar => name.to_owned(),
+                FieldLayout::Flat(_) => format!("{name}[{i}]"),
+                FieldLayout::Rows(_, m) => format!("{name}[{}][{}]", i / m, i % m),
+            };
+        }
+        offset += layout.len();
+    }
+    format!("#{index}")
+}
+
+/// Implements [`State`](crate::State), [`FlatState`] and arithmetic for the state struct of a
+/// const-generic model: `generic_flat_state!(Name[N, M], LEN, [("x", FieldLayout::Flat(N)), …],
+/// zero-value)`. As [`__flat_state`] without the `SVector` views, whose length stable Rust cannot
+/// name. Not a public API.
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __generic_flat_state {
+    ($state:ident [$($p:ident),*], $len:expr, [$($field:expr),*], $zero:expr) => {
+        // SAFETY: `#[system]` generates `$state` as `#[repr(C)]` with only `f64`, `[f64; N]`,
+        // `SVector<f64, N>` and arrays of those fields totalling `$len` components; `as_slice`
+        // and `as_mut_slice` assert the size for every instantiation.
+        unsafe impl<$(const $p: usize),*> $crate::__private::FlatState for $state<$($p),*> {
+            const LEN: usize = $len;
+        }
+
+        impl<$(const $p: usize),*> $crate::State for $state<$($p),*> {
+            #[inline(always)]
+            fn as_slice(&self) -> &[f64] {
+                $crate::__private::flat::as_slice(self)
+            }
+            #[inline(always)]
+            fn as_mut_slice(&mut self) -> &mut [f64] {
+                $crate::__private::flat::as_mut_slice(self)
+            }
+            fn component_name(&self, index: usize) -> ::std::string::String {
+                $crate::__private::component_name(&[$($field),*], index)
+            }
+        }
+
+        impl<$(const $p: usize),*> $state<$($p),*> {
+            /// Number of `f64` components.
+            pub const LEN: usize = $len;
+
+            /// The state with every component zero.
+            pub fn zeros() -> Self {
+                $zero
+            }
+
+            fn __odyn_zip(mut self, rhs: &Self, op: impl Fn(f64, f64) -> f64) -> Self {
+                let rhs = $crate::State::as_slice(rhs);
+                for (a, b) in $crate::State::as_mut_slice(&mut self).iter_mut().zip(rhs) {
+                    *a = op(*a, *b);
+                }
+                self
+            }
+        }
+
+        impl<$(const $p: usize),*> ::core::ops::Add for $state<$($p),*> {
+            type Output = Self;
+            #[inline]
+            fn add(self, rhs: Self) -> Self {
+                self.__odyn_zip(&rhs, |a, b| a + b)
+            }
+        }
+
+        impl<$(const $p: usize),*> ::core::ops::Sub for $state<$($p),*> {
+            type Output = Self;
+            #[inline]
+            fn sub(self, rhs: Self) -> Self {
+                self.__odyn_zip(&rhs, |a, b| a - b)
+            }
+        }
+
+        impl<$(const $p: usize),*> ::core::ops::Neg for $state<$($p),*> {
+            type Output = Self;
+            #[inline]
+            fn neg(self) -> Self {
+                let zero = Self::zeros();
+                zero.__odyn_zip(&self, |_, b| -b)
+            }
+        }
+
+        impl<$(const $p: usize),*> ::core::ops::Mul<f64> for $state<$($p),*> {
+            type Output = Self;
+            #[inline]
+            fn mul(self, rhs: f64) -> Self {
+                let copy = self;
+                self.__odyn_zip(&copy, |a, _| a * rhs)
+            }
+        }
+
+        impl<$(const $p: usize),*> ::core::ops::Mul<$state<$($p),*>> for f64 {
+            type Output = $state<$($p),*>;
+            #[inline]
+            fn mul(self, rhs: $state<$($p),*>) -> $state<$($p),*> {
+                rhs * self
+            }
+        }
+
+        impl<$(const $p: usize),*> ::core::ops::AddAssign for $state<$($p),*> {
+            #[inline]
+            fn add_assign(&mut self, rhs: Self) {
+                *self = *self + rhs;
+            }
+        }
+
+        impl<$(const $p: usize),*> ::core::ops::SubAssign for $state<$($p),*> {
+            #[inline]
+            fn sub_assign(&mut self, rhs: Self) {
+                *self = *self - rhs;
+            }
+        }
+    };
+}
+
 /// Implements [`State`](crate::State), [`FlatState`], conversions and arithmetic for a state struct
 /// generated by `#[system]`: `flat_state!(Name, LEN, ["x", "v"])`. Not a public API.
 #[doc(hidden)]

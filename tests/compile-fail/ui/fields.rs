@@ -42,7 +42,31 @@ mod generic_model {
     }
 }
 
-mod const_generic_model {
+mod const_parameter_not_usize {
+    use odyn::prelude::*;
+
+    #[system]
+    pub struct Chain<const N: u32> {
+        #[position]
+        pub x: [f64; 3],
+        #[velocity]
+        pub v: [f64; 3],
+    }
+
+    #[system]
+    impl<const N: u32> Chain<N> {
+        fn acceleration(&self) -> [f64; 3] {
+            self.x
+        }
+    }
+
+    fn main() {
+        let chain = Chain::<3> { x: [1.0; 3], v: [0.0; 3] };
+        let _ = chain.simulate().steps(10).run();
+    }
+}
+
+mod const_generic_impl_for_one_length {
     use odyn::prelude::*;
 
     #[system]
@@ -55,19 +79,63 @@ mod const_generic_model {
     }
 
     #[system]
-    impl<const N: usize> Chain<N> {
-        fn acceleration(&self) -> [f64; N] {
-            let mut a = [0.0; N];
-            for i in 0..N {
-                a[i] = -self.k * self.x[i];
-            }
-            a
+    impl Chain<3> {
+        fn acceleration(&self) -> [f64; 3] {
+            [-self.k * self.x[0], 0.0, 0.0]
         }
     }
 
     fn main() {
         let chain = Chain::<3> { x: [1.0; 3], v: [0.0; 3], k: 1.0 };
         let _ = chain.simulate().steps(10).run();
+    }
+}
+
+mod const_generic_with_param {
+    use odyn::prelude::*;
+
+    #[system]
+    pub struct Chain<const N: usize> {
+        #[position]
+        pub x: [f64; N],
+        #[velocity]
+        pub v: [f64; N],
+        #[param]
+        pub k: f64,
+    }
+
+    #[system]
+    impl<const N: usize> Chain<N> {
+        fn acceleration(&self) -> [f64; N] {
+            self.x.map(|x| -self.k * x)
+        }
+    }
+
+    fn main() {
+        let chain = Chain::<3> { x: [1.0; 3], v: [0.0; 3], k: 1.0 };
+        let _ = chain.simulate().steps(10).run();
+    }
+}
+
+mod const_generic_with_bad_field {
+    use odyn::prelude::*;
+
+    #[system]
+    pub struct Rod<const N: usize> {
+        #[state]
+        pub u: [f32; N],
+    }
+
+    #[system]
+    impl<const N: usize> Rod<N> {
+        fn derivative(&self) -> RodState<N> {
+            RodState { u: self.u }
+        }
+    }
+
+    fn main() {
+        let rod = Rod::<3> { u: [1.0; 3] };
+        let _ = rod.simulate().steps(10).run();
     }
 }
 

@@ -33,6 +33,32 @@ mod acceleration_in_particle_model {
     fn main() {}
 }
 
+mod const_generic_particles {
+    use odyn::particles::Spring;
+    use odyn::prelude::*;
+
+    #[system]
+    struct Net<const N: usize> {
+        #[position]
+        x: Vec<Vector3<f64>>,
+        #[velocity]
+        v: Vec<Vector3<f64>>,
+        #[mass]
+        m: Vec<f64>,
+        springs: Vec<Spring>,
+    }
+
+    #[system]
+    impl<const N: usize> Net<N> {
+        #[particle]
+        fn weight(&self, _x: Vector3<f64>) -> Vector3<f64> {
+            Vector3::new(0.0, -9.81, 0.0)
+        }
+    }
+
+    fn main() {}
+}
+
 mod kernel_arity {
     use odyn::particles::Spring;
     use odyn::prelude::*;

@@ -3,7 +3,9 @@
 use syn::{Attribute, Fields, ItemStruct};
 
 use crate::errors::Errors;
-use crate::model::{Model, Order, Role, StateField, array_with_computed_length, shape_of};
+use crate::model::{
+    Model, Order, Role, StateField, array_with_computed_length, const_params, shape_in,
+};
 use crate::syntax::no_arguments;
 
 /// Reads the model from its struct, reporting every problem to `errors`.
@@ -12,22 +14,24 @@ pub(crate) fn parse<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Option<Mod
     let Fields::Named(named) = &item.fields else {
         return None;
     };
+    let params = const_params(item);
     let mut declared = Vec::new();
     for field in &named.named {
         let Some(role) = role_of(&field.attrs, errors) else {
             continue;
         };
         let ident = field.ident.as_ref().expect("named fields have names");
-        match shape_of(&field.ty) {
-            Some(shape) if shape.len() > 0 => {
+        match shape_in(&field.ty, &params) {
+            Some(shape) if shape.is_generic() || shape.len() > 0 => {
                 declared.push((StateField { ident, role, shape }, field))
             }
             Some(_) => errors.at(&field.ty, "a state field needs at least one component"),
             None if array_with_computed_length(&field.ty) => errors.at(
                 &field.ty,
                 "the length of a state array must be an integer literal, such as `[f64; 64]` \
-                 or `[Vector3<f64>; 5]`: `#[system]` lays the state out before constants are \
-                 evaluated, so write the length out",
+                 or `[Vector3<f64>; 5]`, or a const parameter of the model alone \
+                 (`[f64; N]` in `struct Chain<const N: usize>`): `#[system]` lays the state out \
+                 before constants are evaluated",
             ),
             None => errors.at(
                 &field.ty,
@@ -75,7 +79,7 @@ pub(crate) fn parse<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Option<Mod
         Order::Second
     };
     if order == Order::Second {
-        pair_positions_and_velocities(&declared, errors);
+        pair_positions_and_velocities(&declared, &params, errors);
     }
     let mut fields: Vec<_> = declared.into_iter().map(|(f, _)| f).collect();
     // Layout: every position, then every velocity (a stable sort keeps declaration order).
@@ -84,11 +88,16 @@ pub(crate) fn parse<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Option<Mod
         item,
         order,
         states: fields,
+        params,
     })
 }
 
 /// Positions and velocities pair up in declaration order, with equal shapes.
-fn pair_positions_and_velocities(declared: &[(StateField<'_>, &syn::Field)], errors: &mut Errors) {
+fn pair_positions_and_velocities(
+    declared: &[(StateField<'_>, &syn::Field)],
+    params: &[&syn::Ident],
+    errors: &mut Errors,
+) {
     let positions: Vec<_> = declared
         .iter()
         .filter(|(f, _)| f.role == Role::Position)
@@ -105,9 +114,9 @@ fn pair_positions_and_velocities(declared: &[(StateField<'_>, &syn::Field)], err
                     "velocity `{}` is `{}` but its position `{}` is `{}`; a position and its \
                      velocity have the same shape",
                     v.0.ident,
-                    v.0.shape.describe(),
+                    v.0.shape.describe(params),
                     p.0.ident,
-                    p.0.shape.describe()
+                    p.0.shape.describe(params)
                 ),
             );
         }

@@ -84,7 +84,7 @@ pub(crate) fn parse(
             Order::Second => {
                 let types: Vec<_> = model
                     .with_role(Role::Velocity)
-                    .map(|v| v.shape.describe())
+                    .map(|v| model.describe(v.shape))
                     .collect();
                 match types.as_slice() {
                     [one] => format!("fn acceleration(&self) -> {one}"),

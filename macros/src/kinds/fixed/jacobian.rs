@@ -71,7 +71,7 @@ pub(crate) fn jacobian(
                 &jac,
             )
         };
-        (quote!(::odyn::FaerDense<#n>), body)
+        (quote!(::odyn::FaerDense), body)
     };
     let JacobianBody {
         statements: body,
@@ -115,6 +115,7 @@ pub(crate) fn jacobian(
     let doc = format!(
         "The {count} structural non-zeros of ∂f/∂y, derived by `#[system]` from the model's code."
     );
+    let zeros = zero_matrix(n_usize, &quote!(#n));
     let exact = if graph.has_externs() {
         quote! {
             /// False: the model calls a function `#[system]` cannot see inside; the derivative
@@ -137,7 +138,7 @@ pub(crate) fn jacobian(
             const NONZEROS: &'static [(usize, usize)] = &[#(#nonzeros),*];
             #exact
             fn jacobian_matrix(&self, _: &#state) -> #matrix {
-                <#matrix as ::odyn::DenseMatrix>::zeros()
+                #zeros
             }
             #[inline]
             fn jacobian(&self, t: f64, y: &#state, jacobian: &mut #matrix) {
@@ -153,17 +154,25 @@ pub(crate) fn jacobian(
 /// by the runtime's central difference when f reads the time.
 pub(crate) fn differences(model: &Model<'_>, force: &Function, imp: &ItemImpl) -> TokenStream {
     let self_ty = &imp.self_ty;
-    let state = model.state_ident();
-    let n = proc_macro2::Literal::usize_unsuffixed(model.len());
-    let (matrix, store) = if model.len() <= SMALL {
+    let (impl_generics, _, where_clause) = imp.generics.split_for_impl();
+    let state = model.state_type();
+    let (matrix, store, state_param, zeros) = if !model.is_generic() && model.len() <= SMALL {
+        let n = model.len_tokens();
         (
             quote!(::odyn::__private::nalgebra::SMatrix<f64, #n, #n>),
             quote!(|row, column, value| jacobian[(row, column)] = value),
+            quote!(_),
+            zero_matrix(model.len(), &n),
         )
     } else {
         (
-            quote!(::odyn::FaerDense<#n>),
+            quote!(::odyn::FaerDense),
             quote!(|row, column, value| jacobian.set(row, column, value)),
+            // A const-generic model's size is known once the state is.
+            quote!(state),
+            quote!(::odyn::FaerDense::zeros(
+                ::odyn::State::as_slice(state).len()
+            )),
         )
     };
     let time = match force.time {
@@ -172,16 +181,21 @@ pub(crate) fn differences(model: &Model<'_>, force: &Function, imp: &ItemImpl) -
         ),
         None => time_independent(&state, "The model's function does not read the time"),
     };
+    let why = if model.is_generic() {
+        " False: a const-generic model's Jacobian is central differences of f."
+    } else {
+        " False: `jacobian = finite_differences`, central differences of f."
+    };
     quote! {
         #[automatically_derived]
-        impl ::odyn::Jacobian for #self_ty {
+        impl #impl_generics ::odyn::Jacobian for #self_ty #where_clause {
             type Matrix = #matrix;
             /// Not known: the Jacobian is taken by finite differences.
             const NONZEROS: &'static [(usize, usize)] = &[];
-            /// False: `jacobian = finite_differences`, central differences of f.
+            #[doc = #why]
             const EXACT: bool = false;
-            fn jacobian_matrix(&self, _: &#state) -> #matrix {
-                <#matrix as ::odyn::DenseMatrix>::zeros()
+            fn jacobian_matrix(&self, #state_param: &#state) -> #matrix {
+                #zeros
             }
             #[inline]
             fn jacobian(&self, t: f64, y: &#state, jacobian: &mut #matrix) {
@@ -189,6 +203,16 @@ pub(crate) fn differences(model: &Model<'_>, force: &Function, imp: &ItemImpl) -
             }
             #time
         }
+    }
+}
+
+/// A new n×n Jacobian (`n` also as tokens): an `SMatrix` on the stack up to [`SMALL`], a
+/// `FaerDense` above.
+fn zero_matrix(n: usize, tokens: &TokenStream) -> TokenStream {
+    if n <= SMALL {
+        quote!(::odyn::__private::nalgebra::SMatrix::<f64, #tokens, #tokens>::zeros())
+    } else {
+        quote!(::odyn::FaerDense::zeros(#tokens))
     }
 }
 

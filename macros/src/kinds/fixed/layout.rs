@@ -24,9 +24,12 @@ pub(super) struct JacobianBody {
 }
 
 /// The inlining of a hidden function of `model`: a hint when small, never when big, so a big
-/// body is compiled once rather than into every stage of every integrator.
+/// body is compiled once rather than into every stage of every integrator; the compiler's
+/// choice when the size is a const parameter.
 pub(super) fn inline_hint(model: &Model<'_>, small: TokenStream) -> TokenStream {
-    if model.len() <= SMALL {
+    if model.is_generic() {
+        quote!(#[inline])
+    } else if model.len() <= SMALL {
         small
     } else {
         quote!(#[inline(never)])
@@ -47,7 +50,7 @@ pub(super) fn time_param(f: &Function) -> TokenStream {
 pub(super) fn state_params<'a>(model: &'a Model<'_>) -> impl Iterator<Item = TokenStream> + 'a {
     model.states.iter().map(|s| {
         let local = state_local(s.ident);
-        let ty = s.shape.to_type();
+        let ty = model.type_of(s.shape);
         match s.shape {
             Shape::Scalar => quote!(#local: #ty),
             Shape::Array(_) | Shape::Vector(_) | Shape::Rows(..) => quote!(#local: &#ty),

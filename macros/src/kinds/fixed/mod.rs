@@ -29,6 +29,50 @@ use crate::model::Order;
 use crate::validate::{self, FirstOrder, VelocityRead};
 use crate::{helpers, lower};
 
+/// Whether the impl block of const-generic `model` is generic over the struct's parameters, in
+/// order (`impl<const N: usize> Chain<N>`), as the generated impls must be; reports it if not.
+fn generic_impl(model: &crate::model::Model<'_>, imp: &ItemImpl, errors: &mut Errors) -> bool {
+    let declared: Vec<_> = imp.generics.const_params().map(|c| &c.ident).collect();
+    let arguments: Option<Vec<_>> = match &*imp.self_ty {
+        syn::Type::Path(p) => p
+            .path
+            .segments
+            .last()
+            .and_then(|last| match &last.arguments {
+                syn::PathArguments::AngleBracketed(a) => a
+                    .args
+                    .iter()
+                    .map(|arg| match arg {
+                        syn::GenericArgument::Type(syn::Type::Path(t)) => t.path.get_ident(),
+                        syn::GenericArgument::Const(syn::Expr::Path(e)) => e.path.get_ident(),
+                        _ => None,
+                    })
+                    .collect(),
+                _ => None,
+            }),
+        _ => None,
+    };
+    let matches = declared == model.params
+        && imp.generics.params.len() == declared.len()
+        && arguments.as_ref() == Some(&model.params);
+    if !matches {
+        let params: Vec<_> = model.params.iter().map(ToString::to_string).collect();
+        let names = params.join(", ");
+        let consts: Vec<_> = params.iter().map(|p| format!("const {p}: usize")).collect();
+        errors.at(
+            &imp.self_ty,
+            format_args!(
+                "write this impl block as `impl<{}> {}<{names}>`: `#[system]` implements the \
+                 runtime's traits for every `{}`",
+                consts.join(", "),
+                model.ident(),
+                params.first().map_or("", String::as_str),
+            ),
+        );
+    }
+    matches
+}
+
 /// The fixed-size front-end: any struct no other kind recognises.
 pub(crate) struct Kind;
 
@@ -49,6 +93,10 @@ impl FrontEnd for Kind {
         true
     }
 
+    fn takes_const_parameters(&self) -> bool {
+        true
+    }
+
     /// The struct half: the state type, and what the model asks of an integrator, when accepted.
     fn expand_struct(&self, item: &ItemStruct, errors: &mut Errors) -> Option<Struct> {
         // The `#[param]` fields' errors; the parameters themselves are the impl half's.
@@ -58,6 +106,17 @@ impl FrontEnd for Kind {
         let model = fields::parse(item, errors)?;
         if refused_parameters {
             return None;
+        }
+        if model.is_generic() {
+            let params = item.fields.iter().filter_map(|f| param_attribute(&f.attrs));
+            for attr in params {
+                errors.at(
+                    attr,
+                    "a const-generic model's Jacobian is taken by differences, so `#[system]` \
+                     does not generate ∂f/∂p for `#[param]`; write the array lengths as integer \
+                     literals for generated derivatives",
+                );
+            }
         }
         let first_order = (model.order == Order::First).then(|| FirstOrder {
             second_order: "`#[position]`/`#[velocity]` fields",
@@ -82,6 +141,9 @@ impl FrontEnd for Kind {
         let Some(model) = fields::parse(item, errors) else {
             return rejected;
         };
+        if model.is_generic() && !generic_impl(&model, imp, errors) {
+            return rejected;
+        }
         let before = errors.len();
         let helpers = helpers::parse(imp, &model, errors);
         let helpers_ok = errors.len() == before;
@@ -95,7 +157,8 @@ impl FrontEnd for Kind {
             })
         });
         validate::forces(args, velocity_read, errors);
-        let generated_jacobian = args.no_jacobian.is_none() && args.differences.is_none();
+        let generated_jacobian =
+            args.no_jacobian.is_none() && args.differences.is_none() && !model.is_generic();
         let lowered = match &functions.force {
             // A helper with a problem has been reported; its calls are not followed.
             Some(force) if generated_jacobian && helpers_ok => {
@@ -144,7 +207,9 @@ impl FrontEnd for Kind {
         if !errors.is_empty() {
             return rejected;
         }
-        let differences = args.differences.is_some();
+        // A const-generic model's code is not lowered (its loops run to `N`): differences.
+        let differences =
+            args.differences.is_some() || (model.is_generic() && args.no_jacobian.is_none());
         let generated = generate::model_impls(
             &model,
             args,

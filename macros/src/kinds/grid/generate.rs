@@ -143,7 +143,7 @@ pub(super) fn impls(
             #(::odyn::__private::grid::check_coefficient::<Self>(#coefficient_names, &self.#coefficients, state)?;)*
             ::core::result::Result::Ok(())
         }),
-        ..ModelImpl::for_impl(imp, &fields.item.ident, &state, args)
+        ..ModelImpl::for_impl(imp, &fields.item.ident, quote!(#state), args)
     }
     .build();
     quote! {

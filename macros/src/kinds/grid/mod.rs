@@ -56,6 +56,7 @@ impl Fields<'_> {
                     shape: Shape::Scalar,
                 })
                 .collect(),
+            params: Vec::new(),
         }
     }
 }

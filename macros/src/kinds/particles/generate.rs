@@ -183,7 +183,7 @@ pub(super) fn generate(
         second_order: true,
         jacobian: has_jacobian,
         check: Some(quote!(::odyn::__private::particles::check(self, state))),
-        ..ModelImpl::for_impl(imp, &particles.item.ident, &state, args)
+        ..ModelImpl::for_impl(imp, &particles.item.ident, quote!(#state), args)
     }
     .build();
     quote! {

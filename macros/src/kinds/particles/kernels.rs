@@ -6,7 +6,7 @@ use syn::{Attribute, FnArg, Ident, ImplItem, ImplItemFn, ItemImpl, Pat, ReturnTy
 
 use super::Particles;
 use crate::errors::Errors;
-use crate::model::{Shape, shape_of};
+use crate::model::{Len, Shape, shape_of};
 use crate::syntax::{attribute, is_plain, is_ref_self, no_arguments, vec_element};
 
 /// Which elements a kernel runs over.
@@ -219,7 +219,8 @@ fn parse_kernel(
     let mut vectors = Vec::new();
     for input in inputs {
         let FnArg::Typed(t) = input else { continue };
-        let is_vector = matches!(shape_of(&t.ty), Some(Shape::Vector(d)) if d == particles.dim);
+        let is_vector =
+            matches!(shape_of(&t.ty), Some(Shape::Vector(d)) if d == Len::Known(particles.dim));
         match (&*t.pat, is_vector) {
             (Pat::Ident(p), true) if p.subpat.is_none() => vectors.push(p.ident.clone()),
             _ => errors.at(
@@ -251,7 +252,7 @@ fn parse_kernel(
         );
     }
     if !matches!(&f.sig.output, ReturnType::Type(_, ty)
-        if matches!(shape_of(ty), Some(Shape::Vector(d)) if d == particles.dim))
+        if matches!(shape_of(ty), Some(Shape::Vector(d)) if d == Len::Known(particles.dim)))
     {
         errors.at(
             &f.sig,

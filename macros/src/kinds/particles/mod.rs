@@ -18,7 +18,7 @@ use crate::args::Args;
 use crate::errors::Errors;
 use crate::kinds::{FrontEnd, Impl, Struct};
 use crate::lower;
-use crate::model::{Model, Order, Role, Shape, StateField, shape_of, state_ident};
+use crate::model::{Len, Model, Order, Role, Shape, StateField, shape_of, state_ident};
 use crate::syntax::{attribute, has_attribute, is_plain, no_arguments, vec_element};
 use crate::validate::{self, VelocityRead};
 
@@ -46,7 +46,7 @@ impl Particles<'_> {
         let field = |ident, role| StateField {
             ident,
             role,
-            shape: Shape::Vector(self.dim),
+            shape: Shape::Vector(Len::Known(self.dim)),
         };
         Model {
             item: self.item,
@@ -55,6 +55,7 @@ impl Particles<'_> {
                 field(self.position, Role::Position),
                 field(self.velocity, Role::Velocity),
             ],
+            params: Vec::new(),
         }
     }
 
@@ -107,7 +108,7 @@ pub(crate) fn parse_struct<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Opt
                 let dim = vec_element(&field.ty)
                     .and_then(shape_of)
                     .and_then(|s| match s {
-                        Shape::Vector(d @ (2 | 3)) => Some(d),
+                        Shape::Vector(Len::Known(d @ (2 | 3))) => Some(d),
                         _ => None,
                     });
                 match dim {

@@ -9,8 +9,6 @@ use faer::{Mat, MatMut, Par};
 
 /// A dense square Jacobian: what the stability explorer reads entry by entry.
 pub trait DenseMatrix: Clone + fmt::Debug {
-    /// The all-zero matrix; every buffer the matrix needs is allocated here, once.
-    fn zeros() -> Self;
     /// Entry (row, column).
     fn entry(&self, row: usize, column: usize) -> f64;
     /// Number of rows (= columns).
@@ -163,10 +161,6 @@ macro_rules! dense_matrix {
     ($($n:literal)*) => {$(
         impl DenseMatrix for nalgebra::SMatrix<f64, $n, $n> {
             #[inline]
-            fn zeros() -> Self {
-                nalgebra::SMatrix::zeros()
-            }
-            #[inline]
             fn entry(&self, row: usize, column: usize) -> f64 {
                 self[(row, column)]
             }
@@ -239,9 +233,6 @@ macro_rules! dense_matrix {
 dense_matrix!(1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23 24 25 26 27 28 29 30 31 32);
 
 impl DenseMatrix for nalgebra::SMatrix<f64, 0, 0> {
-    fn zeros() -> Self {
-        nalgebra::SMatrix::zeros()
-    }
     fn entry(&self, _: usize, _: usize) -> f64 {
         0.0
     }
@@ -261,11 +252,12 @@ impl NewtonMatrix for nalgebra::SMatrix<f64, 0, 0> {
     }
 }
 
-/// An N×N matrix on the heap, solved with faer's partial-pivoting LU: the Jacobian of models with
-/// more than 32 state components. Every buffer is allocated by [`DenseMatrix::zeros`] and
+/// An n×n matrix on the heap, sized at run time and solved with faer's partial-pivoting LU: the
+/// Jacobian of models with more than 32 state components, and of const-generic models (whose
+/// size the macro does not know). Every buffer is allocated by [`FaerDense::zeros`] and
 /// [`NewtonMatrix::factors`]; factorizations and solves allocate nothing.
 #[derive(Clone, Debug)]
-pub struct FaerDense<const N: usize> {
+pub struct FaerDense {
     matrix: Mat<f64>,
 }
 
@@ -277,7 +269,14 @@ pub struct FaerLu {
     scratch: MemBuffer,
 }
 
-impl<const N: usize> FaerDense<N> {
+impl FaerDense {
+    /// The n×n zero matrix.
+    pub fn zeros(n: usize) -> Self {
+        FaerDense {
+            matrix: Mat::zeros(n, n),
+        }
+    }
+
     /// Sets every entry to zero.
     pub fn fill_zero(&mut self) {
         self.matrix.fill(0.0);
@@ -324,32 +323,27 @@ impl fmt::Debug for FaerLu {
     }
 }
 
-impl<const N: usize> DenseMatrix for FaerDense<N> {
-    fn zeros() -> Self {
-        FaerDense {
-            matrix: Mat::zeros(N, N),
-        }
-    }
-
+impl DenseMatrix for FaerDense {
     fn entry(&self, row: usize, column: usize) -> f64 {
         self.matrix[(row, column)]
     }
 
     fn dim(&self) -> usize {
-        N
+        self.matrix.nrows()
     }
 }
 
-impl<const N: usize> NewtonMatrix for FaerDense<N> {
+impl NewtonMatrix for FaerDense {
     type Factors = FaerLu;
 
     fn factors(&self) -> FaerLu {
-        FaerLu::new(N)
+        FaerLu::new(self.dim())
     }
 
     fn factorize(&mut self, c: f64, f: &mut FaerLu) -> Result<(), FactorizeError> {
-        for column in 0..N {
-            for row in 0..N {
+        let n = self.dim();
+        for column in 0..n {
+            for row in 0..n {
                 let identity = if row == column { 1.0 } else { 0.0 };
                 f.lu[(row, column)] = identity - c * self.matrix[(row, column)];
             }
@@ -363,7 +357,7 @@ impl<const N: usize> NewtonMatrix for FaerDense<N> {
             Default::default(),
         );
         // A zero pivot leaves U singular: the solve would produce infinities.
-        if (0..N).all(|i| f.lu[(i, i)] != 0.0 && f.lu[(i, i)].is_finite()) {
+        if (0..n).all(|i| f.lu[(i, i)] != 0.0 && f.lu[(i, i)].is_finite()) {
             Ok(())
         } else {
             Err(FactorizeError::Singular)
@@ -371,14 +365,15 @@ impl<const N: usize> NewtonMatrix for FaerDense<N> {
     }
 
     fn solve(&mut self, f: &mut FaerLu, b: &mut [f64]) -> Result<(), SolveError> {
-        if b.len() != N {
+        let n = self.dim();
+        if b.len() != n {
             return Err(SolveError::WrongLength {
-                expected: N,
+                expected: n,
                 found: b.len(),
             });
         }
-        let perm = faer::perm::PermRef::new_checked(&f.perm, &f.perm_inv, N);
-        let rhs = MatMut::from_column_major_slice_mut(b, N, 1);
+        let perm = faer::perm::PermRef::new_checked(&f.perm, &f.perm_inv, n);
+        let rhs = MatMut::from_column_major_slice_mut(b, n, 1);
         let lu = f.lu.as_ref();
         solve::solve_in_place(lu, lu, perm, rhs, Par::Seq, MemStack::new(&mut f.scratch));
         finite(b)
