@@ -176,7 +176,7 @@ fn the_state_type_follows_the_parameters() {
         SheetState::<2, 3>::zeros().as_slice()
     );
     assert_eq!((-sheet).u[1][0], -4.0);
-    assert!(!<Sheet<2, 3> as Model>::Jacobian::AVAILABLE);
+    const { assert!(!<Sheet<2, 3> as Model>::Jacobian::AVAILABLE) };
     let run = Sheet::<2, 3> {
         u: [[0.0; 3]; 2],
         w: 1.0,
