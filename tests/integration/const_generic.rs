@@ -190,38 +190,34 @@ fn the_state_type_follows_the_parameters() {
     assert_eq!(run.last().state.u, [[-1.0; 3]; 2]);
 }
 
+/// The samples and the final state of `model` under `method`: a fixed step of `dt` for
+/// `steps` steps (adaptive methods start at `dt`).
+fn last<M: Model>(model: &M, method: Method, dt: f64, steps: u64) -> (usize, Vec<f64>) {
+    let run = model
+        .simulate()
+        .integrator(method)
+        .dt(dt)
+        .steps(steps)
+        .run()
+        .unwrap_or_else(|e| panic!("{} under {method}: {e}", M::NAME));
+    (run.samples.len(), run.last().state.as_slice().to_vec())
+}
+
 /// Every method without a Jacobian gives the generic chain the concrete chain's bits: the same
 /// arithmetic in the same order (the concrete model's loops unrolled, the generic one's not).
 #[test]
 fn explicit_runs_match_the_concrete_model_bit_for_bit() {
     let (generic, concrete) = (links::<4>(), chain());
     for method in Method::ALL.into_iter().filter(|m| !m.info().needs_jacobian) {
-        let options = |dt| (dt, 300_u64);
-        let (dt, steps) = options(1e-3);
-        let a = generic
-            .simulate()
-            .integrator(method)
-            .dt(dt)
-            .steps(steps)
-            .run()
-            .unwrap_or_else(|e| panic!("{method}: {e}"));
-        let b = concrete
-            .simulate()
-            .integrator(method)
-            .dt(dt)
-            .steps(steps)
-            .run()
-            .unwrap();
-        assert_eq!(a.samples.len(), b.samples.len(), "{method}");
         assert_eq!(
-            a.last().state.as_slice(),
-            b.last().state.as_slice(),
+            last(&generic, method, 1e-3, 300),
+            last(&concrete, method, 1e-3, 300),
             "{method}"
         );
     }
-    // Energy is the user's function, as written.
+    // Energy is the user's function, as written: four springs stretched by 0.1 at rest.
     let e = Model::energy(&generic, &generic.state()).unwrap();
-    assert!((e - 0.5 * 50.0 * 4.0 * 0.1 * 0.1).abs() < 1e-12, "{e}");
+    assert!((e - 4.0 * 0.5 * 50.0 * 0.1 * 0.1).abs() < 1e-12, "{e}");
 
     let three = three_bodies();
     let bodies = Bodies::<3> {
@@ -230,20 +226,13 @@ fn explicit_runs_match_the_concrete_model_bit_for_bit() {
         m: three.m,
         g: three.g,
     };
-    let a = bodies
-        .simulate()
-        .integrator(Method::Dop853)
-        .duration(4000.0)
-        .run()
-        .unwrap();
-    let b = three
-        .simulate()
-        .integrator(Method::Dop853)
-        .duration(4000.0)
-        .run()
-        .unwrap();
-    assert_eq!(a.samples.len(), b.samples.len());
-    assert_eq!(a.last().state.as_slice(), b.last().state.as_slice());
+    for method in [Method::Dop853, Method::Rk4, Method::Yoshida4] {
+        assert_eq!(
+            last(&bodies, method, 10.0, 400),
+            last(&three, method, 10.0, 400),
+            "{method}"
+        );
+    }
 }
 
 /// The Jacobian is central differences of f (`EXACT` false, no pattern), within what they
@@ -287,6 +276,19 @@ fn the_jacobian_is_differences_of_f() {
     });
 }
 
+/// The final state of `model` at t = 1 under `method` at rtol = atol = `tolerance`.
+fn tight<M: Model>(model: &M, method: Method, tolerance: f64) -> Vec<f64> {
+    let run = model
+        .simulate()
+        .integrator(method)
+        .tolerances(tolerance, tolerance)
+        .dt(1e-3)
+        .duration(1.0)
+        .run()
+        .unwrap_or_else(|e| panic!("{} under {method}: {e}", M::NAME));
+    run.last().state.as_slice().to_vec()
+}
+
 /// The implicit methods run the generic chain on its difference Jacobian and land where they
 /// land on the concrete chain's exact one.
 #[test]
@@ -298,28 +300,12 @@ fn implicit_methods_agree_with_the_exact_jacobian() {
         Method::Rodas5P,
         Method::Bdf,
     ] {
-        let run = |tolerance| {
-            let a = generic
-                .simulate()
-                .integrator(method)
-                .tolerances(tolerance, tolerance)
-                .dt(1e-3)
-                .duration(1.0)
-                .run()
-                .unwrap_or_else(|e| panic!("{method}: {e}"));
-            let b = concrete
-                .simulate()
-                .integrator(method)
-                .tolerances(tolerance, tolerance)
-                .dt(1e-3)
-                .duration(1.0)
-                .run()
-                .unwrap();
-            common::max_abs_difference(a.last().state.as_slice(), b.last().state.as_slice())
-        };
         // Newton methods only iterate with J; Rosenbrock methods build it into their stages,
         // whose results move by about J's error, ~1e-10 relative (measured: 1e-14 or less).
-        let apart = run(1e-8);
+        let apart = common::max_abs_difference(
+            &tight(&generic, method, 1e-8),
+            &tight(&concrete, method, 1e-8),
+        );
         assert!(apart < 1e-10, "{method}: {apart:e}");
     }
 }
