@@ -18,6 +18,7 @@ static GLOBAL: common::Counting = common::Counting;
 fn allocations_do_not_grow_with_the_steps() {
     common::count_this_thread();
     a_longer_run_allocates_no_more();
+    difference_jacobians_allocate_no_more();
     the_particle_lu_path_allocates_per_run_not_per_step();
 }
 
@@ -67,6 +68,113 @@ fn a_longer_run_allocates_no_more() {
         assert_eq!(
             short, long,
             "{method} (fixed: {fixed}): allocations grew with the steps"
+        );
+    }
+}
+
+/// 1/|r|³ from |r|², a function the macro cannot see inside: its derivative is a central
+/// difference of the call (`Jacobian::EXACT` is false).
+fn inverse_cube(r2: f64) -> f64 {
+    1.0 / (r2 * r2.sqrt())
+}
+
+/// Kepler's problem through [`inverse_cube`].
+#[system]
+#[derive(Clone, Copy)]
+struct Opaque {
+    #[position]
+    r: Vector2<f64>,
+    #[velocity]
+    v: Vector2<f64>,
+    gm: f64,
+}
+
+#[system]
+impl Opaque {
+    fn acceleration(&self) -> Vector2<f64> {
+        -self.gm * self.r * inverse_cube(self.r.norm_squared())
+    }
+}
+
+/// A ring of N masses and springs: const-generic, so its Jacobian is central differences of f
+/// in a `FaerDense`.
+#[system]
+#[derive(Clone, Copy)]
+struct Ring<const N: usize> {
+    #[position]
+    x: [f64; N],
+    #[velocity]
+    v: [f64; N],
+    k: f64,
+}
+
+#[system]
+impl<const N: usize> Ring<N> {
+    fn acceleration(&self) -> [f64; N] {
+        std::array::from_fn(|i| {
+            let (left, right) = (self.x[(i + N - 1) % N], self.x[(i + 1) % N]);
+            self.k * (left - 2.0 * self.x[i] + right)
+        })
+    }
+}
+
+/// Allocations and steps of a run of `model` under `method` to `duration`, at a fixed step of
+/// 1e-3 or adaptive.
+fn allocations<M: Model>(model: &M, method: Method, duration: f64, fixed: bool) -> (u64, u64) {
+    let sim = model
+        .simulate()
+        .integrator(method)
+        .duration(duration)
+        .record_every(u64::MAX)
+        .dense_output(false);
+    let sim = if fixed { sim.dt(1e-3) } else { sim };
+    let before = ALLOCATIONS.load(Ordering::Relaxed);
+    let run = sim.run().unwrap();
+    (ALLOCATIONS.load(Ordering::Relaxed) - before, run.steps())
+}
+
+/// The Jacobians of differences (of one call, and of a whole const-generic f) allocate nothing
+/// per step either.
+fn difference_jacobians_allocate_no_more() {
+    const { assert!(!<Opaque as odyn::Jacobian>::EXACT) };
+    let opaque = Opaque {
+        r: Vector2::new(0.5, 0.0),
+        v: Vector2::new(0.0, 3f64.sqrt()),
+        gm: 1.0,
+    };
+    let mut ring = Ring::<40> {
+        x: [0.0; 40],
+        v: [0.0; 40],
+        k: 100.0,
+    };
+    ring.x[0] = 0.1;
+    for (method, fixed) in [
+        (Method::ImplicitEuler, true),
+        (Method::Rodas5P, false),
+        (Method::Bdf, false),
+    ] {
+        let (short, short_steps) = allocations(&opaque, method, 6.0, fixed);
+        let (long, long_steps) = allocations(&opaque, method, 60.0, fixed);
+        assert!(
+            long_steps > 5 * short_steps,
+            "{method}: {short_steps} vs {long_steps}"
+        );
+        assert_eq!(
+            short, long,
+            "Opaque under {method}: allocations grew with the steps"
+        );
+        // The process's first run on a heap (`FaerDense`) Jacobian allocates once more than the
+        // next ones (9 against 8, a one-time initialisation): warm up before counting.
+        allocations(&ring, method, 0.1, fixed);
+        let (short, short_steps) = allocations(&ring, method, 1.0, fixed);
+        let (long, long_steps) = allocations(&ring, method, 10.0, fixed);
+        assert!(
+            long_steps > 5 * short_steps,
+            "{method}: {short_steps} vs {long_steps}"
+        );
+        assert_eq!(
+            short, long,
+            "Ring<40> under {method}: allocations grew with the steps"
         );
     }
 }

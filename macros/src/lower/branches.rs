@@ -8,6 +8,7 @@
 //!   and parameter-only conditions joined by `&&`, `||` and `!`, is chosen in the graph by those comparisons
 //!   ([`crate::ir::Node::Pick`], as `min` and `max` are). Each arm is differentiated on its own: the Jacobian is the taken arm's, and at the
 //!   switching surface it is the one-sided derivative of the arm the comparison chose there.
+//! - A `match` or `if let` on the state is the `if` chain it means ([`super::matches`]).
 
 use std::collections::HashMap;
 
@@ -35,8 +36,7 @@ pub(super) enum Chooser {
 }
 
 impl Lowering<'_> {
-    /// The arms of `if`/`match` `e`; its conditions, scrutinee and guards must not read the
-    /// state.
+    /// The arms of `if`/`match` `e` (a `match` on the state is an `if` chain by then).
     fn arms(&self, e: &Expr) -> syn::Result<Arms> {
         match e {
             Expr::If(i) => self.if_arms(i),
@@ -53,7 +53,7 @@ impl Lowering<'_> {
                 return Err(self.error(
                     at,
                     "this condition on the state (`if` on the state takes comparisons, `a < b`, \
-                     `a <= b`, `a > b` or `a >= b`, and parameter-only conditions, joined by \
+                     `a <= b`, `a > b`, `a >= b`, `a == b` or `a != b`, and parameter-only conditions, joined by \
                      `&&`, `||` and `!`; `min`, `max` and `clamp` are exact too)",
                 ));
             }
@@ -92,19 +92,13 @@ impl Lowering<'_> {
         }
     }
 
+    /// A `match` on parameters: a `match` whose scrutinee or guards read the state is an `if`
+    /// chain by then ([`Lowering::state_match`]).
     fn match_arms(&self, m: &ExprMatch) -> syn::Result<Arms> {
-        if self.depends(&m.expr) {
-            return Err(self.error(&m.expr, "matching on the state (`match`)"));
-        }
         let mut patterns = Vec::new();
         let mut bodies = Vec::new();
         for arm in &m.arms {
             let guard = arm.guard.as_ref().map(|(_, g)| (**g).clone());
-            if let Some(g) = &guard
-                && self.depends(g)
-            {
-                return Err(self.error(g, "a `match` guard that reads the state"));
-            }
             let stmts = match &*arm.body {
                 Expr::Block(b) if b.label.is_none() => b.block.stmts.clone(),
                 body => vec![Stmt::Expr(body.clone(), None)],
@@ -209,6 +203,13 @@ impl Lowering<'_> {
 
     /// `if`/`match` as a statement: each arm's changes to locals are selected by the arm taken.
     pub(super) fn branch_statement(&mut self, e: &Expr) -> syn::Result<()> {
+        if let Some(chain) = self.state_match(e, &[]) {
+            let chain = chain?;
+            self.scopes.push(HashMap::new());
+            let ran = self.run(&chain.block().stmts, Context::Arm);
+            self.scopes.pop();
+            return ran.map(|_| ());
+        }
         if let Some(stmts) = self.known_arm(e) {
             return self.known_arm_lowered(&stmts, Context::Arm).map(|_| ());
         }
@@ -224,6 +225,9 @@ impl Lowering<'_> {
     /// `if`/`match` as a value: the arms' values (and changes to locals) selected by the arm
     /// taken.
     pub(super) fn branch_value(&mut self, e: &Expr) -> syn::Result<Value> {
+        if let Some(chain) = self.state_match(e, &[]) {
+            return self.block_value(&chain?.block());
+        }
         if let Some(stmts) = self.known_arm(e) {
             return match self.known_arm_lowered(&stmts, Context::Block)? {
                 Ending::Value(v) => Ok(v),
@@ -288,6 +292,13 @@ impl Lowering<'_> {
     /// A branch with a `return` among the function's own statements: the rest of the function
     /// goes into every arm, and the function's value is selected by the arm taken.
     pub(super) fn branch_returning(&mut self, e: &Expr, rest: &[Stmt]) -> syn::Result<Value> {
+        if let Some(chain) = self.state_match(e, rest) {
+            // The names go into the function's scope; `state_match` checked that `rest` does
+            // not read them.
+            let super::matches::Chain { lets, chain } = chain?;
+            self.run(&lets, Context::Arm)?;
+            return self.branch_returning(&chain, rest);
+        }
         let mut arms = self.arms(e)?;
         for (stmts, _) in &mut arms.bodies {
             // An arm's own final expression (`if c { m = 1.0 }`) is a statement once the rest

@@ -40,7 +40,7 @@ impl Lowering<'_> {
         result
     }
 
-    /// Checks that `condition` is comparisons (`<`, `<=`, `>`, `>=`) and parameter-only
+    /// Checks that `condition` is comparisons (`<`, `<=`, `>`, `>=`, `==`, `!=`) and parameter-only
     /// conditions joined by `&&`, `||` and `!`, in parentheses or not; on failure, the first part
     /// that is not.
     pub(super) fn check_condition<'e>(&self, condition: &'e Expr) -> Result<(), &'e Expr> {
@@ -55,7 +55,12 @@ impl Lowering<'_> {
             Expr::Binary(b)
                 if matches!(
                     b.op,
-                    BinOp::Lt(_) | BinOp::Le(_) | BinOp::Gt(_) | BinOp::Ge(_)
+                    BinOp::Lt(_)
+                        | BinOp::Le(_)
+                        | BinOp::Gt(_)
+                        | BinOp::Ge(_)
+                        | BinOp::Eq(_)
+                        | BinOp::Ne(_)
                 ) =>
             {
                 Ok(())
@@ -91,6 +96,22 @@ impl Lowering<'_> {
                     a: half,
                     b: flag,
                     negated: false,
+                })
+            }
+            // `l == r` is `l <= r && r <= l`; `l != r` its negation.
+            Expr::Binary(b) if matches!(b.op, BinOp::Eq(_) | BinOp::Ne(_)) => {
+                let (left, right) = (self.scalar(&b.left)?, self.scalar(&b.right)?);
+                let compare = |a, b| {
+                    Box::new(Condition::Compare {
+                        a,
+                        b,
+                        negated: false,
+                    })
+                };
+                let equal = Condition::And(compare(left, right), compare(right, left));
+                Ok(match b.op {
+                    BinOp::Eq(_) => equal,
+                    _ => Condition::Not(Box::new(equal)),
                 })
             }
             Expr::Binary(b) => {

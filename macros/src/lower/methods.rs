@@ -30,7 +30,8 @@ pub(super) fn supported() -> String {
     format!(
         "supported on the state: `+ - * /`, unary `-`, `let` (with tuple and slice patterns), \
          `if`/`match` on parameters (and `return` from them), `if` on the state on \
-         comparisons joined by `&&`, `||`, `!`, the methods {}, `recip`, \
+         comparisons joined by `&&`, `||`, `!`, `match`/`if let` on a number with ranges, \
+         the methods {}, `recip`, \
          `sin_cos`, {}, {}, and on vectors `.x`/`[i]`, {}, `VectorN::new`",
         quoted(&unary),
         quoted(&BINARY),

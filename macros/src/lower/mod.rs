@@ -31,6 +31,7 @@ mod expr;
 mod guarded;
 mod inline;
 mod loops;
+mod matches;
 mod merge;
 mod methods;
 mod scope;

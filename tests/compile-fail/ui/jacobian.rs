@@ -88,7 +88,7 @@ mod guard_on_state {
     impl Model {
         fn acceleration(&self) -> f64 {
             match self.k as u32 {
-                0 if self.x > 0.0 => -self.x,
+                0 if self.x.is_sign_positive() => -self.x,
                 _ => self.x,
             }
         }
@@ -240,6 +240,31 @@ mod match_on_state {
             match self.x.partial_cmp(&0.0) {
                 Some(o) => -(o as i32 as f64),
                 None => 0.0,
+            }
+        }
+    }
+
+    fn main() {}
+}
+
+mod match_binding_shadows_a_local {
+    use odyn::prelude::*;
+
+    #[system()]
+    pub struct Model {
+        #[position]
+        pub x: f64,
+        #[velocity]
+        pub v: f64,
+    }
+
+    #[system]
+    impl Model {
+        fn acceleration(&self) -> f64 {
+            let d = 2.0;
+            match self.x {
+                d if d < 0.0 => -d,
+                _ => d * self.x,
             }
         }
     }
