@@ -51,7 +51,7 @@ impl Len {
     }
 
     /// The length in generated code: the literal, or the parameter's name.
-    fn to_tokens(self, params: &[&Ident]) -> TokenStream {
+    pub(crate) fn to_tokens(self, params: &[&Ident]) -> TokenStream {
         match self {
             Len::Known(n) => {
                 let n = proc_macro2::Literal::usize_unsuffixed(n);

@@ -77,10 +77,7 @@ fn generic_state(model: &Model<'_>, fields: Vec<TokenStream>, layout: &str) -> T
                 quote!(Flat(#n))
             }
             Shape::Rows(n, row) => {
-                let (n, m) = (
-                    Shape::Array(n).len_tokens(params),
-                    row.shape().len_tokens(params),
-                );
+                let (n, m) = (n.to_tokens(params), row.shape().len_tokens(params));
                 quote!(Rows(#n, #m))
             }
         };
@@ -114,15 +111,12 @@ fn zero_of(shape: Shape, params: &[&syn::Ident]) -> TokenStream {
     match shape {
         Shape::Scalar => quote!(0.0),
         Shape::Array(n) => {
-            let n = Shape::Array(n).len_tokens(params);
+            let n = n.to_tokens(params);
             quote!([0.0; #n])
         }
         Shape::Vector(_) => quote!(::odyn::__private::nalgebra::SVector::zeros()),
         Shape::Rows(n, row) => {
-            let (n, row) = (
-                Shape::Array(n).len_tokens(params),
-                zero_of(row.shape(), params),
-            );
+            let (n, row) = (n.to_tokens(params), zero_of(row.shape(), params));
             quote!([#row; #n])
         }
     }
