@@ -282,7 +282,10 @@ mod chain {
     }
 
     #[system]
-    #[allow(clippy::needless_range_loop, reason = "a stencil reads its neighbours by index")]
+    #[allow(
+        clippy::needless_range_loop,
+        reason = "a stencil reads its neighbours by index"
+    )]
     impl Eight {
         fn acceleration(&self) -> [f64; 8] {
             let mut a = [0.0; 8];
@@ -307,7 +310,10 @@ mod chain {
     }
 
     #[system]
-    #[allow(clippy::needless_range_loop, reason = "a stencil reads its neighbours by index")]
+    #[allow(
+        clippy::needless_range_loop,
+        reason = "a stencil reads its neighbours by index"
+    )]
     impl<const N: usize> Any<N> {
         fn acceleration(&self) -> [f64; N] {
             let mut a = [0.0; N];

@@ -1107,3 +1107,58 @@ fn matches_on_the_state_are_differentiated_arm_by_arm() {
     };
     check(&model, 0.0, 200, away);
 }
+
+/// Two loops to the same run-time bound, the outer variable indexing only inside the inner
+/// loop: the inner loop's first iteration runs whenever the outer iteration does (i < n ⇒ j = 0
+/// < n), so its index past the end caps the outer loop (`lower/guarded.rs`).
+#[system]
+#[derive(Clone, Copy, Debug)]
+struct Square {
+    #[state]
+    x: [[f64; 3]; 3],
+    n: usize,
+}
+
+#[system]
+#[allow(
+    clippy::needless_range_loop,
+    reason = "index loops bounded by a parameter are the form under test"
+)]
+impl Square {
+    fn derivative(&self) -> SquareState {
+        let mut d = [[0.0; 3]; 3];
+        for i in 0..self.n {
+            for j in 0..self.n {
+                d[i][j] = -self.x[i][j] * self.x[j][i] + 0.5 * self.x[i][j];
+            }
+        }
+        SquareState { x: d }
+    }
+}
+
+#[test]
+fn nested_loops_to_one_run_time_bound_are_guarded() {
+    for n in 0..=3 {
+        let model = Square {
+            x: [[0.0; 3]; 3],
+            n,
+        };
+        check(&model, 0.0, 20, |r| SquareState {
+            x: std::array::from_fn(|_| std::array::from_fn(|_| r.uniform(-2.0, 2.0))),
+        });
+        // Every active entry's diagonal derivative: −x[j][i] + 0.5 (−2x[i][i] + 0.5 on the
+        // diagonal), here never zero; inactive rows are zero.
+        let y = SquareState {
+            x: [[0.3, -0.2, 0.9], [0.1, 0.4, -0.7], [0.6, -0.5, 0.2]],
+        };
+        let mut j = model.jacobian_matrix(&y);
+        model.jacobian(0.0, &y, &mut j);
+        for row in 0..3 {
+            for column in 0..3 {
+                let at = 3 * row + column;
+                let active = row < n && column < n;
+                assert_eq!(j[(at, at)] != 0.0, active, "n = {n}, x[{row}][{column}]");
+            }
+        }
+    }
+}

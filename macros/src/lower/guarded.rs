@@ -10,8 +10,9 @@
 //! one iteration to the next. Up to 64 iterations nest; a longer `for` gets one flat test per
 //! iteration (a counter changed by its body is then refused), a longer `while` is refused. The
 //! most iterations are found by lowering the body, unguarded, until an index goes past the end
-//! at the iteration's own level; a loop whose body indexes nothing of a known length is
-//! refused. Past an end inside a branch of such a loop's body (`if i + 1 <
+//! at the iteration's own level, or in the first iteration of an inner `for` to the same end
+//! (which runs whenever the outer iteration does); a loop whose body indexes nothing of a known
+//! length is refused. Past an end inside a branch of such a loop's body (`if i + 1 <
 //! self.n { self.x[i + 1] } else { 0.0 }` at the last i), the arm cannot be taken — the code
 //! would panic if it were — so it reads zero there and the iteration still counts.
 
@@ -64,14 +65,28 @@ impl Lowering<'_> {
                 syn::parse_quote!(let #n = ::odyn::__private::same_type(#literal, &#end_name);)
             })
         };
+        let half_open = matches!(r.limits, RangeLimits::HalfOpen(_));
+        let end_tokens = end.to_token_stream().to_string();
         let count = self.most_iterations(&l.expr, |this, j| {
             let k = first + j as i64;
             let variable = bind(k).map(|stmt| {
                 let name = name.expect("a binding has a name").to_string();
                 (name, Value::Scalar(this.graph.num(k as f64)), stmt)
             });
-            this.iteration(&l.body, variable).map(|()| true)
+            this.trials.push((end_tokens.clone(), half_open, k));
+            let tried = this.iteration(&l.body, variable).map(|()| true);
+            this.trials.pop();
+            tried
         })?;
+        // No iteration can run, and the first would run whenever the iteration of an enclosing
+        // loop being tried does: that iteration cannot run either (`for j in 0..self.n` inside
+        // `for i in 0..self.n`, at i = 0 ⇒ n ≥ 1 ⇒ j = 0 runs). The enclosing loop's cap.
+        if count == 0
+            && self.guard == Some(self.arms)
+            && self.implied(&end_tokens, half_open, first)
+        {
+            self.past_end = true;
+        }
         let mut stmts: Vec<syn::Stmt> = vec![syn::parse_quote!(let #end_name = #end;)];
         let test = match r.limits {
             RangeLimits::HalfOpen(_) => quote::quote!(<),
@@ -95,6 +110,15 @@ impl Lowering<'_> {
         }
         self.count_iterations(count, &l.expr)?;
         self.guarded(&stmts)
+    }
+
+    /// Whether a `for` loop from `first` to the end `end` (`half_open` or not) runs its first
+    /// iteration whenever the iteration of an enclosing loop being tried runs: the same end,
+    /// and `first` no later than that loop's variable (`first < end` follows from `k < end`).
+    fn implied(&self, end: &str, half_open: bool, first: i64) -> bool {
+        self.trials.iter().any(|(outer_end, outer_half_open, k)| {
+            outer_end == end && first <= *k && (*outer_half_open || !half_open || first < *k)
+        })
     }
 
     /// `while c` whose condition reads parameters: guarded iterations, nested, as many as the
@@ -155,7 +179,7 @@ impl Lowering<'_> {
                     at,
                     "a loop on the state whose bound is known only at run time and whose body \
                      indexes no array or vector of a known length with its variable, outside \
-                     branches and inner loops (odyn unrolls loops on the state: a run-time \
+                     branches and inner loops to other bounds (odyn unrolls loops on the state: a run-time \
                      bound needs an index, such as `self.x[k]` of `for k in 0..self.n`, that \
                      stops it; or write the bound as an integer literal, or take the Jacobian \
                      by `jacobian = finite_differences`)",
