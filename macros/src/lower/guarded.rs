@@ -81,10 +81,7 @@ impl Lowering<'_> {
         // No iteration can run, and the first would run whenever the iteration of an enclosing
         // loop being tried does: that iteration cannot run either (`for j in 0..self.n` inside
         // `for i in 0..self.n`, at i = 0 ⇒ n ≥ 1 ⇒ j = 0 runs). The enclosing loop's cap.
-        if count == 0
-            && self.guard == Some(self.arms)
-            && self.implied(&end_tokens, half_open, first)
-        {
+        if count == 0 && self.guard == Some(self.arms) && self.implied(end, half_open, first) {
             self.past_end = true;
         }
         let mut stmts: Vec<syn::Stmt> = vec![syn::parse_quote!(let #end_name = #end;)];
@@ -114,10 +111,25 @@ impl Lowering<'_> {
 
     /// Whether a `for` loop from `first` to the end `end` (`half_open` or not) runs its first
     /// iteration whenever the iteration of an enclosing loop being tried runs: the same end,
-    /// and `first` no later than that loop's variable (`first < end` follows from `k < end`).
-    fn implied(&self, end: &str, half_open: bool, first: i64) -> bool {
+    /// reading no local, and `first` no later than that loop's variable (`first < end` follows
+    /// from `k < end`).
+    fn implied(&self, end: &Expr, half_open: bool, first: i64) -> bool {
+        // An end that reads a local may have changed since the enclosing loop read it; one
+        // of `self`'s fields and constants has not.
+        if self.reads_locals(&end.to_token_stream()) {
+            return false;
+        }
+        let end = end.to_token_stream().to_string();
         self.trials.iter().any(|(outer_end, outer_half_open, k)| {
-            outer_end == end && first <= *k && (*outer_half_open || !half_open || first < *k)
+            *outer_end == end && first <= *k && (*outer_half_open || !half_open || first < *k)
+        })
+    }
+
+    fn reads_locals(&self, tokens: &TokenStream) -> bool {
+        tokens.clone().into_iter().any(|tree| match tree {
+            proc_macro2::TokenTree::Ident(i) => self.lookup(&i.to_string()).is_some(),
+            proc_macro2::TokenTree::Group(g) => self.reads_locals(&g.stream()),
+            _ => false,
         })
     }
 
@@ -179,7 +191,8 @@ impl Lowering<'_> {
                     at,
                     "a loop on the state whose bound is known only at run time and whose body \
                      indexes no array or vector of a known length with its variable, outside \
-                     branches and inner loops to other bounds (odyn unrolls loops on the state: a run-time \
+                     branches and inner loops (but an inner `for` from 0 to the same bound of \
+                     `self`'s fields) (odyn unrolls loops on the state: a run-time \
                      bound needs an index, such as `self.x[k]` of `for k in 0..self.n`, that \
                      stops it; or write the bound as an integer literal, or take the Jacobian \
                      by `jacobian = finite_differences`)",

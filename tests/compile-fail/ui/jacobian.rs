@@ -272,6 +272,34 @@ mod match_binding_shadows_a_local {
     fn main() {}
 }
 
+mod nested_loops_to_a_changing_local {
+    use odyn::prelude::*;
+
+    #[system()]
+    pub struct Model {
+        #[state]
+        pub x: [[f64; 2]; 2],
+        pub n: usize,
+    }
+
+    #[system]
+    impl Model {
+        fn derivative(&self) -> ModelState {
+            let mut d = [[0.0; 2]; 2];
+            let mut m = self.n;
+            for i in 0..m {
+                m -= 1;
+                for j in 0..m {
+                    d[i][j] = -self.x[i][j];
+                }
+            }
+            ModelState { x: d }
+        }
+    }
+
+    fn main() {}
+}
+
 mod non_integer_powi {
     use odyn::prelude::*;
 
