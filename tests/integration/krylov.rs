@@ -8,8 +8,8 @@ use odyn::integrators::{ImplicitEuler, Rodas5P, Rosenbrock23};
 use odyn::particles::ParticleState;
 use odyn::prelude::*;
 use odyn::{
-    Error, Integrator, Jacobian, Krylov, LinearSolver, NewtonMatrix, NewtonOptions, Preconditioner,
-    Stepper,
+    Error, Integrator, Jacobian, Krylov, KrylovCounts, LinearSolver, NewtonMatrix, NewtonOptions,
+    Preconditioner, Stepper,
 };
 
 use crate::grid::{GrayScott, gray_scott};
@@ -350,7 +350,7 @@ fn auto_chooses_krylov_for_big_grids_only() {
     assert_eq!(moves(64, Boundary::Neumann, 4e-4), (0, 1, 0, 0, 0));
     // Cells 5× coarser than that (h·D_u/Δx² = 5): block Jacobi takes 26 iterations a solve on
     // the periodic grid, 31 with zero-flux edges (10 steps, measured), more than
-    // `AUTO_FOURIER_ABOVE` but within `AUTO_DIRECT_ABOVE`. The periodic grid moves to Fourier
+    // `tries_fourier_after` but within `AUTO_DIRECT_ABOVE`. The periodic grid moves to Fourier
     // (about 5 a solve then); the other keeps block Jacobi, which still pays there.
     assert_eq!(moves(23, Boundary::Periodic, 2e-3), (1, 0, 0, 0, 0));
     assert_eq!(moves(23, Boundary::Neumann, 2e-3), (0, 0, 0, 0, 0));
@@ -541,10 +541,10 @@ fn fourier_solves_a_uniform_grid_in_one_iteration() {
 
 /// `Auto`'s trial of Fourier on a periodic grid is decided by its first solve's cost: on
 /// Pearson's Gray–Scott at 64² with cells 0.3× as wide, h = 10, block Jacobi needs 18 iterations
-/// a linearized solve (to 1e-8) on average and more than `AUTO_FOURIER_ABOVE` on some, and
-/// Fourier about 7, each costing 0.33·log₂ 8192 = 4.3 block-Jacobi iterations: tried, and given
-/// back to block Jacobi for the rest of the run (10 steps, measured with the sweep that chose
-/// the case).
+/// a linearized solve (to 1e-8) on average, more than `tries_fourier_after` (4.3), and Fourier
+/// about 7, each costing 0.33·log₂ 8192 = 4.3 block-Jacobi iterations: tried, and given back to
+/// block Jacobi for the rest of the run (its solves never need twice as many; 10 steps,
+/// measured with the sweep that chose the case).
 #[test]
 fn auto_gives_fourier_back_when_its_solve_costs_more() {
     let mut model = GrayScott::pearson(64, 0.0367, 0.0649).unwrap();
@@ -572,4 +572,90 @@ fn auto_gives_fourier_back_when_its_solve_costs_more() {
         (0, 0, 0)
     );
     assert_eq!((auto.lu, auto.cholesky, a.fallbacks), (0, 0, 0));
+}
+
+/// Decay at rates that vary from cell to cell, k ∈ {0, 50} on a fixed pattern, under diffusion
+/// that strengthens with time, D(t) = d·t²: early, block Jacobi (which holds the rates) beats
+/// Fourier (which sees their mean); later, the diffusion dominates and Fourier wins.
+#[system(integrator = ImplicitEuler, dt = 1.0)]
+pub struct Stiffening {
+    #[field]
+    pub u: Grid,
+    /// The decay rate of each cell: a parameter grid.
+    pub k: Grid,
+    pub d: f64,
+}
+
+#[system]
+impl Stiffening {
+    #[cell]
+    fn rate(&self, u: Stencil, k: Stencil, t: f64) -> f64 {
+        -k.c * u.c + self.d * t * t * u.laplacian()
+    }
+}
+
+/// The Krylov counts of `model` after each of `steps` linearized implicit Euler steps of 1.
+fn counts_per_step(model: &Stiffening, linear: LinearSolver, steps: usize) -> Vec<KrylovCounts> {
+    let newton = NewtonOptions {
+        linearized: true,
+        linear,
+        ..NewtonOptions::default()
+    };
+    let mut stepper = Stepper::<Stiffening, ImplicitEuler<Stiffening>>::with_newton(
+        model,
+        model.state(),
+        0.0,
+        1.0,
+        &newton,
+    )
+    .unwrap();
+    (0..steps)
+        .map(|_| {
+            stepper.step().unwrap();
+            stepper.integrator().matrix().counts().krylov
+        })
+        .collect()
+}
+
+/// `Auto` tries Fourier once a block-Jacobi solve costs more than one Fourier iteration, and
+/// tries it again each time block Jacobi needs twice the iterations of the solve before the
+/// trial it lost. On [`Stiffening`] (32², 1 024 unknowns, a Fourier iteration worth
+/// 0.33·log₂ 1024 = 3.3 block-Jacobi ones), measured: the first step's block-Jacobi solve takes
+/// 7 iterations, Fourier's trial loses and is given back; the retry at 15 loses too; the one at
+/// 31 (step 21) wins and Fourier stays, at 7–9 iterations a step against block Jacobi's 31 and
+/// up.
+#[test]
+fn auto_tries_fourier_again_as_the_problem_stiffens() {
+    let n = 32;
+    let model = Stiffening {
+        u: Grid::from_fn(n, n, Boundary::Periodic, |i, j| {
+            ((i * 7 + j * 3) % 5) as f64
+        })
+        .unwrap(),
+        k: Grid::from_fn(n, n, Boundary::Periodic, |i, j| {
+            if (i * 5 + j * 11) % 7 < 3 { 50.0 } else { 0.0 }
+        })
+        .unwrap(),
+        d: 0.1,
+    };
+    let steps = 30;
+    let auto = counts_per_step(&model, LinearSolver::Auto, steps);
+    let block_jacobi = counts_per_step(&model, LinearSolver::Krylov(Krylov::default()), steps);
+    // Tried at once and given back, block Jacobi's again for the next steps.
+    assert_eq!(auto[1].switched_to_fourier, 0, "{:?}", auto[1]);
+    // Fourier for the last steps.
+    assert_eq!(
+        auto[steps - 1].switched_to_fourier,
+        1,
+        "{:?}",
+        auto[steps - 1]
+    );
+    let last = |c: &[KrylovCounts]| c[steps - 1].iterations - c[steps - 2].iterations;
+    let cost = LinearSolver::fourier_iteration_cost(n * n);
+    assert!(
+        last(&auto) as f64 * cost < last(&block_jacobi) as f64,
+        "the last step: {} Fourier iterations against {} block-Jacobi ones",
+        last(&auto),
+        last(&block_jacobi)
+    );
 }

@@ -23,9 +23,9 @@ pub(crate) use solve::{FourierTrial, KrylovSolver, NoConvergence};
 pub enum LinearSolver {
     /// [`Krylov::default()`] (block Jacobi) for field models of at least
     /// [`LinearSolver::FIELD_KRYLOV_FROM`] unknowns, [`LinearSolver::Direct`] otherwise —
-    /// particle models included, for the reason above. On a periodic grid a block-Jacobi
-    /// solve of more than [`LinearSolver::AUTO_FOURIER_ABOVE`] iterations has the next solve
-    /// tried with [`Preconditioner::Fourier`], which stays for the run if that solve cost less
+    /// particle models included, for the reason above. On a periodic grid a slow block-Jacobi
+    /// solve ([`LinearSolver::tries_fourier_after`]) has the next solve tried with
+    /// [`Preconditioner::Fourier`], which stays for the run if that solve cost less
     /// ([`KrylovCounts::switched_to_fourier`]). A field model whose Krylov solve needs
     /// more than [`LinearSolver::AUTO_DIRECT_ABOVE`] iterations goes on, for the rest of the
     /// run, with [`Preconditioner::Fourier`] on a periodic grid, else (or when Fourier too needs more) with
@@ -67,18 +67,24 @@ impl LinearSolver {
     /// 256² to 1e-8 (and wins 28–31×).
     pub const AUTO_DIRECT_ABOVE: usize = 50;
 
-    /// Iterations of one block-Jacobi solve above which [`LinearSolver::Auto`] tries
-    /// [`Preconditioner::Fourier`] on a field model's periodic grid: 20. The first Fourier solve
-    /// decides: Fourier stays for the run unless its iterations, each costing
-    /// [`LinearSolver::fourier_iteration_cost`] block-Jacobi iterations, cost more than the
-    /// block-Jacobi solve did. The 2-D Brusselator under BDF at a final error of 1e-6 (rtol
-    /// 3e-8), whose block-Jacobi solves take 21–50 iterations at 32² and 64² cells: 0.097 s
-    /// and 0.41 s against 0.331 s and 0.46 s with the move at 50 alone (`brusselator
-    /// --reference`, best of 3). Gray–Scott at Pearson's setup, h = 10: 6–12 iterations a
-    /// full-Newton solve from 64² to 256², never tried; a linearized step to 1e-8 at 256², 27
-    /// iterations with block Jacobi and 7.5 with Fourier but 0.55–0.63 s against 0.87–0.91 s for
-    /// ten steps (two runs): tried and given back.
-    pub const AUTO_FOURIER_ABOVE: usize = 20;
+    /// When [`LinearSolver::Auto`] tries [`Preconditioner::Fourier`] on a field model's
+    /// periodic grid: once a block-Jacobi solve takes more iterations than one Fourier
+    /// iteration costs ([`LinearSolver::fourier_iteration_cost`]: a Fourier solve of one
+    /// iteration would have cost less), and again each time block Jacobi needs twice the
+    /// iterations of the solve before the last trial Fourier lost. A trial's Fourier solve
+    /// decides: Fourier stays for the run unless its iterations, at that cost each, cost more
+    /// than the block-Jacobi solve before it. The 2-D Brusselator under BDF to a final error of
+    /// 1e-6 (rtol 3e-8): 1.67–1.75 s at 128² against Fourier chosen by hand 1.61–1.76 s (three
+    /// runs each, alternated), where a single trial after a solve of more than 20 iterations
+    /// took 1.95–2.34 s in the same hour. Gray–Scott at Pearson's setup, h = 10, a linearized
+    /// step to 1e-8 at 256²: 27 iterations with block Jacobi, 7.5 with Fourier, ten steps
+    /// 0.55–0.63 s against 0.87–0.91 s (two runs, with the single trial after a solve of more
+    /// than 20 this replaced): tried and given back. A model whose
+    /// diffusion grows in time (`tests/integration/krylov.rs`,
+    /// `auto_tries_fourier_again_as_the_problem_stiffens`): given back twice, kept the third time.
+    pub fn tries_fourier_after(n: usize) -> f64 {
+        Self::fourier_iteration_cost(n)
+    }
 
     /// What one iteration preconditioned by [`Preconditioner::Fourier`] costs, in iterations
     /// preconditioned by block Jacobi, on a system of `n` unknowns: 0.33·log₂ n — two
@@ -285,7 +291,7 @@ pub struct KrylovCounts {
     /// breakdown).
     pub fallbacks: u64,
     /// 1 when [`LinearSolver::Auto`] moved from block Jacobi to Fourier for this run (0 again
-    /// when it tried Fourier and gave it back, [`LinearSolver::AUTO_FOURIER_ABOVE`]).
+    /// when it tried Fourier and gave it back, [`LinearSolver::tries_fourier_after`]).
     pub switched_to_fourier: u64,
     /// 1 when [`LinearSolver::Auto`] moved from block Jacobi or Fourier to multigrid for this
     /// run.

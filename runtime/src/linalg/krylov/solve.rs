@@ -40,16 +40,19 @@ pub(crate) struct KrylovSolver {
     pub(crate) solves: Solves,
 }
 
-/// `Auto`'s trial of [`Preconditioner::Fourier`] on a periodic grid after a slow block-Jacobi
-/// solve: the first Fourier solve decides whether it stays.
+/// `Auto`'s trials of [`Preconditioner::Fourier`] on a periodic grid after a slow block-Jacobi
+/// solve: each trial's Fourier solve decides whether it stays.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum FourierTrial {
     /// Not tried yet.
     Untried,
-    /// The next solve is Fourier's first, after a block-Jacobi solve of this many iterations.
+    /// The next solve is Fourier's, after a block-Jacobi solve of this many iterations.
     Trying(usize),
-    /// Tried and kept, or tried and given back to block Jacobi: not tried again.
-    Settled,
+    /// Tried and given back after a block-Jacobi solve of this many iterations: tried again
+    /// once block Jacobi needs twice as many (the problem has stiffened since).
+    GivenBack(usize),
+    /// Tried and kept for the run.
+    Kept,
 }
 
 /// A Krylov solve that did not converge within `max_iters`, broke down, or ended on a

@@ -70,8 +70,16 @@ impl SparseSolver {
             let (from, iterations) = (krylov.options.preconditioner, krylov.last_iterations);
             let trial = krylov.fourier_trial;
             if let FourierTrial::Trying(_) = trial {
-                krylov.fourier_trial = FourierTrial::Settled;
+                krylov.fourier_trial = FourierTrial::Kept;
             }
+            // `Auto` tries Fourier on a periodic grid once a block-Jacobi solve costs more than
+            // one Fourier iteration would, and again once block Jacobi needs twice the
+            // iterations of a trial Fourier lost.
+            let try_fourier = match trial {
+                FourierTrial::Untried => iterations as f64 > LinearSolver::tries_fourier_after(n),
+                FourierTrial::GivenBack(before) => iterations > 2 * before,
+                FourierTrial::Trying(_) | FourierTrial::Kept => false,
+            };
             if iterations > limit {
                 // `Auto`: this matrix is too ill-conditioned for the preconditioner to pay.
                 self.give_up(from, stencil);
@@ -79,14 +87,15 @@ impl SparseSolver {
                 && from == Preconditioner::Fourier
                 && iterations as f64 * LinearSolver::fourier_iteration_cost(n) > block_jacobi as f64
                 && self.jacobi.update(&self.values).is_ok()
+                && let Some(krylov) = &mut self.krylov
             {
-                // `Auto`: Fourier's solve cost more than block Jacobi's; back for the run, its
-                // blocks those of the current matrix.
+                // `Auto`: Fourier's solve cost more than block Jacobi's; back, its blocks those
+                // of the current matrix.
+                krylov.fourier_trial = FourierTrial::GivenBack(block_jacobi);
                 self.switch(Preconditioner::BlockJacobi);
                 self.counts.krylov.switched_to_fourier = 0;
             } else if from == Preconditioner::BlockJacobi
-                && trial == FourierTrial::Untried
-                && iterations > LinearSolver::AUTO_FOURIER_ABOVE
+                && try_fourier
                 && self.move_to_fourier(stencil)
                 && let Some(krylov) = &mut self.krylov
             {
