@@ -1,13 +1,13 @@
 //! `match` and `if let` on the state (or a `match` whose guards read it), lowered as the `if`
 //! chain they mean: `match s { p₁ if g₁ => a₁, p₂ => a₂, _ => a₃ }` is `{ let m = s; let
-//! <names> = m; if test(p₁, m) && g₁ { a₁ } else if test(p₂, m) { a₂ } else { a₃ } }`, where the test of a pattern on a number is
-//! comparisons: `_` and a name always match, a number `c` is `m == c`, a range
-//! `a..b` is `m >= a && m < b` (`..=b`, `a..` and the rest alike), and `p | q` is `test(p) ||
-//! test(q)`. The last arm is the `else` (Rust's exhaustiveness check guarantees it matches
-//! whatever the arms before it leave). The chain is then an `if` on the state like any other
-//! ([`super::branches`]): each arm differentiated on its own, the Jacobian the taken arm's, and
-//! on a boundary the arm Rust's comparison takes there. Only the lowering reads the chain; the
-//! code that runs is the user's `match`.
+//! <names> = m; if test(p₁, m) && g₁ { a₁ } else if test(p₂, m) { a₂ } else { a₃ } }`, where
+//! the test of a pattern on a number is comparisons: `_` and a name always match, a number or an
+//! upper-case constant `c` is `m == c`, a range `a..b` is `m >= a && m < b` (`..=b`, `a..` and
+//! the rest alike), and `p | q` is `test(p) || test(q)`. The last arm is the `else` (Rust's
+//! exhaustiveness check guarantees it matches whatever the arms before it leave). The chain is
+//! then an `if` on the state like any other ([`super::branches`]): each arm differentiated on
+//! its own, the Jacobian the taken arm's, and on a boundary the arm Rust's comparison takes
+//! there. Only the lowering reads the chain; the code that runs is the user's `match`.
 //!
 //! The names arms bind all alias the scrutinee, so they are bound once before the chain; an arm
 //! that reads an outer local of a name another arm binds is refused rather than shadowed.
