@@ -30,20 +30,6 @@ fn a_longer_run_allocates_no_more() {
     };
     // An event that is watched every step but never fires (the orbit stays beyond r = 0.1).
     let watch = || Event::crossing("close", |_, s: &KeplerState| s.r.norm() - 0.1).record();
-    let count = |method: Method, duration: f64, fixed: bool| {
-        let sim = model
-            .simulate()
-            .integrator(method)
-            .duration(duration)
-            .record_every(u64::MAX)
-            .dense_output(false)
-            .event(watch());
-        let sim = if fixed { sim.dt(1e-3) } else { sim };
-        let before = ALLOCATIONS.load(Ordering::Relaxed);
-        let run = sim.run().unwrap();
-        let made = ALLOCATIONS.load(Ordering::Relaxed) - before;
-        (made, run.steps())
-    };
     for (method, fixed) in [
         (Method::Tsit5, false),
         (Method::Dop853, false),
@@ -59,16 +45,10 @@ fn a_longer_run_allocates_no_more() {
         (Method::Bdf, false),
         (Method::Bdf, true),
     ] {
-        let (short, short_steps) = count(method, 6.0, fixed);
-        let (long, long_steps) = count(method, 60.0, fixed);
-        assert!(
-            long_steps > 5 * short_steps,
-            "{method}: {short_steps} vs {long_steps}"
-        );
-        assert_eq!(
-            short, long,
-            "{method} (fixed: {fixed}): allocations grew with the steps"
-        );
+        let what = format!("{method} (fixed: {fixed})");
+        allocates_no_more(&what, 6.0, |duration| {
+            allocations(model.simulate().event(watch()), method, duration, fixed)
+        });
     }
 }
 
@@ -118,11 +98,15 @@ impl<const N: usize> Ring<N> {
     }
 }
 
-/// Allocations and steps of a run of `model` under `method` to `duration`, at a fixed step of
-/// 1e-3 or adaptive.
-fn allocations<M: Model>(model: &M, method: Method, duration: f64, fixed: bool) -> (u64, u64) {
-    let sim = model
-        .simulate()
+/// Allocations and steps of `simulation` under `method` to `duration`, at a fixed step of 1e-3
+/// or adaptive, recording only the ends.
+fn allocations<M: Model>(
+    simulation: odyn::Simulation<'_, M>,
+    method: Method,
+    duration: f64,
+    fixed: bool,
+) -> (u64, u64) {
+    let sim = simulation
         .integrator(method)
         .duration(duration)
         .record_every(u64::MAX)
@@ -131,6 +115,18 @@ fn allocations<M: Model>(model: &M, method: Method, duration: f64, fixed: bool) 
     let before = ALLOCATIONS.load(Ordering::Relaxed);
     let run = sim.run().unwrap();
     (ALLOCATIONS.load(Ordering::Relaxed) - before, run.steps())
+}
+
+/// Asserts that a run 10× as long as `duration` (`run` gives its allocations and steps)
+/// allocates exactly as much.
+fn allocates_no_more(what: &str, duration: f64, run: impl Fn(f64) -> (u64, u64)) {
+    let (short, short_steps) = run(duration);
+    let (long, long_steps) = run(10.0 * duration);
+    assert!(
+        long_steps > 5 * short_steps,
+        "{what}: {short_steps} vs {long_steps}"
+    );
+    assert_eq!(short, long, "{what}: allocations grew with the steps");
 }
 
 /// The Jacobians of differences (of one call, and of a whole const-generic f) allocate nothing
@@ -153,29 +149,15 @@ fn difference_jacobians_allocate_no_more() {
         (Method::Rodas5P, false),
         (Method::Bdf, false),
     ] {
-        let (short, short_steps) = allocations(&opaque, method, 6.0, fixed);
-        let (long, long_steps) = allocations(&opaque, method, 60.0, fixed);
-        assert!(
-            long_steps > 5 * short_steps,
-            "{method}: {short_steps} vs {long_steps}"
-        );
-        assert_eq!(
-            short, long,
-            "Opaque under {method}: allocations grew with the steps"
-        );
+        allocates_no_more(&format!("Opaque under {method}"), 6.0, |duration| {
+            allocations(opaque.simulate(), method, duration, fixed)
+        });
         // The process's first run on a heap (`FaerDense`) Jacobian allocates once more than the
         // next ones (9 against 8, a one-time initialisation): warm up before counting.
-        allocations(&ring, method, 0.1, fixed);
-        let (short, short_steps) = allocations(&ring, method, 1.0, fixed);
-        let (long, long_steps) = allocations(&ring, method, 10.0, fixed);
-        assert!(
-            long_steps > 5 * short_steps,
-            "{method}: {short_steps} vs {long_steps}"
-        );
-        assert_eq!(
-            short, long,
-            "Ring<40> under {method}: allocations grew with the steps"
-        );
+        allocations(ring.simulate(), method, 0.1, fixed);
+        allocates_no_more(&format!("Ring<40> under {method}"), 1.0, |duration| {
+            allocations(ring.simulate(), method, duration, fixed)
+        });
     }
 }
 

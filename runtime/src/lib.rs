@@ -90,6 +90,7 @@ pub mod __private {
 
     pub use crate::__flat_state as flat_state;
     pub use crate::__generic_flat_state as generic_flat_state;
+    pub use crate::__state_arithmetic as state_arithmetic;
 
     /// The state type `#[system]` gives a struct it rejected, so the user's crate still
     /// type-checks around the real error: it has no values, and nothing of it ever runs.

@@ -61,6 +61,16 @@ pub fn from_vector<T: FlatState, const N: usize>(vector: &SVector<f64, N>) -> T 
     unsafe { core::mem::transmute_copy(vector) }
 }
 
+/// `a` with `op` applied to each pair of components of `a` and `b`: the arithmetic of generated
+/// states.
+#[inline]
+pub fn zip<T: FlatState>(mut a: T, b: &T, op: impl Fn(f64, f64) -> f64) -> T {
+    for (x, y) in as_mut_slice(&mut a).iter_mut().zip(as_slice(b)) {
+        *x = op(*x, *y);
+    }
+    a
+}
+
 /// How a field of a const-generic model's state is laid out, for its components' names.
 #[derive(Clone, Copy, Debug)]
 pub enum FieldLayout {
@@ -138,71 +148,9 @@ macro_rules! __generic_flat_state {
             pub fn zeros() -> Self {
                 $zero
             }
-
-            fn __odyn_zip(mut self, rhs: &Self, op: impl Fn(f64, f64) -> f64) -> Self {
-                let rhs = $crate::State::as_slice(rhs);
-                for (a, b) in $crate::State::as_mut_slice(&mut self).iter_mut().zip(rhs) {
-                    *a = op(*a, *b);
-                }
-                self
-            }
         }
 
-        impl<$(const $p: usize),*> ::core::ops::Add for $state<$($p),*> {
-            type Output = Self;
-            #[inline]
-            fn add(self, rhs: Self) -> Self {
-                self.__odyn_zip(&rhs, |a, b| a + b)
-            }
-        }
-
-        impl<$(const $p: usize),*> ::core::ops::Sub for $state<$($p),*> {
-            type Output = Self;
-            #[inline]
-            fn sub(self, rhs: Self) -> Self {
-                self.__odyn_zip(&rhs, |a, b| a - b)
-            }
-        }
-
-        impl<$(const $p: usize),*> ::core::ops::Neg for $state<$($p),*> {
-            type Output = Self;
-            #[inline]
-            fn neg(self) -> Self {
-                let zero = Self::zeros();
-                zero.__odyn_zip(&self, |_, b| -b)
-            }
-        }
-
-        impl<$(const $p: usize),*> ::core::ops::Mul<f64> for $state<$($p),*> {
-            type Output = Self;
-            #[inline]
-            fn mul(self, rhs: f64) -> Self {
-                let copy = self;
-                self.__odyn_zip(&copy, |a, _| a * rhs)
-            }
-        }
-
-        impl<$(const $p: usize),*> ::core::ops::Mul<$state<$($p),*>> for f64 {
-            type Output = $state<$($p),*>;
-            #[inline]
-            fn mul(self, rhs: $state<$($p),*>) -> $state<$($p),*> {
-                rhs * self
-            }
-        }
-
-        impl<$(const $p: usize),*> ::core::ops::AddAssign for $state<$($p),*> {
-            #[inline]
-            fn add_assign(&mut self, rhs: Self) {
-                *self = *self + rhs;
-            }
-        }
-
-        impl<$(const $p: usize),*> ::core::ops::SubAssign for $state<$($p),*> {
-            #[inline]
-            fn sub_assign(&mut self, rhs: Self) {
-                *self = *self - rhs;
-            }
-        }
+        $crate::__private::state_arithmetic!($state [$($p),*]);
     };
 }
 
@@ -277,57 +225,68 @@ macro_rules! __flat_state {
             }
         }
 
-        impl ::core::ops::Add for $state {
+        $crate::__private::state_arithmetic!($state []);
+    };
+}
+
+/// Implements `+`, `−`, unary `−`, `× f64`, `f64 ×`, `+=` and `−=` component by component for a
+/// generated state struct, generic over the const parameters in brackets (none for a concrete
+/// model): `state_arithmetic!(ChainState [N])`. Not a public API.
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __state_arithmetic {
+    ($state:ident [$($p:ident),*]) => {
+        impl<$(const $p: usize),*> ::core::ops::Add for $state<$($p),*> {
             type Output = Self;
             #[inline]
             fn add(self, rhs: Self) -> Self {
-                Self::from_vector(&(self.as_vector() + rhs.as_vector()))
+                $crate::__private::flat::zip(self, &rhs, |a, b| a + b)
             }
         }
 
-        impl ::core::ops::Sub for $state {
+        impl<$(const $p: usize),*> ::core::ops::Sub for $state<$($p),*> {
             type Output = Self;
             #[inline]
             fn sub(self, rhs: Self) -> Self {
-                Self::from_vector(&(self.as_vector() - rhs.as_vector()))
+                $crate::__private::flat::zip(self, &rhs, |a, b| a - b)
             }
         }
 
-        impl ::core::ops::Neg for $state {
+        impl<$(const $p: usize),*> ::core::ops::Neg for $state<$($p),*> {
             type Output = Self;
             #[inline]
             fn neg(self) -> Self {
-                Self::from_vector(&(-self.as_vector()))
+                $crate::__private::flat::zip(self, &self, |a, _| -a)
             }
         }
 
-        impl ::core::ops::Mul<f64> for $state {
+        impl<$(const $p: usize),*> ::core::ops::Mul<f64> for $state<$($p),*> {
             type Output = Self;
             #[inline]
             fn mul(self, rhs: f64) -> Self {
-                Self::from_vector(&(self.as_vector() * rhs))
+                $crate::__private::flat::zip(self, &self, |a, _| a * rhs)
             }
         }
 
-        impl ::core::ops::Mul<$state> for f64 {
-            type Output = $state;
+        impl<$(const $p: usize),*> ::core::ops::Mul<$state<$($p),*>> for f64 {
+            type Output = $state<$($p),*>;
             #[inline]
-            fn mul(self, rhs: $state) -> $state {
+            fn mul(self, rhs: $state<$($p),*>) -> $state<$($p),*> {
                 rhs * self
             }
         }
 
-        impl ::core::ops::AddAssign for $state {
+        impl<$(const $p: usize),*> ::core::ops::AddAssign for $state<$($p),*> {
             #[inline]
             fn add_assign(&mut self, rhs: Self) {
-                *self.as_vector_mut() += rhs.as_vector();
+                *self = *self + rhs;
             }
         }
 
-        impl ::core::ops::SubAssign for $state {
+        impl<$(const $p: usize),*> ::core::ops::SubAssign for $state<$($p),*> {
             #[inline]
             fn sub_assign(&mut self, rhs: Self) {
-                *self.as_vector_mut() -= rhs.as_vector();
+                *self = *self - rhs;
             }
         }
     };
