@@ -224,10 +224,10 @@ fn unsupported_shape(item: &ItemStruct, kind: &dyn FrontEnd) -> Option<syn::Erro
 /// runtime trait impls of the struct's kind; or, rejected, the impl block, the errors, and a
 /// stand-in `Model` impl so the rest of the crate draws no follow-on errors.
 pub(crate) fn expand_impl(args: &Args, item: &ItemStruct, imp: &ItemImpl) -> TokenStream {
-    let generic_impl = !imp.generics.params.is_empty()
+    let impl_is_generic = !imp.generics.params.is_empty()
         || matches!(&*imp.self_ty, syn::Type::Path(p)
             if p.path.segments.iter().any(|s| !s.arguments.is_none()));
-    if generic_impl && item.generics.params.is_empty() {
+    if impl_is_generic && item.generics.params.is_empty() {
         // Generics on the impl of a plain struct: rustc reports them; the impl block stays, its
         // bodies never run, and nothing more is said.
         let known = method_attributes();

@@ -24,6 +24,17 @@ use super::loops::MAX_ITERATIONS;
 use super::statements::Context;
 use super::{Lowering, Value};
 
+/// A `for` loop bounded at run time whose iterations are being tried (see
+/// [`Lowering::implied`]).
+pub(super) struct Trial {
+    /// The end's tokens, as a string.
+    end: String,
+    /// Whether the range is `a..end` (else `a..=end`).
+    half_open: bool,
+    /// The loop variable's value in the iteration being tried.
+    value: i64,
+}
+
 /// Most iterations of a loop bounded at run time whose tests nest (see [`nested`]): the
 /// generated code nests as deep. A longer `while` is refused, a longer `for` gets flat tests.
 const MAX_NESTED: usize = 64;
@@ -65,23 +76,31 @@ impl Lowering<'_> {
                 syn::parse_quote!(let #n = ::odyn::__private::same_type(#literal, &#end_name);)
             })
         };
-        let half_open = matches!(r.limits, RangeLimits::HalfOpen(_));
-        let end_tokens = end.to_token_stream().to_string();
+        let trial = Trial {
+            end: end.to_token_stream().to_string(),
+            half_open: matches!(r.limits, RangeLimits::HalfOpen(_)),
+            value: first,
+        };
+        let implied = self.implied(end, &trial);
+        // Tried with its own entry last in `trials` (loops inside push and pop their own).
+        self.trials.push(trial);
         let count = self.most_iterations(&l.expr, |this, j| {
             let k = first + j as i64;
+            if let Some(trial) = this.trials.last_mut() {
+                trial.value = k;
+            }
             let variable = bind(k).map(|stmt| {
                 let name = name.expect("a binding has a name").to_string();
                 (name, Value::Scalar(this.graph.num(k as f64)), stmt)
             });
-            this.trials.push((end_tokens.clone(), half_open, k));
-            let tried = this.iteration(&l.body, variable).map(|()| true);
-            this.trials.pop();
-            tried
-        })?;
+            this.iteration(&l.body, variable).map(|()| true)
+        });
+        self.trials.pop();
+        let count = count?;
         // No iteration can run, and the first would run whenever the iteration of an enclosing
         // loop being tried does: that iteration cannot run either (`for j in 0..self.n` inside
         // `for i in 0..self.n`, at i = 0 ⇒ n ≥ 1 ⇒ j = 0 runs). The enclosing loop's cap.
-        if count == 0 && self.guard == Some(self.arms) && self.implied(end, half_open, first) {
+        if count == 0 && implied && self.guard == Some(self.arms) {
             self.past_end = true;
         }
         let mut stmts: Vec<syn::Stmt> = vec![syn::parse_quote!(let #end_name = #end;)];
@@ -109,27 +128,21 @@ impl Lowering<'_> {
         self.guarded(&stmts)
     }
 
-    /// Whether a `for` loop from `first` to the end `end` (`half_open` or not) runs its first
-    /// iteration whenever the iteration of an enclosing loop being tried runs: the same end,
-    /// reading no local, and `first` no later than that loop's variable (`first < end` follows
-    /// from `k < end`).
-    fn implied(&self, end: &Expr, half_open: bool, first: i64) -> bool {
+    /// Whether the first iteration of loop `inner` (ending at `end`) runs whenever the
+    /// iteration of an enclosing loop being tried runs: the same end, reading no local, and
+    /// `inner` starting no later than that loop's variable (`first < end` follows from
+    /// `k < end`).
+    fn implied(&self, end: &Expr, inner: &Trial) -> bool {
         // An end that reads a local may have changed since the enclosing loop read it; one
         // of `self`'s fields and constants has not.
         if self.reads_locals(&end.to_token_stream()) {
             return false;
         }
-        let end = end.to_token_stream().to_string();
-        self.trials.iter().any(|(outer_end, outer_half_open, k)| {
-            *outer_end == end && first <= *k && (*outer_half_open || !half_open || first < *k)
-        })
-    }
-
-    fn reads_locals(&self, tokens: &TokenStream) -> bool {
-        tokens.clone().into_iter().any(|tree| match tree {
-            proc_macro2::TokenTree::Ident(i) => self.lookup(&i.to_string()).is_some(),
-            proc_macro2::TokenTree::Group(g) => self.reads_locals(&g.stream()),
-            _ => false,
+        let first = inner.value;
+        self.trials.iter().any(|outer| {
+            outer.end == inner.end
+                && first <= outer.value
+                && (outer.half_open || !inner.half_open || first < outer.value)
         })
     }
 

@@ -12,11 +12,12 @@
 //! The names arms bind all alias the scrutinee, so they are bound once before the chain; an arm
 //! that reads an outer local of a name another arm binds is refused rather than shadowed.
 
-use proc_macro2::{Span, TokenStream};
+use proc_macro2::Span;
 use quote::{ToTokens, format_ident};
 use syn::{Expr, ExprMatch, Pat, RangeLimits, Stmt};
 
 use super::Lowering;
+use super::scope::any_ident;
 
 /// A `match` on the state as statements: the scrutinee and the arms' names bound, then the
 /// `if` chain.
@@ -70,8 +71,8 @@ impl Lowering<'_> {
 
     fn chain(&self, m: &ExprMatch, after: &[Stmt]) -> syn::Result<Chain> {
         let scrutinee = format_ident!("__odyn_scrutinee", span = Span::mixed_site());
-        let mut names: Vec<syn::Ident> = Vec::new();
-        let mut arms: Vec<(Option<Expr>, syn::Block)> = Vec::new();
+        // Each arm's test and the names its pattern binds.
+        let mut tests = Vec::with_capacity(m.arms.len());
         for arm in &m.arms {
             let mut bound = Vec::new();
             let test = pattern_test(&arm.pat, &scrutinee, &mut bound).map_err(|at| {
@@ -83,21 +84,25 @@ impl Lowering<'_> {
                      comparisons)",
                 )
             })?;
-            for name in &bound {
-                let reader = m
+            tests.push((test, bound));
+        }
+        // Every arm's names are bound before the chain: none may be read as an outer local by
+        // an arm that does not bind it, the scrutinee, or the code after.
+        let mut names: Vec<&syn::Ident> = Vec::new();
+        for (arm, (_, bound)) in m.arms.iter().zip(&tests) {
+            for name in bound {
+                let read_elsewhere = m
                     .arms
                     .iter()
-                    .filter(|other| !std::ptr::eq(*other, arm))
-                    .filter(|other| {
-                        let mut binds = Vec::new();
-                        pattern_test(&other.pat, &scrutinee, &mut binds).is_ok()
-                            && !binds.contains(name)
+                    .zip(&tests)
+                    .filter(|(other, (_, binds))| {
+                        !std::ptr::eq(*other, arm) && !binds.contains(name)
                     })
-                    .map(ToTokens::to_token_stream)
+                    .map(|(other, _)| other.to_token_stream())
                     .chain(std::iter::once(m.expr.to_token_stream()))
                     .chain(after.iter().map(ToTokens::to_token_stream))
-                    .find(|tokens| mentions(tokens, name));
-                if reader.is_some() {
+                    .any(|tokens| any_ident(&tokens, &|i| i == name));
+                if read_elsewhere {
                     return Err(self.refuse(
                         name,
                         format_args!(
@@ -107,21 +112,28 @@ impl Lowering<'_> {
                         ),
                     ));
                 }
-                if !names.contains(name) {
-                    names.push(name.clone());
+                if !names.contains(&name) {
+                    names.push(name);
                 }
             }
-            let test = match (&arm.guard, test) {
-                (Some((_, guard)), Some(test)) => Some(syn::parse_quote!((#test) && (#guard))),
-                (Some((_, guard)), None) => Some((**guard).clone()),
-                (None, test) => test,
-            };
-            let body = match &*arm.body {
-                Expr::Block(b) if b.label.is_none() => b.block.clone(),
-                body => syn::parse_quote!({ #body }),
-            };
-            arms.push((test, body));
         }
+        let arms: Vec<(Option<Expr>, syn::Block)> = m
+            .arms
+            .iter()
+            .zip(&tests)
+            .map(|(arm, (test, _))| {
+                let test = match (&arm.guard, test) {
+                    (Some((_, guard)), Some(test)) => Some(syn::parse_quote!((#test) && (#guard))),
+                    (Some((_, guard)), None) => Some((**guard).clone()),
+                    (None, test) => test.clone(),
+                };
+                let body = match &*arm.body {
+                    Expr::Block(b) if b.label.is_none() => b.block.clone(),
+                    body => syn::parse_quote!({ #body }),
+                };
+                (test, body)
+            })
+            .collect();
         let expr = &m.expr;
         let mut lets: Vec<Stmt> = vec![syn::parse_quote!(let #scrutinee = #expr;)];
         lets.extend(
@@ -215,13 +227,4 @@ fn pattern_test<'p>(
 
 fn starts_upper(name: &syn::Ident) -> bool {
     name.to_string().starts_with(|c: char| c.is_uppercase())
-}
-
-/// Whether `tokens` contain the identifier `name`.
-fn mentions(tokens: &TokenStream, name: &syn::Ident) -> bool {
-    tokens.clone().into_iter().any(|tree| match tree {
-        proc_macro2::TokenTree::Ident(i) => i == *name,
-        proc_macro2::TokenTree::Group(g) => mentions(&g.stream(), name),
-        _ => false,
-    })
 }

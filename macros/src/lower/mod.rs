@@ -152,10 +152,9 @@ struct Lowering<'m> {
     arms: u32,
     /// Inside a loop bounded at run time: the arm depth of its iterations (see [`loops`]).
     guard: Option<u32>,
-    /// The `for` loops bounded at run time whose iteration is being tried, outermost first:
-    /// their end's tokens, whether the range is half-open, and the variable's value (see
-    /// [`guarded`]'s inner loops).
-    trials: Vec<(String, bool, i64)>,
+    /// The `for` loops bounded at run time whose iteration is being tried, outermost first
+    /// (see [`guarded`]'s inner loops).
+    trials: Vec<guarded::Trial>,
 }
 
 /// Lowers the body of `f`, the model's `acceleration` or `derivative`, inlining the `helpers` it

@@ -148,13 +148,14 @@ impl Lowering<'_> {
     }
 
     pub(super) fn depends_tokens(&self, tokens: &TokenStream) -> bool {
-        tokens.clone().into_iter().any(|tree| match tree {
-            proc_macro2::TokenTree::Ident(i) => {
-                self.lookup(&i.to_string()).is_some_and(|b| b.dependent)
-            }
-            proc_macro2::TokenTree::Group(g) => self.depends_tokens(&g.stream()),
-            _ => false,
+        any_ident(tokens, &|i| {
+            self.lookup(&i.to_string()).is_some_and(|b| b.dependent)
         })
+    }
+
+    /// Whether `tokens` name a local in scope.
+    pub(super) fn reads_locals(&self, tokens: &TokenStream) -> bool {
+        any_ident(tokens, &|i| self.lookup(&i.to_string()).is_some())
     }
 
     pub(super) fn is_time(&self, name: &str) -> bool {
@@ -389,4 +390,13 @@ pub(super) fn let_names(cond: &Expr) -> Vec<String> {
     let mut lets = Lets(Vec::new());
     syn::visit::Visit::visit_expr(&mut lets, cond);
     lets.0
+}
+
+/// Whether any identifier in `tokens`, groups included, passes `test`.
+pub(super) fn any_ident(tokens: &TokenStream, test: &dyn Fn(&proc_macro2::Ident) -> bool) -> bool {
+    tokens.clone().into_iter().any(|tree| match tree {
+        proc_macro2::TokenTree::Ident(i) => test(&i),
+        proc_macro2::TokenTree::Group(g) => any_ident(&g.stream(), test),
+        _ => false,
+    })
 }
