@@ -312,7 +312,7 @@ fn implicit_methods_agree_with_the_exact_jacobian() {
 
 /// The rod's lowest mode, uᵢ = sin(π(i+1)/(N+1)), is an eigenvector of the Dirichlet
 /// three-point Laplacian with eigenvalue −4·sin²(π/(2(N+1))) (LeVeque, *Finite Difference
-/// Methods for ODEs and PDEs*, 2007, §2.10): it decays as exp(−4κ·sin²(π/(2(N+1)))·t). At N = 50
+/// Methods for ODEs and PDEs*, 2007, §2.10.1, at unit spacing): it decays as exp(−4κ·sin²(π/(2(N+1)))·t). At N = 50
 /// (a heap `FaerDense` Jacobian) and κ = 100 the fastest mode's rate is ~400: stiff.
 #[test]
 fn a_first_order_generic_model_decays_as_theory_says() {
