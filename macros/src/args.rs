@@ -60,11 +60,14 @@ pub(crate) struct Args {
     /// `jacobian = finite_differences`: a fixed-size model's Jacobian by central differences of
     /// its own code, for code the macro cannot differentiate.
     pub(crate) differences: Option<Ident>,
+    /// `jacobian = dual`: a fixed-size model's Jacobian by forward-mode automatic
+    /// differentiation of its own code over dual numbers.
+    pub(crate) dual: Option<Ident>,
 }
 
 /// The arguments `#[system]` takes, for error messages.
 const SUPPORTED: &str = "`integrator = ...`, `dt = ...`, `rtol = ...`, `atol = ...`, \
-    `jacobian = false`, `jacobian = finite_differences`";
+    `jacobian = false`, `jacobian = finite_differences`, `jacobian = dual`";
 
 /// Parses the attribute's arguments, reporting problems to `errors`. A problem with one
 /// argument hides none of the others: an unknown argument or a value of the wrong form is
@@ -140,10 +143,14 @@ fn read(name: &str, value: Expr, args: &mut Args, errors: &mut Errors) {
             Expr::Path(p) if p.path.is_ident("finite_differences") => {
                 args.differences = p.path.get_ident().cloned();
             }
+            Expr::Path(p) if p.path.is_ident("dual") => {
+                args.dual = p.path.get_ident().cloned();
+            }
             _ => errors.at(
                 &value,
                 "`jacobian` takes `false` (explicit methods only), `finite_differences` (a \
-                 Jacobian of central differences of the model's code) or `true` (the default: \
+                 Jacobian of central differences of the model's code), `dual` (forward-mode \
+                 automatic differentiation of the model's code) or `true` (the default: \
                  generated exactly)",
             ),
         },

@@ -65,6 +65,16 @@ pub(crate) struct Helpers {
 }
 
 impl Helpers {
+    /// Every helper, in the order written.
+    pub(crate) fn iter(&self) -> impl Iterator<Item = &Helper> {
+        self.helpers.iter()
+    }
+
+    /// The helpers' names.
+    pub(crate) fn names(&self) -> impl Iterator<Item = String> + '_ {
+        self.helpers.iter().map(|h| h.f.sig.ident.to_string())
+    }
+
     pub(crate) fn get(&self, name: &str) -> Option<&Helper> {
         self.helpers.iter().find(|h| h.f.sig.ident == name)
     }

@@ -54,6 +54,7 @@ pub use linalg::{
     NewtonOptions, Preconditioner, SolveError, Solves,
 };
 pub use method::{Method, MethodInfo};
+pub use model::dual::Dual;
 pub use model::{Jacobian, Model, Parameters, SecondOrder, State, Unavailable};
 pub use nalgebra;
 /// The `rand` crate, for ensemble members' generators ([`ensemble::MemberRng`] implements its
@@ -76,6 +77,7 @@ pub mod __private {
         pub use crate::grid::glue::*;
     }
     pub use crate::model::differences::central_differences;
+    pub use crate::model::dual::{DualCast, Seeded, Tangent, ToDual};
 
     /// `value`, of `like`'s type: the variable of a loop `#[system]` unrolls in a Jacobian's
     /// prologue, typed like the loop's run-time end.

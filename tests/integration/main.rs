@@ -20,6 +20,7 @@ mod const_generic;
 mod control_flow;
 mod convergence;
 mod differences;
+mod dual;
 mod energy;
 mod ensemble;
 mod extremes;

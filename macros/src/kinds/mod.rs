@@ -50,8 +50,8 @@ pub(crate) trait FrontEnd: Sync {
         false
     }
 
-    /// Whether the kind can take its Jacobian by finite differences
-    /// (`jacobian = finite_differences`).
+    /// Whether the kind can take its Jacobian from the model's code run as written, by finite
+    /// differences (`jacobian = finite_differences`) or over dual numbers (`jacobian = dual`).
     fn takes_finite_differences(&self) -> bool {
         false
     }
@@ -131,13 +131,14 @@ pub(crate) fn expand_struct(args_tokens: TokenStream, item: &ItemStruct) -> Toke
         if !kind.takes_parameters() {
             refuse_parameters(item, &mut errors);
         }
-        if let Some(differences) = &args.differences
-            && !kind.takes_finite_differences()
-        {
+        let of_code = args.differences.iter().chain(&args.dual);
+        for word in of_code.filter(|_| !kind.takes_finite_differences()) {
             errors.at(
-                differences,
-                "`jacobian = finite_differences` is for fixed-size models: particle and field \
-                 models get their sparse Jacobian generated from their kernels",
+                word,
+                format_args!(
+                    "`jacobian = {word}` is for fixed-size models: particle and field models get \
+                     their sparse Jacobian generated from their kernels"
+                ),
             );
         }
         let accepted = kind.expand_struct(item, &mut errors);

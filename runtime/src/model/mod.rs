@@ -5,6 +5,7 @@
 //! so the split methods see the two halves of [`State::as_slice`].
 
 pub mod differences;
+pub mod dual;
 pub mod flat;
 mod parameters;
 mod unavailable;

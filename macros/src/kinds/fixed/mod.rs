@@ -8,6 +8,7 @@
 //! [`tangent`]'s coloured forward mode for big models) and [`generate`] the state type and the
 //! runtime trait impls.
 
+mod dual;
 mod fields;
 mod functions;
 mod generate;
@@ -157,8 +158,10 @@ impl FrontEnd for Kind {
             })
         });
         validate::forces(args, velocity_read, errors);
-        let generated_jacobian =
-            args.no_jacobian.is_none() && args.differences.is_none() && !model.is_generic();
+        let generated_jacobian = args.no_jacobian.is_none()
+            && args.differences.is_none()
+            && args.dual.is_none()
+            && !model.is_generic();
         let lowered = match &functions.force {
             // A helper with a problem has been reported; its calls are not followed.
             Some(force) if generated_jacobian && helpers_ok => {
@@ -182,12 +185,15 @@ impl FrontEnd for Kind {
                 ),
             );
         }
-        if let (Some(first), Some(differences)) = (params.first(), &args.differences) {
+        if let (Some(first), Some(word)) = (
+            params.first(),
+            args.differences.as_ref().or(args.dual.as_ref()),
+        ) {
             errors.at(
-                differences,
+                word,
                 format_args!(
-                    "`jacobian = finite_differences` turns off the generated derivatives, ∂f/∂p \
-                     of `#[param]` `{first}` among them (sensitivities need them exact)"
+                    "`jacobian = {word}` turns off the generated derivatives, ∂f/∂p of \
+                     `#[param]` `{first}` among them (sensitivities need them generated)"
                 ),
             );
         }
@@ -208,17 +214,20 @@ impl FrontEnd for Kind {
             return rejected;
         }
         // A const-generic model's code is not lowered (its loops run to `N`): differences.
-        let differences =
-            args.differences.is_some() || (model.is_generic() && args.no_jacobian.is_none());
+        let differences = args.differences.is_some()
+            || (model.is_generic() && args.no_jacobian.is_none() && args.dual.is_none());
         let generated = generate::model_impls(
             &model,
             args,
             &functions,
             imp,
-            lowered.is_some() || differences,
+            lowered.is_some() || differences || args.dual.is_some(),
         );
         let jacobian = match (lowered, &functions.force) {
             (Some(lowered), Some(force)) => jacobian::jacobian(&model, lowered, force, imp),
+            (None, Some(force)) if args.dual.is_some() => {
+                dual::jacobian(&model, force, &helpers, imp)
+            }
             (None, Some(force)) if differences => jacobian::differences(&model, force, imp),
             _ => TokenStream::new(),
         };

@@ -1,0 +1,513 @@
+//! `#[system(jacobian = dual)]`: the Jacobian by forward-mode automatic differentiation of the
+//! model's own code, for code the lowering cannot read (loops to a const parameter `N`, calls of
+//! functions generic over the number type) but which computes with numbers Rust can make dual.
+//!
+//! The force is emitted a second time over `odyn::Dual` (runtime `model/dual.rs`): `f64` in its
+//! types reads `Dual`, a float literal, a parameter (`self.k`, `self.m[i]`, `self.g` as a
+//! vector) and an `as f64` cast are constants of it, and `as usize` of a dual number casts its
+//! value. Each Jacobian column j is one call of that copy at the state with component j seeded
+//! (its derivative one); ∂f/∂t is one call with the time seeded. The `#[odyn::function]` helpers
+//! it calls get dual copies too; any other function it passes the state to must be generic over
+//! the number type (`fn f<T: RealField>(x: T) -> T`), or the copy does not compile: the error
+//! then points at the call, where an `f64` was expected.
+
+use proc_macro2::{Group, Span, TokenStream, TokenTree};
+use quote::{ToTokens, format_ident, quote, quote_spanned};
+use syn::visit_mut::{self, VisitMut};
+use syn::{Expr, Ident, ItemImpl, Lit, Member, Type};
+
+use super::functions::Function;
+use super::layout::{SMALL, inline_hint};
+use crate::generate::time_independent;
+use crate::helpers::Helpers;
+use crate::model::{Model, Order, Role, Shape};
+use crate::rewrite::state_local;
+
+/// The dual state of a first-order model, its hidden dual functions, and its `Jacobian` impl.
+pub(crate) fn jacobian(
+    model: &Model<'_>,
+    force: &Function,
+    helpers: &Helpers,
+    imp: &ItemImpl,
+) -> TokenStream {
+    let self_ty = &imp.self_ty;
+    let (impl_generics, _, where_clause) = imp.generics.split_for_impl();
+    let state = model.state_type();
+    let dual_state = format_ident!("__{}Dual", model.state_ident());
+    let mut dualize = Dualize {
+        parameters: parameters(model),
+        helpers: helpers.names().collect(),
+        model: model.ident().clone(),
+        state: model.state_ident(),
+        dual_state: dual_state.clone(),
+    };
+    let dual_type = |dualize: &Dualize, shape: Shape| dualize.tokens(model.type_of(shape));
+    // The seeded arguments: every field, in layout order.
+    let fields: Vec<_> = model
+        .states
+        .iter()
+        .map(|f| (state_local(f.ident), dual_type(&dualize, f.shape), f.shape))
+        .collect();
+    let seeds = fields.iter().map(|(local, ty, _)| {
+        quote! {
+            let #local = <#ty as ::odyn::__private::Seeded>::seeded(
+                &values[offset..], seed.wrapping_sub(offset));
+            offset += <#ty as ::odyn::__private::Seeded>::LEN;
+        }
+    });
+    let args = fields.iter().map(|(local, _, shape)| match shape {
+        Shape::Scalar => quote!(#local),
+        _ => quote!(&#local),
+    });
+    let params = fields.iter().map(|(local, ty, shape)| match shape {
+        Shape::Scalar => quote!(#local: #ty),
+        _ => quote!(#local: &#ty),
+    });
+    let output = dualize.tokens(force.output.to_token_stream());
+    let receiver = &force.receiver;
+    let time = match &force.time {
+        Some(t) => {
+            let (pat, ty) = (&t.pat, dualize.tokens(t.ty.to_token_stream()));
+            quote!(#pat: #ty)
+        }
+        None => quote!(_: ::odyn::Dual),
+    };
+    let mut body = force.body.clone();
+    dualize.visit_block_mut(&mut body);
+    let dual_helpers = helpers
+        .iter()
+        .map(|h| {
+            let mut f = h.f.clone();
+            f.attrs.retain(|a| !crate::syntax::is_function_attribute(a));
+            f.sig.ident = dual_name(&f.sig.ident);
+            dualize.visit_signature_mut(&mut f.sig);
+            dualize.visit_block_mut(&mut f.block);
+            crate::math::route_block(&mut f.block);
+            let statements = &f.block.stmts;
+            f.block = syn::parse_quote!({ #NUMBER_TRAITS #(#statements)* });
+            f.vis = syn::Visibility::Inherited;
+            quote!(#[doc(hidden)] #[allow(clippy::all, unused_parens)] #f)
+        })
+        .collect::<Vec<_>>();
+    let force_fn = dual_name(&force.name);
+    let inline = inline_hint(model, quote!(#[inline]));
+    let (first_row, positions) = match model.order {
+        Order::First => (quote!(0), TokenStream::new()),
+        Order::Second => {
+            let lens = model
+                .with_role(Role::Position)
+                .map(|f| dual_type(&dualize, f.shape))
+                .map(|ty| quote!(+ <#ty as ::odyn::__private::Seeded>::LEN));
+            (
+                quote!(positions),
+                quote!(let positions: usize = 0 #(#lens)*;),
+            )
+        }
+    };
+    let (matrix, store, zeros) = if !model.is_generic() && model.len() <= SMALL {
+        let n = model.len_tokens();
+        (
+            quote!(::odyn::__private::nalgebra::SMatrix<f64, #n, #n>),
+            quote!(jacobian[(row, column)] = value),
+            quote!(::odyn::__private::nalgebra::SMatrix::<f64, #n, #n>::zeros()),
+        )
+    } else {
+        (
+            quote!(::odyn::FaerDense),
+            quote!(jacobian.set(row, column, value)),
+            quote!(::odyn::FaerDense::zeros(
+                ::odyn::State::as_slice(state).len()
+            )),
+        )
+    };
+    let time_items = if force.time.is_some() {
+        quote! {
+            /// True: the model's function reads the time; ∂f/∂t by one dual evaluation.
+            const TIME_DEPENDENT: bool = true;
+            fn time_derivative(&self, t: f64, y: &#state, dfdt: &mut #state) {
+                let out = self.__odyn_dual_at(
+                    ::odyn::Dual::new(t, 1.0),
+                    ::odyn::State::as_slice(y),
+                    usize::MAX,
+                );
+                let dfdt = ::odyn::State::as_mut_slice(dfdt);
+                #positions
+                let mut row = #first_row;
+                dfdt[..row].fill(0.0);
+                ::odyn::__private::Tangent::tangent(&out, &mut |value| {
+                    dfdt[row] = value;
+                    row += 1;
+                });
+            }
+        }
+    } else {
+        time_independent(&state, "The model's function does not read the time")
+    };
+    let dual_struct = (model.order == Order::First).then(|| {
+        let generics = &model.item.generics;
+        let (_, type_generics, _) = generics.split_for_impl();
+        let idents: Vec<_> = model.states.iter().map(|f| f.ident).collect();
+        let types = model.states.iter().map(|f| dual_type(&dualize, f.shape));
+        quote! {
+            #[doc(hidden)]
+            #[allow(non_camel_case_types)]
+            struct #dual_state #generics {
+                #(#idents: #types,)*
+            }
+            #[automatically_derived]
+            impl #generics ::odyn::__private::Tangent for #dual_state #type_generics {
+                #[inline(always)]
+                fn tangent(&self, out: &mut impl FnMut(f64)) {
+                    #(::odyn::__private::Tangent::tangent(&self.#idents, out);)*
+                }
+            }
+        }
+    });
+    quote_spanned! {Span::call_site()=>
+        #dual_struct
+        #[automatically_derived]
+        impl #impl_generics #self_ty #where_clause {
+            #[doc(hidden)]
+            #inline
+            #[allow(unused_variables, unused_assignments, unused_parens, non_snake_case, clippy::all)]
+            fn #force_fn(#receiver, #time, #(#params),*) -> #output {
+                #NUMBER_TRAITS
+                #body
+            }
+            /// f over dual numbers at the state `values`, component `seed` seeded.
+            #[doc(hidden)]
+            #inline
+            #[allow(unused_assignments, clippy::all)]
+            fn __odyn_dual_at(&self, t: ::odyn::Dual, values: &[f64], seed: usize) -> #output {
+                let mut offset = 0usize;
+                #(#seeds)*
+                self.#force_fn(t, #(#args),*)
+            }
+            #(#dual_helpers)*
+        }
+        #[automatically_derived]
+        impl #impl_generics ::odyn::Jacobian for #self_ty #where_clause {
+            type Matrix = #matrix;
+            /// Not known: the Jacobian is taken by forward-mode differentiation of the code.
+            const NONZEROS: &'static [(usize, usize)] = &[];
+            fn jacobian_matrix(&self, state: &#state) -> #matrix {
+                #zeros
+            }
+            /// ∂f/∂y column by column, one dual evaluation of f each, exact to rounding.
+            fn jacobian(&self, t: f64, y: &#state, jacobian: &mut #matrix) {
+                let values = ::odyn::State::as_slice(y);
+                let time = ::odyn::Dual::constant(t);
+                #positions
+                for column in 0..values.len() {
+                    let out = self.__odyn_dual_at(time, values, column);
+                    // A second-order model's position rows: d(position)/dt = velocity.
+                    let start = #first_row;
+                    for row in 0..start {
+                        let value = if column == start + row { 1.0 } else { 0.0 };
+                        #store;
+                    }
+                    let mut row = start;
+                    ::odyn::__private::Tangent::tangent(&out, &mut |value| {
+                        #store;
+                        row += 1;
+                    });
+                }
+            }
+            #time_items
+        }
+    }
+}
+
+/// nalgebra's number traits, in scope in the dual copies: `x.floor()`, `x.max(y)`, `x.powi(2)`
+/// of a dual number are theirs.
+const NUMBER_TRAITS: NumberTraits = NumberTraits;
+
+/// See [`NUMBER_TRAITS`].
+struct NumberTraits;
+
+impl ToTokens for NumberTraits {
+    fn to_tokens(&self, tokens: &mut TokenStream) {
+        tokens.extend(quote! {
+            #[allow(unused_imports)]
+            use ::odyn::__private::nalgebra::{ComplexField as _, RealField as _};
+        });
+    }
+}
+
+/// The name of the dual copy of function `name`.
+fn dual_name(name: &Ident) -> Ident {
+    format_ident!("__odyn_dual_{}", name)
+}
+
+/// The model's fields that are not state: its parameters, whatever their type.
+fn parameters(model: &Model<'_>) -> Vec<(Ident, Type)> {
+    model
+        .item
+        .fields
+        .iter()
+        .filter_map(|f| Some((f.ident.clone()?, f.ty.clone())))
+        .filter(|(name, _)| model.field(name).is_none())
+        .collect()
+}
+
+/// Rewrites the force's code to compute over `odyn::Dual`.
+struct Dualize {
+    parameters: Vec<(Ident, Type)>,
+    helpers: Vec<String>,
+    model: Ident,
+    state: Ident,
+    dual_state: Ident,
+}
+
+/// What a parameter place (`self.k`, `self.m[i]`, `self.g`) holds.
+enum Holds {
+    /// One number: read as a constant.
+    Number,
+    /// An array or a nalgebra vector of numbers: read as a map of constants.
+    Numbers,
+    /// Anything else: left as written.
+    Other,
+}
+
+impl Dualize {
+    /// `tokens` (a type) with `f64` read as `Dual`, and the state type as its dual.
+    fn tokens(&self, tokens: TokenStream) -> TokenStream {
+        tokens
+            .into_iter()
+            .map(|tree| match tree {
+                TokenTree::Ident(ident) if ident == "f64" => {
+                    let span = ident.span();
+                    quote_spanned!(span=> ::odyn::Dual)
+                }
+                TokenTree::Ident(ident) if ident == self.state => {
+                    let mut dual = self.dual_state.clone();
+                    dual.set_span(ident.span());
+                    dual.into_token_stream()
+                }
+                TokenTree::Group(group) => {
+                    let mut inner = Group::new(group.delimiter(), self.tokens(group.stream()));
+                    inner.set_span(group.span());
+                    TokenTree::Group(inner).into_token_stream()
+                }
+                other => other.into_token_stream(),
+            })
+            .collect()
+    }
+
+    /// What the place `expr` holds when it is rooted at a parameter of the model.
+    fn parameter_place(&self, expr: &Expr) -> Option<Holds> {
+        let ty = self.place_type(expr)?;
+        Some(holds(&ty))
+    }
+
+    /// The type of a place rooted at a parameter: `self.p`, then fields and indices.
+    fn place_type(&self, expr: &Expr) -> Option<Type> {
+        match expr {
+            Expr::Field(f) if crate::syntax::is_self(&f.base) => {
+                let Member::Named(name) = &f.member else {
+                    return None;
+                };
+                self.parameters
+                    .iter()
+                    .find(|(p, _)| p == name)
+                    .map(|(_, ty)| ty.clone())
+            }
+            Expr::Field(f) => {
+                let outer = self.place_type(&f.base)?;
+                let Member::Named(name) = &f.member else {
+                    return None;
+                };
+                let coordinate =
+                    ["x", "y", "z", "w", "a", "b"].contains(&name.to_string().as_str());
+                (coordinate && matches!(holds(&outer), Holds::Numbers))
+                    .then(|| syn::parse_quote!(f64))
+            }
+            Expr::Index(i) => element(&self.place_type(&i.expr)?),
+            Expr::Paren(p) => self.place_type(&p.expr),
+            _ => None,
+        }
+    }
+}
+
+/// What a value of type `ty` holds.
+fn holds(ty: &Type) -> Holds {
+    if crate::syntax::is_f64(ty) {
+        return Holds::Number;
+    }
+    match ty {
+        Type::Array(a) if crate::syntax::is_f64(&a.elem) => Holds::Numbers,
+        Type::Path(_) if crate::model::shape_of(ty).is_some() => Holds::Numbers,
+        _ => Holds::Other,
+    }
+}
+
+/// The element type of an indexed `ty`: an array's, a `Vec`'s, a nalgebra vector's (`f64`).
+fn element(ty: &Type) -> Option<Type> {
+    match ty {
+        Type::Array(a) => Some((*a.elem).clone()),
+        Type::Slice(s) => Some((*s.elem).clone()),
+        Type::Reference(r) => element(&r.elem),
+        Type::Path(p) => {
+            let last = p.path.segments.last()?;
+            if last.ident == "Vec" || last.ident == "Box" {
+                if let syn::PathArguments::AngleBracketed(a) = &last.arguments
+                    && let Some(syn::GenericArgument::Type(inner)) = a.args.first()
+                {
+                    return match inner {
+                        Type::Slice(s) => Some((*s.elem).clone()),
+                        other => Some(other.clone()),
+                    };
+                }
+                return None;
+            }
+            crate::model::shape_of(ty).map(|_| syn::parse_quote!(f64))
+        }
+        _ => None,
+    }
+}
+
+/// The primitive number types an `as` cast may name.
+const PRIMITIVES: [&str; 13] = [
+    "f32", "i8", "i16", "i32", "i64", "i128", "isize", "u8", "u16", "u32", "u64", "u128", "usize",
+];
+
+impl VisitMut for Dualize {
+    fn visit_type_mut(&mut self, ty: &mut Type) {
+        if let Ok(dual) = syn::parse2(self.tokens(ty.to_token_stream())) {
+            *ty = dual;
+        }
+    }
+
+    /// A path in an expression: the state type's name (`ForcedState { .. }`) reads as its dual.
+    fn visit_path_mut(&mut self, path: &mut syn::Path) {
+        for segment in &mut path.segments {
+            if segment.ident == self.state {
+                let span = segment.ident.span();
+                segment.ident = self.dual_state.clone();
+                segment.ident.set_span(span);
+            }
+        }
+        visit_mut::visit_path_mut(self, path);
+    }
+
+    /// Items nested in the body (a `const`, a `fn`) keep their own types.
+    fn visit_item_mut(&mut self, _: &mut syn::Item) {}
+
+    /// Macros (`debug_assert!`) are left as written.
+    fn visit_macro_mut(&mut self, _: &mut syn::Macro) {}
+
+    fn visit_expr_mut(&mut self, expr: &mut Expr) {
+        match expr {
+            Expr::Lit(lit) if is_float(&lit.lit) => {
+                let span = lit.lit.span();
+                *expr = syn::parse_quote_spanned!(span=> ::odyn::Dual::constant(#lit));
+            }
+            Expr::Cast(cast) => {
+                self.visit_expr_mut(&mut cast.expr);
+                let (inner, ty) = (&cast.expr, &cast.ty);
+                let span = cast.as_token.span;
+                if crate::syntax::is_f64(ty) {
+                    *expr = syn::parse_quote_spanned!(span=> ::odyn::__private::ToDual::to_dual(#inner));
+                } else if PRIMITIVES.iter().any(|p| crate::syntax::is_plain(ty, p)) {
+                    *expr = syn::parse_quote_spanned!(span=>
+                        ::odyn::__private::DualCast::<#ty>::cast(#inner));
+                } else {
+                    self.visit_type_mut(&mut cast.ty);
+                }
+            }
+            Expr::Path(p) if p.qself.is_none() && names_f64(&p.path) => {
+                let constant = p
+                    .path
+                    .segments
+                    .last()
+                    .is_some_and(|s| s.ident.to_string().chars().all(|c| !c.is_lowercase()));
+                if constant {
+                    *expr = syn::parse_quote!(::odyn::Dual::constant(#p));
+                } else if let Some(first) = p.path.segments.first_mut()
+                    && first.ident == "f64"
+                {
+                    let span = first.ident.span();
+                    first.ident = Ident::new("Dual", span);
+                    let rest = &p.path;
+                    *expr = syn::parse_quote_spanned!(span=> ::odyn::#rest);
+                }
+            }
+            Expr::MethodCall(call)
+                if crate::syntax::is_self(&call.receiver)
+                    && self.helpers.contains(&call.method.to_string()) =>
+            {
+                call.method = dual_name(&call.method);
+                for arg in &mut call.args {
+                    self.visit_expr_mut(arg);
+                }
+            }
+            Expr::Call(call) if self.helper_path(&call.func) => {
+                if let Expr::Path(p) = &mut *call.func
+                    && let Some(last) = p.path.segments.last_mut()
+                {
+                    last.ident = dual_name(&last.ident);
+                }
+                for arg in &mut call.args {
+                    self.visit_expr_mut(arg);
+                }
+            }
+            Expr::Field(_) | Expr::Index(_) => match self.parameter_place(expr) {
+                Some(Holds::Number) => {
+                    self.visit_indices(expr);
+                    *expr = syn::parse_quote!(::odyn::Dual::constant(#expr));
+                }
+                Some(Holds::Numbers) => {
+                    self.visit_indices(expr);
+                    *expr = syn::parse_quote!(#expr.map(::odyn::Dual::constant));
+                }
+                Some(Holds::Other) => self.visit_indices(expr),
+                None => visit_mut::visit_expr_mut(self, expr),
+            },
+            _ => visit_mut::visit_expr_mut(self, expr),
+        }
+    }
+}
+
+impl Dualize {
+    /// Whether `func` names a helper: `Self::f` or `Model::f`.
+    fn helper_path(&self, func: &Expr) -> bool {
+        let Expr::Path(p) = func else { return false };
+        let segments: Vec<_> = p.path.segments.iter().collect();
+        matches!(segments.as_slice(), [ty, f]
+            if (ty.ident == "Self" || ty.ident == self.model)
+                && self.helpers.contains(&f.ident.to_string()))
+    }
+
+    /// Visits the index expressions of a parameter place, not the place itself.
+    fn visit_indices(&mut self, expr: &mut Expr) {
+        match expr {
+            Expr::Index(i) => {
+                self.visit_expr_mut(&mut i.index);
+                self.visit_indices(&mut i.expr);
+            }
+            Expr::Field(f) => self.visit_indices(&mut f.base),
+            Expr::Paren(p) => self.visit_indices(&mut p.expr),
+            _ => {}
+        }
+    }
+}
+
+/// Whether `lit` is a float literal (`2.0`, `1e-3`, `2f64`).
+fn is_float(lit: &Lit) -> bool {
+    match lit {
+        Lit::Float(f) => f.suffix() != "f32",
+        Lit::Int(i) => i.suffix() == "f64",
+        _ => false,
+    }
+}
+
+/// Whether `path` goes through the `f64` type or module: `f64::max`, `f64::consts::PI`,
+/// `std::f64::consts::PI`.
+fn names_f64(path: &syn::Path) -> bool {
+    let mut segments = path.segments.iter().map(|s| s.ident.to_string());
+    match segments.next().as_deref() {
+        Some("f64") => path.segments.len() > 1,
+        Some("std" | "core") => segments.next().as_deref() == Some("f64"),
+        _ => false,
+    }
+}
