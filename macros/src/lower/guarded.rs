@@ -208,7 +208,7 @@ impl Lowering<'_> {
                      `self`'s fields) (odyn unrolls loops on the state: a run-time \
                      bound needs an index, such as `self.x[k]` of `for k in 0..self.n`, that \
                      stops it; or write the bound as an integer literal, or take the Jacobian \
-                     by `jacobian = finite_differences`)",
+                     by `jacobian = dual` or `jacobian = finite_differences`)",
                 ));
             }
             self.past_end = false;

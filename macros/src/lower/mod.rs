@@ -145,7 +145,7 @@ struct Lowering<'m> {
     /// Set when an index went past the end of a vector or array (see
     /// [`loops`]' loops bounded by parameters).
     past_end: bool,
-    /// A particle or grid kernel (no `jacobian = finite_differences` for those).
+    /// A particle or grid kernel (no `jacobian = finite_differences` or `dual` for those).
     kernel: bool,
     /// How many arms of branches chosen at run time (on parameters or on the state) enclose
     /// the code being lowered.
@@ -283,8 +283,10 @@ impl<'m> Lowering<'m> {
                 if self.kernel {
                     ""
                 } else {
-                    "`jacobian = finite_differences` to `#[system]` to keep the implicit \
-                     methods on a Jacobian of central differences, or "
+                    "`jacobian = dual` (exact: automatic differentiation of the code as \
+                     written, every function it passes the state to generic over the number \
+                     type) or `jacobian = finite_differences` (central differences) to keep the \
+                     implicit methods, or "
                 }
             ),
         )
