@@ -18,7 +18,7 @@ static GLOBAL: common::Counting = common::Counting;
 fn allocations_do_not_grow_with_the_steps() {
     common::count_this_thread();
     a_longer_run_allocates_no_more();
-    difference_jacobians_allocate_no_more();
+    difference_and_dual_jacobians_allocate_no_more();
     the_particle_lu_path_allocates_per_run_not_per_step();
 }
 
@@ -98,6 +98,27 @@ impl<const N: usize> Ring<N> {
     }
 }
 
+/// [`Ring`] with its Jacobian by dual numbers (`jacobian = dual`).
+#[system(jacobian = dual)]
+#[derive(Clone, Copy)]
+struct DualRing<const N: usize> {
+    #[position]
+    x: [f64; N],
+    #[velocity]
+    v: [f64; N],
+    k: f64,
+}
+
+#[system]
+impl<const N: usize> DualRing<N> {
+    fn acceleration(&self) -> [f64; N] {
+        std::array::from_fn(|i| {
+            let (left, right) = (self.x[(i + N - 1) % N], self.x[(i + 1) % N]);
+            self.k * (left - 2.0 * self.x[i] + right)
+        })
+    }
+}
+
 /// Allocations and steps of `simulation` under `method` to `duration`, at a fixed step of 1e-3
 /// or adaptive, recording only the ends.
 fn allocations<M: Model>(
@@ -129,9 +150,9 @@ fn allocates_no_more(what: &str, duration: f64, run: impl Fn(f64) -> (u64, u64))
     assert_eq!(short, long, "{what}: allocations grew with the steps");
 }
 
-/// The Jacobians of differences (of one call, and of a whole const-generic f) allocate nothing
-/// per step either.
-fn difference_jacobians_allocate_no_more() {
+/// The Jacobians of differences (of one call, and of a whole const-generic f) and of dual
+/// numbers allocate nothing per step either.
+fn difference_and_dual_jacobians_allocate_no_more() {
     const { assert!(!<Opaque as odyn::Jacobian>::EXACT) };
     let opaque = Opaque {
         r: Vector2::new(0.5, 0.0),
@@ -157,6 +178,24 @@ fn difference_jacobians_allocate_no_more() {
         allocations(ring.simulate(), method, 0.1, fixed);
         allocates_no_more(&format!("Ring<40> under {method}"), 1.0, |duration| {
             allocations(ring.simulate(), method, duration, fixed)
+        });
+        // Dual-number Jacobians: in an `SMatrix` (8 components) and a `FaerDense` (80).
+        let small = DualRing::<4> {
+            x: [0.1, 0.0, 0.0, 0.0],
+            v: [0.0; 4],
+            k: 100.0,
+        };
+        allocates_no_more(&format!("DualRing<4> under {method}"), 1.0, |duration| {
+            allocations(small.simulate(), method, duration, fixed)
+        });
+        let big = DualRing::<40> {
+            x: ring.x,
+            v: ring.v,
+            k: ring.k,
+        };
+        allocations(big.simulate(), method, 0.1, fixed);
+        allocates_no_more(&format!("DualRing<40> under {method}"), 1.0, |duration| {
+            allocations(big.simulate(), method, duration, fixed)
         });
     }
 }
