@@ -66,6 +66,81 @@ fn lorenz() -> (Lorenz, LorenzState) {
     ))
 }
 
+/// Kepler's problem as `scenes::Kepler` writes it, its Jacobian by `jacobian = dual`.
+#[system(jacobian = dual)]
+#[derive(Clone, Copy)]
+struct DualKepler {
+    #[position]
+    r: Vector2<f64>,
+    #[velocity]
+    v: Vector2<f64>,
+    gm: f64,
+}
+
+#[system]
+impl DualKepler {
+    fn acceleration(&self) -> Vector2<f64> {
+        -self.gm * self.r / self.r.norm().powi(3)
+    }
+}
+
+/// Lorenz's system as `scenes::Lorenz` writes it, its Jacobian by `jacobian = dual`.
+#[system(jacobian = dual)]
+#[derive(Clone, Copy)]
+struct DualLorenz {
+    #[state]
+    x: f64,
+    #[state]
+    y: f64,
+    #[state]
+    z: f64,
+    sigma: f64,
+    rho: f64,
+    beta: f64,
+}
+
+#[system]
+impl DualLorenz {
+    fn derivative(&self) -> DualLorenzState {
+        DualLorenzState {
+            x: self.sigma * (self.y - self.x),
+            y: self.x * (self.rho - self.z) - self.y,
+            z: self.x * self.y - self.beta * self.z,
+        }
+    }
+}
+
+fn dual_kepler() -> (DualKepler, DualKeplerState) {
+    let (k, y) = kepler();
+    black_box((
+        DualKepler {
+            r: k.r,
+            v: k.v,
+            gm: k.gm,
+        },
+        DualKeplerState { r: y.r, v: y.v },
+    ))
+}
+
+fn dual_lorenz() -> (DualLorenz, DualLorenzState) {
+    let (l, y) = lorenz();
+    black_box((
+        DualLorenz {
+            x: l.x,
+            y: l.y,
+            z: l.z,
+            sigma: l.sigma,
+            rho: l.rho,
+            beta: l.beta,
+        },
+        DualLorenzState {
+            x: y.x,
+            y: y.y,
+            z: y.z,
+        },
+    ))
+}
+
 fn generated<M: Jacobian>((model, state): (M, M::State)) -> M::Matrix {
     let mut j = model.jacobian_matrix(&state);
     model.jacobian(0.0, &state, &mut j);
@@ -167,6 +242,13 @@ mod kepler_jacobian {
         jacobian(f, &SVector::from([y.r.x, y.r.y, y.v.x, y.v.y])).1
     }
 
+    /// `#[system(jacobian = dual)]` on the model's own code: one dual evaluation per column.
+    #[divan::bench]
+    #[inline(never)]
+    fn jacobian_dual() -> Matrix4<f64> {
+        super::generated(dual_kepler())
+    }
+
     #[divan::bench]
     #[inline(never)]
     fn central_differences() -> Matrix4<f64> {
@@ -212,6 +294,13 @@ mod lorenz_jacobian {
             ])
         };
         jacobian(f, &SVector::from([s.x, s.y, s.z])).1
+    }
+
+    /// `#[system(jacobian = dual)]` on the model's own code: one dual evaluation per column.
+    #[divan::bench]
+    #[inline(never)]
+    fn jacobian_dual() -> Matrix3<f64> {
+        super::generated(dual_lorenz())
     }
 
     #[divan::bench]
@@ -326,6 +415,43 @@ mod chain {
         }
     }
 
+    /// The same chain for any N, its Jacobian by dual numbers (`jacobian = dual`).
+    #[system(jacobian = dual)]
+    #[derive(Clone, Copy)]
+    pub struct AnyDual<const N: usize> {
+        #[position]
+        x: [f64; N],
+        #[velocity]
+        v: [f64; N],
+        k: f64,
+    }
+
+    #[system]
+    #[allow(
+        clippy::needless_range_loop,
+        reason = "a stencil reads its neighbours by index"
+    )]
+    impl<const N: usize> AnyDual<N> {
+        fn acceleration(&self) -> [f64; N] {
+            let mut a = [0.0; N];
+            for i in 0..N {
+                let left = if i > 0 { self.x[i - 1] } else { 0.0 };
+                let right = if i + 1 < N { self.x[i + 1] } else { 0.0 };
+                a[i] = self.k * (left - 2.0 * self.x[i] + right) - 0.1 * self.v[i];
+            }
+            a
+        }
+    }
+
+    fn any_dual() -> (AnyDual<8>, AnyDualState<8>) {
+        let model = AnyDual {
+            x: start(),
+            v: [0.0; 8],
+            k: 1e4,
+        };
+        black_box((model, model.state()))
+    }
+
     fn start() -> [f64; 8] {
         std::array::from_fn(|i| 0.1 * (i as f64 + 1.0).sin())
     }
@@ -377,6 +503,17 @@ mod chain {
     #[divan::bench]
     fn const_generic_differences(bencher: divan::Bencher) {
         jacobian(bencher, any());
+    }
+
+    #[divan::bench]
+    fn const_generic_dual(bencher: divan::Bencher) {
+        jacobian(bencher, any_dual());
+    }
+
+    #[divan::bench]
+    #[inline(never)]
+    fn const_generic_dual_rodas5p() -> AnyDualState<8> {
+        rodas5p(any_dual().0)
     }
 
     #[divan::bench]
