@@ -210,7 +210,7 @@ impl Forced {
         ForcedState {
             p: -gain * self.p + self.a * (2.0 * t).sin() * angle.cos(),
             q: radius.sin() - self.q * f64::max(self.p, 0.0),
-            r: self.pull(self.r) + self.wind * (t as f64),
+            r: self.pull(self.r) + self.wind * t,
         }
     }
 
