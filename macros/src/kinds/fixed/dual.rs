@@ -190,6 +190,7 @@ pub(crate) fn jacobian(
             type Matrix = #matrix;
             /// Not known: the Jacobian is taken by forward-mode differentiation of the code.
             const NONZEROS: &'static [(usize, usize)] = &[];
+            #[inline]
             fn jacobian_matrix(&self, state: &#state) -> #matrix {
                 #zeros
             }

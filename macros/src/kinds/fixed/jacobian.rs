@@ -137,6 +137,7 @@ pub(crate) fn jacobian(
             #[doc = #doc]
             const NONZEROS: &'static [(usize, usize)] = &[#(#nonzeros),*];
             #exact
+            #[inline]
             fn jacobian_matrix(&self, _: &#state) -> #matrix {
                 #zeros
             }
@@ -194,6 +195,7 @@ pub(crate) fn differences(model: &Model<'_>, force: &Function, imp: &ItemImpl) -
             const NONZEROS: &'static [(usize, usize)] = &[];
             #[doc = #why]
             const EXACT: bool = false;
+            #[inline]
             fn jacobian_matrix(&self, #state_param: &#state) -> #matrix {
                 #zeros
             }
