@@ -135,6 +135,7 @@ impl ::odyn::Jacobian for Duffing {
         (1usize, 0usize),
         (1usize, 1usize),
     ];
+    #[inline]
     fn jacobian_matrix(
         &self,
         _: &DuffingState,

@@ -86,6 +86,7 @@ impl<const N: usize> ::odyn::Jacobian for Chain<N> {
     const NONZEROS: &'static [(usize, usize)] = &[];
     /// False: a const-generic model's Jacobian is central differences of f.
     const EXACT: bool = false;
+    #[inline]
     fn jacobian_matrix(&self, state: &ChainState<N>) -> ::odyn::FaerDense {
         ::odyn::FaerDense::zeros(::odyn::State::as_slice(state).len())
     }

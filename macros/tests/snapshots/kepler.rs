@@ -152,6 +152,7 @@ impl ::odyn::Jacobian for Kepler {
         (3usize, 0usize),
         (3usize, 1usize),
     ];
+    #[inline]
     fn jacobian_matrix(
         &self,
         _: &KeplerState,

@@ -126,6 +126,7 @@ impl ::odyn::Jacobian for Lorenz {
         (2usize, 1usize),
         (2usize, 2usize),
     ];
+    #[inline]
     fn jacobian_matrix(
         &self,
         _: &LorenzState,

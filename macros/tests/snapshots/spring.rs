@@ -136,6 +136,7 @@ impl ::odyn::Jacobian for Spring {
         (1usize, 0usize),
         (1usize, 1usize),
     ];
+    #[inline]
     fn jacobian_matrix(
         &self,
         _: &SpringState,
