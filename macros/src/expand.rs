@@ -282,6 +282,29 @@ mod tests {
         );
     }
 
+    /// A first-order model (its dual state struct), a helper's dual copy, a table read as
+    /// constants and a cast to an index, under `jacobian = dual`.
+    #[test]
+    fn dual_expansion() {
+        snapshot(
+            "dual",
+            quote! {
+                [jacobian = dual]
+                pub struct Tabled {
+                    #[state] pub x: f64, #[state] pub y: [f64; 2], pub table: [f64; 4], pub k: f64,
+                }
+                impl Tabled {
+                    fn derivative(&self, t: f64) -> TabledState {
+                        let i = (self.x.abs() * 2.0).min(2.0) as usize;
+                        TabledState { x: self.table[i] * self.y[0] + t, y: Self::pair(self.k, self.x) }
+                    }
+                    #[odyn::function]
+                    fn pair(k: f64, x: f64) -> [f64; 2] { [-k * x, f64::max(x, 0.0)] }
+                }
+            },
+        );
+    }
+
     #[test]
     fn lorenz_expansion() {
         snapshot(
