@@ -43,7 +43,7 @@ pub(crate) trait FrontEnd: Sync {
     fn method_attributes(&self) -> &'static [&'static str];
 
     /// The struct half: the state type and what the model asks of an integrator, when accepted.
-    fn expand_struct(&self, item: &ItemStruct, errors: &mut Errors) -> Option<Struct>;
+    fn expand_struct(&self, args: &Args, item: &ItemStruct, errors: &mut Errors) -> Option<Struct>;
 
     /// Whether the kind generates ∂f/∂p for `#[param]` fields.
     fn takes_parameters(&self) -> bool {
@@ -141,7 +141,7 @@ pub(crate) fn expand_struct(args_tokens: TokenStream, item: &ItemStruct) -> Toke
                 ),
             );
         }
-        let accepted = kind.expand_struct(item, &mut errors);
+        let accepted = kind.expand_struct(&args, item, &mut errors);
         // A struct the front-end reported on is rejected whole, however it was returned.
         let accepted = accepted.filter(|_| errors.len() == before);
         let first_order = accepted.as_ref().and_then(|s| s.first_order.as_ref());

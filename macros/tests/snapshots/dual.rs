@@ -103,6 +103,7 @@ impl Tabled {
     )]
     fn __odyn_dual_derivative(
         &self,
+        __odyn_parameter: usize,
         t: ::odyn::Dual,
         __odyn_x: ::odyn::Dual,
         __odyn_y: &[::odyn::Dual; 2],
@@ -118,11 +119,16 @@ impl Tabled {
             );
             __TabledStateDual {
                 x: ::odyn::Dual::constant(self.table[i]) * (*__odyn_y)[0] + t,
-                y: Self::__odyn_dual_pair(::odyn::Dual::constant(self.k), __odyn_x),
+                y: Self::__odyn_dual_pair(
+                    __odyn_parameter,
+                    ::odyn::Dual::constant(self.k),
+                    __odyn_x,
+                ),
             }
         }
     }
-    /// f over dual numbers at the state `values`, component `seed` seeded.
+    /// f over dual numbers at the state `values`, component `seed` of the state or
+    /// `#[param]` number `parameter` seeded.
     #[doc(hidden)]
     #[inline]
     #[allow(unused_assignments, clippy::all)]
@@ -131,6 +137,7 @@ impl Tabled {
         t: ::odyn::Dual,
         values: &[f64],
         seed: usize,
+        parameter: usize,
     ) -> __TabledStateDual {
         let mut offset = 0usize;
         let __odyn_x = <::odyn::Dual as ::odyn::__private::Seeded>::seeded(
@@ -143,11 +150,15 @@ impl Tabled {
             seed.wrapping_sub(offset),
         );
         offset += <[::odyn::Dual; 2] as ::odyn::__private::Seeded>::LEN;
-        self.__odyn_dual_derivative(t, __odyn_x, &__odyn_y)
+        self.__odyn_dual_derivative(parameter, t, __odyn_x, &__odyn_y)
     }
     #[doc(hidden)]
     #[allow(clippy::all, unused_parens)]
-    fn __odyn_dual_pair(k: ::odyn::Dual, x: ::odyn::Dual) -> [::odyn::Dual; 2] {
+    fn __odyn_dual_pair(
+        __odyn_parameter: usize,
+        k: ::odyn::Dual,
+        x: ::odyn::Dual,
+    ) -> [::odyn::Dual; 2] {
         #[allow(unused_imports)]
         use ::odyn::__private::nalgebra::{ComplexField as _, RealField as _};
         [-k * x, ::odyn::Dual::max(x, ::odyn::Dual::constant(0.0))]
@@ -175,7 +186,7 @@ impl ::odyn::Jacobian for Tabled {
         let values = ::odyn::State::as_slice(y);
         let time = ::odyn::Dual::constant(t);
         for column in 0..values.len() {
-            let out = self.__odyn_dual_at(time, values, column);
+            let out = self.__odyn_dual_at(time, values, column, usize::MAX);
             let start = 0;
             for row in 0..start {
                 let value = if column == start + row { 1.0 } else { 0.0 };
@@ -198,6 +209,7 @@ impl ::odyn::Jacobian for Tabled {
             .__odyn_dual_at(
                 ::odyn::Dual::new(t, 1.0),
                 ::odyn::State::as_slice(y),
+                usize::MAX,
                 usize::MAX,
             );
         let dfdt = ::odyn::State::as_mut_slice(dfdt);

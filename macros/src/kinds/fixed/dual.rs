@@ -28,9 +28,11 @@ pub(crate) fn jacobian(
     model: &Model<'_>,
     force: &Function,
     helpers: &Helpers,
+    params: &[&Ident],
     imp: &ItemImpl,
 ) -> TokenStream {
     let self_ty = &imp.self_ty;
+    let parameter = format_ident!("__odyn_parameter", span = Span::mixed_site());
     let (impl_generics, _, where_clause) = imp.generics.split_for_impl();
     let state = model.state_type();
     let dual_state = format_ident!("__{}Dual", model.state_ident());
@@ -40,6 +42,8 @@ pub(crate) fn jacobian(
         model: model.ident().clone(),
         state: model.state_ident(),
         dual_state: dual_state.clone(),
+        seeded: params.iter().map(ToString::to_string).collect(),
+        parameter: parameter.clone(),
     };
     let dual_type = |dualize: &Dualize, shape: Shape| dualize.tokens(model.type_of(shape));
     // The seeded arguments: every field, in layout order.
@@ -59,7 +63,7 @@ pub(crate) fn jacobian(
         Shape::Scalar => quote!(#local),
         _ => quote!(&#local),
     });
-    let params = fields.iter().map(|(local, ty, shape)| match shape {
+    let inputs = fields.iter().map(|(local, ty, shape)| match shape {
         Shape::Scalar => quote!(#local: #ty),
         _ => quote!(#local: &#ty),
     });
@@ -81,6 +85,10 @@ pub(crate) fn jacobian(
             f.attrs.retain(|a| !crate::syntax::is_function_attribute(a));
             f.sig.ident = dual_name(&f.sig.ident);
             dualize.visit_signature_mut(&mut f.sig);
+            let at = usize::from(f.sig.receiver().is_some());
+            f.sig
+                .inputs
+                .insert(at, syn::parse_quote!(#parameter: usize));
             dualize.visit_block_mut(&mut f.block);
             crate::math::route_block(&mut f.block);
             let statements = &f.block.stmts;
@@ -129,6 +137,7 @@ pub(crate) fn jacobian(
                     ::odyn::Dual::new(t, 1.0),
                     ::odyn::State::as_slice(y),
                     usize::MAX,
+                    usize::MAX,
                 );
                 let dfdt = ::odyn::State::as_mut_slice(dfdt);
                 #positions
@@ -163,25 +172,67 @@ pub(crate) fn jacobian(
             }
         }
     });
+    let parameters = (!params.is_empty()).then(|| {
+        let count = params.len();
+        let names: Vec<String> = params.iter().map(ToString::to_string).collect();
+        let doc = format!(
+            "∂f/∂p for the parameters {}: by dual numbers, one evaluation of f per parameter.",
+            names.join(", ")
+        );
+        super::parameters::parameters_trait(
+            model,
+            params,
+            imp,
+            &doc,
+            quote! {
+                let values = ::odyn::State::as_slice(y);
+                if dfdp.shape() != (values.len(), #count) {
+                    *dfdp = ::odyn::__private::nalgebra::DMatrix::zeros(values.len(), #count);
+                }
+                let time = ::odyn::Dual::constant(t);
+                #positions
+                for column in 0..#count {
+                    let out = self.__odyn_dual_at(time, values, usize::MAX, column);
+                    let start = #first_row;
+                    for row in 0..start {
+                        dfdp[(row, column)] = 0.0;
+                    }
+                    let mut row = start;
+                    ::odyn::__private::Tangent::tangent(&out, &mut |value| {
+                        dfdp[(row, column)] = value;
+                        row += 1;
+                    });
+                }
+            },
+        )
+    });
     quote_spanned! {Span::call_site()=>
+        #parameters
         #dual_struct
         #[automatically_derived]
         impl #impl_generics #self_ty #where_clause {
             #[doc(hidden)]
             #inline
             #[allow(unused_variables, unused_assignments, unused_parens, non_snake_case, clippy::all)]
-            fn #force_fn(#receiver, #time, #(#params),*) -> #output {
+            fn #force_fn(#receiver, #parameter: usize, #time, #(#inputs),*) -> #output {
                 #NUMBER_TRAITS
                 #body
             }
-            /// f over dual numbers at the state `values`, component `seed` seeded.
+            /// f over dual numbers at the state `values`, component `seed` of the state or
+            /// `#[param]` number `parameter` seeded.
             #[doc(hidden)]
             #inline
             #[allow(unused_assignments, clippy::all)]
-            fn __odyn_dual_at(&self, t: ::odyn::Dual, values: &[f64], seed: usize) -> #output {
+            fn __odyn_dual_at(
+                &self,
+                t: ::odyn::Dual,
+                values: &[f64],
+                seed: usize,
+                parameter: usize,
+            ) -> #output {
                 let mut offset = 0usize;
                 #(#seeds)*
-                self.#force_fn(t, #(#args),*)
+                self.#force_fn(parameter, t, #(#args),*)
             }
             #(#dual_helpers)*
         }
@@ -200,7 +251,7 @@ pub(crate) fn jacobian(
                 let time = ::odyn::Dual::constant(t);
                 #positions
                 for column in 0..values.len() {
-                    let out = self.__odyn_dual_at(time, values, column);
+                    let out = self.__odyn_dual_at(time, values, column, usize::MAX);
                     // A second-order model's position rows: d(position)/dt = velocity.
                     let start = #first_row;
                     for row in 0..start {
@@ -258,6 +309,11 @@ struct Dualize {
     model: Ident,
     state: Ident,
     dual_state: Ident,
+    /// The `#[param]` fields, in order: read as dual numbers seeded when their index is
+    /// `parameter`'s value.
+    seeded: Vec<String>,
+    /// The dual copies' argument naming the `#[param]` seeded (`usize::MAX` for none).
+    parameter: Ident,
 }
 
 /// What a parameter place (`self.k`, `self.m[i]`, `self.g`) holds.
@@ -441,6 +497,8 @@ impl VisitMut for Dualize {
                 for arg in &mut call.args {
                     self.visit_expr_mut(arg);
                 }
+                let parameter = &self.parameter;
+                call.args.insert(0, syn::parse_quote!(#parameter));
             }
             Expr::Call(call) if self.helper_path(&call.func) => {
                 if let Expr::Path(p) = &mut *call.func
@@ -451,6 +509,15 @@ impl VisitMut for Dualize {
                 for arg in &mut call.args {
                     self.visit_expr_mut(arg);
                 }
+                let parameter = &self.parameter;
+                call.args.insert(0, syn::parse_quote!(#parameter));
+            }
+            Expr::Field(f) if let Some(index) = self.seeded_parameter(f) => {
+                let parameter = &self.parameter;
+                *expr = syn::parse_quote!(::odyn::Dual::new(
+                    #f,
+                    if #parameter == #index { 1.0 } else { 0.0 },
+                ));
             }
             Expr::Field(_) | Expr::Index(_) => match self.parameter_place(expr) {
                 Some(Holds::Number) => {
@@ -470,6 +537,17 @@ impl VisitMut for Dualize {
 }
 
 impl Dualize {
+    /// The index of the `#[param]` field `self.<name>` reads, if it reads one.
+    fn seeded_parameter(&self, f: &syn::ExprField) -> Option<usize> {
+        let Member::Named(name) = &f.member else {
+            return None;
+        };
+        if !crate::syntax::is_self(&f.base) {
+            return None;
+        }
+        self.seeded.iter().position(|p| name == p)
+    }
+
     /// Whether `func` names a helper: `Self::f` or `Model::f`.
     fn helper_path(&self, func: &Expr) -> bool {
         let Expr::Path(p) = func else { return false };

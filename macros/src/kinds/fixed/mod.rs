@@ -99,7 +99,7 @@ impl FrontEnd for Kind {
     }
 
     /// The struct half: the state type, and what the model asks of an integrator, when accepted.
-    fn expand_struct(&self, item: &ItemStruct, errors: &mut Errors) -> Option<Struct> {
+    fn expand_struct(&self, args: &Args, item: &ItemStruct, errors: &mut Errors) -> Option<Struct> {
         // The `#[param]` fields' errors; the parameters themselves are the impl half's.
         let before = errors.len();
         parameters::parse(item, errors);
@@ -108,13 +108,14 @@ impl FrontEnd for Kind {
         if refused_parameters {
             return None;
         }
-        if model.is_generic() {
+        if model.is_generic() && args.dual.is_none() {
             let params = item.fields.iter().filter_map(|f| param_attribute(&f.attrs));
             for attr in params {
                 errors.at(
                     attr,
                     "a const-generic model's Jacobian is taken by differences, so `#[system]` \
-                     does not generate ∂f/∂p for `#[param]`; write the array lengths as integer \
+                     does not generate ∂f/∂p for `#[param]`; add `jacobian = dual` to \
+                     `#[system]` for both by dual numbers, or write the array lengths as integer \
                      literals for generated derivatives",
                 );
             }
@@ -185,15 +186,13 @@ impl FrontEnd for Kind {
                 ),
             );
         }
-        if let (Some(first), Some(word)) = (
-            params.first(),
-            args.differences.as_ref().or(args.dual.as_ref()),
-        ) {
+        if let (Some(first), Some(differences)) = (params.first(), &args.differences) {
             errors.at(
-                word,
+                differences,
                 format_args!(
-                    "`jacobian = {word}` turns off the generated derivatives, ∂f/∂p of \
-                     `#[param]` `{first}` among them (sensitivities need them generated)"
+                    "`jacobian = finite_differences` turns off the generated derivatives, ∂f/∂p \
+                     of `#[param]` `{first}` among them (sensitivities need them exact; \
+                     `jacobian = dual` keeps them)"
                 ),
             );
         }
@@ -226,7 +225,7 @@ impl FrontEnd for Kind {
         let jacobian = match (lowered, &functions.force) {
             (Some(lowered), Some(force)) => jacobian::jacobian(&model, lowered, force, imp),
             (None, Some(force)) if args.dual.is_some() => {
-                dual::jacobian(&model, force, &helpers, imp)
+                dual::jacobian(&model, force, &helpers, &params, imp)
             }
             (None, Some(force)) if differences => jacobian::differences(&model, force, imp),
             _ => TokenStream::new(),

@@ -130,17 +130,45 @@ pub(super) fn parameters(
             #(#stores)*
         },
     );
-    let self_ty = &imp.self_ty;
-    let state = model.state_ident();
     let y = format_ident!("y");
     let args = state_args(model, &y);
-    let indices = 0..p;
     let doc = format!(
         "∂f/∂p for the parameters {}: {} structural non-zeros, derived by `#[system]` from the \
          model's code.",
         names.join(", "),
         entries.len()
     );
+    let self_ty = &imp.self_ty;
+    let values = parameters_trait(
+        model,
+        params,
+        imp,
+        &doc,
+        quote!(self.__odyn_parameter_jacobian(t, #(#args,)* dfdp)),
+    );
+    quote! {
+        #[automatically_derived]
+        impl #self_ty {
+            #hidden
+        }
+        #values
+    }
+}
+
+/// The parameter struct `<Model>Parameters` and the `Parameters` impl of `model`, whose
+/// `parameter_jacobian(&self, t, y, dfdp)` is `jacobian` (documented by `doc`).
+pub(super) fn parameters_trait(
+    model: &Model<'_>,
+    params: &[&syn::Ident],
+    imp: &ItemImpl,
+    doc: &str,
+    jacobian: TokenStream,
+) -> TokenStream {
+    let self_ty = &imp.self_ty;
+    let (impl_generics, _, where_clause) = imp.generics.split_for_impl();
+    let state = model.state_type();
+    let names: Vec<String> = params.iter().map(ToString::to_string).collect();
+    let indices = 0..params.len();
     let values = parameters_ident(model.ident());
     let vis = &model.item.vis;
     let struct_doc = format!(
@@ -158,11 +186,7 @@ pub(super) fn parameters(
             #(#[doc = #field_docs] pub #params: f64,)*
         }
         #[automatically_derived]
-        impl #self_ty {
-            #hidden
-        }
-        #[automatically_derived]
-        impl ::odyn::Parameters for #self_ty {
+        impl #impl_generics ::odyn::Parameters for #self_ty #where_clause {
             type Values = #values;
             const NAMES: &'static [&'static str] = &[#(#names),*];
             fn parameter_values(&self) -> #values {
@@ -184,7 +208,7 @@ pub(super) fn parameters(
                 y: &#state,
                 dfdp: &mut ::odyn::__private::nalgebra::DMatrix<f64>,
             ) {
-                self.__odyn_parameter_jacobian(t, #(#args,)* dfdp)
+                #jacobian
             }
         }
     }

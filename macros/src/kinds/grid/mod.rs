@@ -139,7 +139,7 @@ impl FrontEnd for Kind {
     }
 
     /// The struct half: the state type, and what the model asks of an integrator, when accepted.
-    fn expand_struct(&self, item: &ItemStruct, errors: &mut Errors) -> Option<Struct> {
+    fn expand_struct(&self, _: &Args, item: &ItemStruct, errors: &mut Errors) -> Option<Struct> {
         let fields = parse_struct(item, errors)?;
         Some(Struct {
             state: state(&fields),

@@ -215,7 +215,7 @@ impl FrontEnd for Kind {
     }
 
     /// The struct half: the state type when accepted (a particle model is second-order).
-    fn expand_struct(&self, item: &ItemStruct, errors: &mut Errors) -> Option<Struct> {
+    fn expand_struct(&self, _: &Args, item: &ItemStruct, errors: &mut Errors) -> Option<Struct> {
         let particles = parse_struct(item, errors)?;
         Some(Struct {
             state: state(&particles),
