@@ -387,61 +387,41 @@ mod chain {
         }
     }
 
-    /// The same chain for any N: its Jacobian is central differences of f.
-    #[system]
-    #[derive(Clone, Copy)]
-    pub struct Any<const N: usize> {
-        #[position]
-        x: [f64; N],
-        #[velocity]
-        v: [f64; N],
-        k: f64,
-    }
-
-    #[system]
-    #[allow(
-        clippy::needless_range_loop,
-        reason = "a stencil reads its neighbours by index"
-    )]
-    impl<const N: usize> Any<N> {
-        fn acceleration(&self) -> [f64; N] {
-            let mut a = [0.0; N];
-            for i in 0..N {
-                let left = if i > 0 { self.x[i - 1] } else { 0.0 };
-                let right = if i + 1 < N { self.x[i + 1] } else { 0.0 };
-                a[i] = self.k * (left - 2.0 * self.x[i] + right) - 0.1 * self.v[i];
+    /// The same chain for any N, `$name` under `#[system($($args)*)]`: its Jacobian is central
+    /// differences of f, or dual numbers.
+    macro_rules! any {
+        ($name:ident, $($args:tt)*) => {
+            #[system($($args)*)]
+            #[derive(Clone, Copy)]
+            pub struct $name<const N: usize> {
+                #[position]
+                x: [f64; N],
+                #[velocity]
+                v: [f64; N],
+                k: f64,
             }
-            a
-        }
-    }
 
-    /// The same chain for any N, its Jacobian by dual numbers (`jacobian = dual`).
-    #[system(jacobian = dual)]
-    #[derive(Clone, Copy)]
-    pub struct AnyDual<const N: usize> {
-        #[position]
-        x: [f64; N],
-        #[velocity]
-        v: [f64; N],
-        k: f64,
-    }
-
-    #[system]
-    #[allow(
-        clippy::needless_range_loop,
-        reason = "a stencil reads its neighbours by index"
-    )]
-    impl<const N: usize> AnyDual<N> {
-        fn acceleration(&self) -> [f64; N] {
-            let mut a = [0.0; N];
-            for i in 0..N {
-                let left = if i > 0 { self.x[i - 1] } else { 0.0 };
-                let right = if i + 1 < N { self.x[i + 1] } else { 0.0 };
-                a[i] = self.k * (left - 2.0 * self.x[i] + right) - 0.1 * self.v[i];
+            #[system]
+            #[allow(
+                clippy::needless_range_loop,
+                reason = "a stencil reads its neighbours by index"
+            )]
+            impl<const N: usize> $name<N> {
+                fn acceleration(&self) -> [f64; N] {
+                    let mut a = [0.0; N];
+                    for i in 0..N {
+                        let left = if i > 0 { self.x[i - 1] } else { 0.0 };
+                        let right = if i + 1 < N { self.x[i + 1] } else { 0.0 };
+                        a[i] = self.k * (left - 2.0 * self.x[i] + right) - 0.1 * self.v[i];
+                    }
+                    a
+                }
             }
-            a
-        }
+        };
     }
+
+    any!(Any,);
+    any!(AnyDual, jacobian = dual);
 
     fn any_dual() -> (AnyDual<8>, AnyDualState<8>) {
         let model = AnyDual {

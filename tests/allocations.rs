@@ -76,48 +76,34 @@ impl Opaque {
     }
 }
 
-/// A ring of N masses and springs: const-generic, so its Jacobian is central differences of f
-/// in a `FaerDense`.
-#[system]
-#[derive(Clone, Copy)]
-struct Ring<const N: usize> {
-    #[position]
-    x: [f64; N],
-    #[velocity]
-    v: [f64; N],
-    k: f64,
+/// A ring of N masses and springs, `$name` under `#[system($($args)*)]`: const-generic, so its
+/// Jacobian is central differences of f, or dual numbers, in a `FaerDense` above 32 components.
+macro_rules! ring {
+    ($name:ident, $($args:tt)*) => {
+        #[system($($args)*)]
+        #[derive(Clone, Copy)]
+        struct $name<const N: usize> {
+            #[position]
+            x: [f64; N],
+            #[velocity]
+            v: [f64; N],
+            k: f64,
+        }
+
+        #[system]
+        impl<const N: usize> $name<N> {
+            fn acceleration(&self) -> [f64; N] {
+                std::array::from_fn(|i| {
+                    let (left, right) = (self.x[(i + N - 1) % N], self.x[(i + 1) % N]);
+                    self.k * (left - 2.0 * self.x[i] + right)
+                })
+            }
+        }
+    };
 }
 
-#[system]
-impl<const N: usize> Ring<N> {
-    fn acceleration(&self) -> [f64; N] {
-        std::array::from_fn(|i| {
-            let (left, right) = (self.x[(i + N - 1) % N], self.x[(i + 1) % N]);
-            self.k * (left - 2.0 * self.x[i] + right)
-        })
-    }
-}
-
-/// [`Ring`] with its Jacobian by dual numbers (`jacobian = dual`).
-#[system(jacobian = dual)]
-#[derive(Clone, Copy)]
-struct DualRing<const N: usize> {
-    #[position]
-    x: [f64; N],
-    #[velocity]
-    v: [f64; N],
-    k: f64,
-}
-
-#[system]
-impl<const N: usize> DualRing<N> {
-    fn acceleration(&self) -> [f64; N] {
-        std::array::from_fn(|i| {
-            let (left, right) = (self.x[(i + N - 1) % N], self.x[(i + 1) % N]);
-            self.k * (left - 2.0 * self.x[i] + right)
-        })
-    }
-}
+ring!(Ring,);
+ring!(DualRing, jacobian = dual);
 
 /// Allocations and steps of `simulation` under `method` to `duration`, at a fixed step of 1e-3
 /// or adaptive, recording only the ends.

@@ -282,70 +282,46 @@ fn a_dual_jacobian_reads_the_time_helpers_and_parameters() {
     assert_eq!((dfdt.q, dfdt.r), (0.0, model.wind));
 }
 
-/// A driven, damped oscillator with its parameters marked, a helper reading one of them: the
-/// generated ∂f/∂p …
-#[system]
-#[derive(Clone, Copy, Debug)]
-struct Driven {
-    #[state]
-    x: f64,
-    #[state]
-    v: f64,
-    #[param]
-    k: f64,
-    #[param]
-    c: f64,
-    #[param]
-    a: f64,
-}
-
-#[system]
-impl Driven {
-    fn derivative(&self, t: f64) -> DrivenState {
-        DrivenState {
-            x: self.v,
-            v: self.spring(self.x) - self.c * self.v * (1.0 + self.x * self.x)
-                + self.a * (1.3 * t).cos(),
+/// A driven, damped oscillator with its parameters marked and a helper reading one of them,
+/// `$name` with state `$state`, under `#[system($($args)*)]`: written once, for the generated
+/// ∂f/∂p and for dual numbers.
+macro_rules! driven {
+    ($name:ident, $state:ident, $($args:tt)*) => {
+        #[system($($args)*)]
+        #[derive(Clone, Copy, Debug)]
+        struct $name {
+            #[state]
+            x: f64,
+            #[state]
+            v: f64,
+            #[param]
+            k: f64,
+            #[param]
+            c: f64,
+            #[param]
+            a: f64,
         }
-    }
 
-    #[odyn::function]
-    fn spring(&self, x: f64) -> f64 {
-        -self.k * x - 0.1 * self.k * self.k * x * x * x
-    }
-}
+        #[system]
+        impl $name {
+            fn derivative(&self, t: f64) -> $state {
+                $state {
+                    x: self.v,
+                    v: self.spring(self.x) - self.c * self.v * (1.0 + self.x * self.x)
+                        + self.a * (1.3 * t).cos(),
+                }
+            }
 
-/// … and the same code under `jacobian = dual`.
-#[system(jacobian = dual)]
-#[derive(Clone, Copy, Debug)]
-struct DualDriven {
-    #[state]
-    x: f64,
-    #[state]
-    v: f64,
-    #[param]
-    k: f64,
-    #[param]
-    c: f64,
-    #[param]
-    a: f64,
-}
-
-#[system]
-impl DualDriven {
-    fn derivative(&self, t: f64) -> DualDrivenState {
-        DualDrivenState {
-            x: self.v,
-            v: self.spring(self.x) - self.c * self.v * (1.0 + self.x * self.x)
-                + self.a * (1.3 * t).cos(),
+            #[odyn::function]
+            fn spring(&self, x: f64) -> f64 {
+                -self.k * x - 0.1 * self.k * self.k * x * x * x
+            }
         }
-    }
-
-    #[odyn::function]
-    fn spring(&self, x: f64) -> f64 {
-        -self.k * x - 0.1 * self.k * self.k * x * x * x
-    }
+    };
 }
+
+driven!(Driven, DrivenState,);
+driven!(DualDriven, DualDrivenState, jacobian = dual);
 
 /// ∂f/∂p by dual numbers (one evaluation per parameter, the helper's reads seeded too) against
 /// the generated one: both exact, so equal to a few ulps (measured ≤ 1.9e-16 relative); and a
