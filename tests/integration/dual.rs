@@ -205,8 +205,9 @@ fn stiff_methods_run_on_a_dual_jacobian() {
 }
 
 /// A first-order model reading the time, with helpers (a method and an associated function, one
-/// returning a tuple, one a vector), a parameter vector and a flag: ∂f/∂y and ∂f/∂t by dual
-/// numbers against central differences, and ∂f/∂t against its closed form.
+/// returning a tuple, one a vector), a parameter vector, an array of them, `f64::from` and a
+/// flag: ∂f/∂y and ∂f/∂t by dual numbers against central differences, and ∂f/∂t against its
+/// closed form.
 #[system(jacobian = dual)]
 #[derive(Clone, Copy, Debug)]
 struct Forced {
@@ -219,6 +220,8 @@ struct Forced {
     a: f64,
     wind: Vector2<f64>,
     gains: [f64; 2],
+    anchors: [Vector2<f64>; 2],
+    level: u8,
     soft: bool,
 }
 
@@ -234,7 +237,9 @@ impl Forced {
         ForcedState {
             p: -gain * self.p + self.a * (2.0 * t).sin() * angle.cos(),
             q: radius.sin() - self.q * f64::max(self.p, 0.0),
-            r: self.pull(self.r) + self.wind * t,
+            r: self.pull(self.r)
+                + self.wind * t
+                + (self.anchors[1] - self.r) * (f64::from(self.level) * 0.01),
         }
     }
 
@@ -258,6 +263,8 @@ fn a_dual_jacobian_reads_the_time_helpers_and_parameters() {
         a: 1.7,
         wind: Vector2::new(0.3, -0.1),
         gains: [2.0, 3.0],
+        anchors: [Vector2::zeros(), Vector2::new(0.5, 2.0)],
+        level: 7,
         soft: true,
     };
     const { assert!(<Forced as Jacobian>::TIME_DEPENDENT) };

@@ -71,6 +71,21 @@ impl From<f64> for Dual {
     }
 }
 
+/// `f64::from(n)` in a model's code reads `Dual::from(n)` in its dual copy: the same lossless
+/// conversions as `f64`'s.
+macro_rules! from_lossless {
+    ($($p:ty),*) => {$(
+        impl From<$p> for Dual {
+            #[inline(always)]
+            fn from(value: $p) -> Self {
+                Dual::constant(f64::from(value))
+            }
+        }
+    )*};
+}
+
+from_lossless!(f32, i8, i16, i32, u8, u16, u32);
+
 impl fmt::Display for Dual {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "{} + {}ε", self.0.re, self.0.eps)
