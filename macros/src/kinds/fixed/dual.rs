@@ -8,8 +8,8 @@
 //! value. Each Jacobian column j is one call of that copy at the state with component j seeded
 //! (its derivative one); ∂f/∂t is one call with the time seeded. The `#[odyn::function]` helpers
 //! it calls get dual copies too; any other function it passes the state to must be generic over
-//! the number type (`fn f<T: RealField>(x: T) -> T`), or the copy does not compile: the error
-//! then points at the call, where an `f64` was expected.
+//! the number type (`fn f<T: RealField>(x: T) -> T`), or the copy does not compile: rustc's
+//! "expected `f64`, found `Dual`" then names the call and the function.
 
 use proc_macro2::{Group, Span, TokenStream, TokenTree};
 use quote::{ToTokens, format_ident, quote, quote_spanned};
@@ -23,7 +23,8 @@ use crate::helpers::Helpers;
 use crate::model::{Model, Order, Role, Shape};
 use crate::rewrite::state_local;
 
-/// The dual state of a first-order model, its hidden dual functions, and its `Jacobian` impl.
+/// The dual copies of a model's functions, the dual state of a first-order model, and its
+/// `Jacobian` (and `Parameters`) impls.
 pub(crate) fn jacobian(
     model: &Model<'_>,
     force: &Function,
@@ -31,26 +32,100 @@ pub(crate) fn jacobian(
     params: &[&Ident],
     imp: &ItemImpl,
 ) -> TokenStream {
+    let mut dualize = Dualize::new(model, helpers, params);
+    let rows = Rows::of(model, &dualize);
+    let state = dual_state(model, &dualize);
+    let copies = copies(model, force, helpers, imp, &mut dualize);
+    let jacobian = jacobian_impl(model, imp, &rows, force.time.is_some());
+    let parameters = parameters_impl(model, params, imp, &rows);
+    quote_spanned! {Span::call_site()=>
+        #state
+        #copies
+        #jacobian
+        #parameters
+    }
+}
+
+/// Where the dual copy's output goes in f: after a second-order model's position rows (whose
+/// derivative is the velocity, so their rows of ∂f/∂y are an identity block and of ∂f/∂t and
+/// ∂f/∂p zero), from the first row of a first-order one.
+struct Rows {
+    /// The first row of the output, an expression (`positions` or `0`).
+    first: TokenStream,
+    /// The statement defining `positions`, for a second-order model.
+    positions: TokenStream,
+}
+
+impl Rows {
+    fn of(model: &Model<'_>, dualize: &Dualize) -> Rows {
+        match model.order {
+            Order::First => Rows {
+                first: quote!(0),
+                positions: TokenStream::new(),
+            },
+            Order::Second => {
+                let lens = model.with_role(Role::Position).map(|f| {
+                    let ty = dualize.field_type(model, f.shape);
+                    quote!(+ <#ty as ::odyn::__private::Seeded>::LEN)
+                });
+                Rows {
+                    first: quote!(positions),
+                    positions: quote!(let positions: usize = 0 #(#lens)*;),
+                }
+            }
+        }
+    }
+}
+
+/// A first-order model's state over dual numbers (`__<Model>StateDual`), which its function's
+/// dual copy builds where the function builds its state, and whose derivatives are a column.
+fn dual_state(model: &Model<'_>, dualize: &Dualize) -> Option<TokenStream> {
+    (model.order == Order::First).then(|| {
+        let name = &dualize.dual_state;
+        let generics = &model.item.generics;
+        let (_, type_generics, _) = generics.split_for_impl();
+        let idents: Vec<_> = model.states.iter().map(|f| f.ident).collect();
+        let types = model
+            .states
+            .iter()
+            .map(|f| dualize.field_type(model, f.shape));
+        quote! {
+            #[doc(hidden)]
+            #[allow(non_camel_case_types)]
+            struct #name #generics {
+                #(#idents: #types,)*
+            }
+            #[automatically_derived]
+            impl #generics ::odyn::__private::Tangent for #name #type_generics {
+                #[inline(always)]
+                fn tangent(&self, out: &mut impl FnMut(f64)) {
+                    #(::odyn::__private::Tangent::tangent(&self.#idents, out);)*
+                }
+            }
+        }
+    })
+}
+
+/// The hidden methods: the force's dual copy, `__odyn_dual_at` (the copy at a flat state with
+/// one component or parameter seeded), and the helpers' dual copies.
+fn copies(
+    model: &Model<'_>,
+    force: &Function,
+    helpers: &Helpers,
+    imp: &ItemImpl,
+    dualize: &mut Dualize,
+) -> TokenStream {
     let self_ty = &imp.self_ty;
-    let parameter = format_ident!("__odyn_parameter", span = Span::mixed_site());
     let (impl_generics, _, where_clause) = imp.generics.split_for_impl();
-    let state = model.state_type();
-    let dual_state = format_ident!("__{}Dual", model.state_ident());
-    let mut dualize = Dualize {
-        parameters: parameters(model),
-        helpers: helpers.names().collect(),
-        model: model.ident().clone(),
-        state: model.state_ident(),
-        dual_state: dual_state.clone(),
-        seeded: params.iter().map(ToString::to_string).collect(),
-        parameter: parameter.clone(),
-    };
-    let dual_type = |dualize: &Dualize, shape: Shape| dualize.tokens(model.type_of(shape));
-    // The seeded arguments: every field, in layout order.
+    let parameter = dualize.parameter.clone();
+    // The state fields as arguments, in layout order, seeded from the flat state.
     let fields: Vec<_> = model
         .states
         .iter()
-        .map(|f| (state_local(f.ident), dual_type(&dualize, f.shape), f.shape))
+        .map(|f| {
+            let ty = dualize.field_type(model, f.shape);
+            (state_local(f.ident), ty, f.shape == Shape::Scalar)
+        })
         .collect();
     let seeds = fields.iter().map(|(local, ty, _)| {
         quote! {
@@ -59,13 +134,13 @@ pub(crate) fn jacobian(
             offset += <#ty as ::odyn::__private::Seeded>::LEN;
         }
     });
-    let args = fields.iter().map(|(local, _, shape)| match shape {
-        Shape::Scalar => quote!(#local),
-        _ => quote!(&#local),
+    let args = fields.iter().map(|(local, _, scalar)| match scalar {
+        true => quote!(#local),
+        false => quote!(&#local),
     });
-    let inputs = fields.iter().map(|(local, ty, shape)| match shape {
-        Shape::Scalar => quote!(#local: #ty),
-        _ => quote!(#local: &#ty),
+    let inputs = fields.iter().map(|(local, ty, scalar)| match scalar {
+        true => quote!(#local: #ty),
+        false => quote!(#local: &#ty),
     });
     let output = dualize.tokens(force.output.to_token_stream());
     let receiver = &force.receiver;
@@ -78,137 +153,10 @@ pub(crate) fn jacobian(
     };
     let mut body = force.body.clone();
     dualize.visit_block_mut(&mut body);
-    let dual_helpers = helpers
-        .iter()
-        .map(|h| {
-            let mut f = h.f.clone();
-            f.attrs.retain(|a| !crate::syntax::is_function_attribute(a));
-            f.sig.ident = dual_name(&f.sig.ident);
-            dualize.visit_signature_mut(&mut f.sig);
-            let at = usize::from(f.sig.receiver().is_some());
-            f.sig
-                .inputs
-                .insert(at, syn::parse_quote!(#parameter: usize));
-            dualize.visit_block_mut(&mut f.block);
-            crate::math::route_block(&mut f.block);
-            let statements = &f.block.stmts;
-            f.block = syn::parse_quote!({ #NUMBER_TRAITS #(#statements)* });
-            f.vis = syn::Visibility::Inherited;
-            quote!(#[doc(hidden)] #[allow(clippy::all, unused_parens)] #f)
-        })
-        .collect::<Vec<_>>();
+    let helpers: Vec<_> = helpers.iter().map(|h| dualize.helper(&h.f)).collect();
     let force_fn = dual_name(&force.name);
     let inline = inline_hint(model, quote!(#[inline]));
-    let (first_row, positions) = match model.order {
-        Order::First => (quote!(0), TokenStream::new()),
-        Order::Second => {
-            let lens = model
-                .with_role(Role::Position)
-                .map(|f| dual_type(&dualize, f.shape))
-                .map(|ty| quote!(+ <#ty as ::odyn::__private::Seeded>::LEN));
-            (
-                quote!(positions),
-                quote!(let positions: usize = 0 #(#lens)*;),
-            )
-        }
-    };
-    let (matrix, store, zeros) = if !model.is_generic() && model.len() <= SMALL {
-        let n = model.len_tokens();
-        (
-            quote!(::odyn::__private::nalgebra::SMatrix<f64, #n, #n>),
-            quote!(jacobian[(row, column)] = value),
-            quote!(::odyn::__private::nalgebra::SMatrix::<f64, #n, #n>::zeros()),
-        )
-    } else {
-        (
-            quote!(::odyn::FaerDense),
-            quote!(jacobian.set(row, column, value)),
-            quote!(::odyn::FaerDense::zeros(
-                ::odyn::State::as_slice(state).len()
-            )),
-        )
-    };
-    let time_items = if force.time.is_some() {
-        quote! {
-            /// True: the model's function reads the time; ∂f/∂t by one dual evaluation.
-            const TIME_DEPENDENT: bool = true;
-            fn time_derivative(&self, t: f64, y: &#state, dfdt: &mut #state) {
-                let out = self.__odyn_dual_at(
-                    ::odyn::Dual::new(t, 1.0),
-                    ::odyn::State::as_slice(y),
-                    usize::MAX,
-                    usize::MAX,
-                );
-                let dfdt = ::odyn::State::as_mut_slice(dfdt);
-                #positions
-                let mut row = #first_row;
-                dfdt[..row].fill(0.0);
-                ::odyn::__private::Tangent::tangent(&out, &mut |value| {
-                    dfdt[row] = value;
-                    row += 1;
-                });
-            }
-        }
-    } else {
-        time_independent(&state, "The model's function does not read the time")
-    };
-    let dual_struct = (model.order == Order::First).then(|| {
-        let generics = &model.item.generics;
-        let (_, type_generics, _) = generics.split_for_impl();
-        let idents: Vec<_> = model.states.iter().map(|f| f.ident).collect();
-        let types = model.states.iter().map(|f| dual_type(&dualize, f.shape));
-        quote! {
-            #[doc(hidden)]
-            #[allow(non_camel_case_types)]
-            struct #dual_state #generics {
-                #(#idents: #types,)*
-            }
-            #[automatically_derived]
-            impl #generics ::odyn::__private::Tangent for #dual_state #type_generics {
-                #[inline(always)]
-                fn tangent(&self, out: &mut impl FnMut(f64)) {
-                    #(::odyn::__private::Tangent::tangent(&self.#idents, out);)*
-                }
-            }
-        }
-    });
-    let parameters = (!params.is_empty()).then(|| {
-        let count = params.len();
-        let names: Vec<String> = params.iter().map(ToString::to_string).collect();
-        let doc = format!(
-            "∂f/∂p for the parameters {}: by dual numbers, one evaluation of f per parameter.",
-            names.join(", ")
-        );
-        super::parameters::parameters_trait(
-            model,
-            params,
-            imp,
-            &doc,
-            quote! {
-                let values = ::odyn::State::as_slice(y);
-                if dfdp.shape() != (values.len(), #count) {
-                    *dfdp = ::odyn::__private::nalgebra::DMatrix::zeros(values.len(), #count);
-                }
-                let time = ::odyn::Dual::constant(t);
-                #positions
-                for column in 0..#count {
-                    let out = self.__odyn_dual_at(time, values, usize::MAX, column);
-                    let start = #first_row;
-                    for row in 0..start {
-                        dfdp[(row, column)] = 0.0;
-                    }
-                    let mut row = start;
-                    ::odyn::__private::Tangent::tangent(&out, &mut |value| {
-                        dfdp[(row, column)] = value;
-                        row += 1;
-                    });
-                }
-            },
-        )
-    });
-    quote_spanned! {Span::call_site()=>
-        #parameters
-        #dual_struct
+    quote! {
         #[automatically_derived]
         impl #impl_generics #self_ty #where_clause {
             #[doc(hidden)]
@@ -234,8 +182,58 @@ pub(crate) fn jacobian(
                 #(#seeds)*
                 self.#force_fn(parameter, t, #(#args),*)
             }
-            #(#dual_helpers)*
+            #(#helpers)*
         }
+    }
+}
+
+/// The `Jacobian` impl: ∂f/∂y column by column, and ∂f/∂t when f reads the time.
+fn jacobian_impl(model: &Model<'_>, imp: &ItemImpl, rows: &Rows, reads_time: bool) -> TokenStream {
+    let self_ty = &imp.self_ty;
+    let (impl_generics, _, where_clause) = imp.generics.split_for_impl();
+    let state = model.state_type();
+    let Rows { first, positions } = rows;
+    let (matrix, store, zeros) = if !model.is_generic() && model.len() <= SMALL {
+        let n = model.len_tokens();
+        (
+            quote!(::odyn::__private::nalgebra::SMatrix<f64, #n, #n>),
+            quote!(jacobian[(row, column)] = value),
+            quote!(::odyn::__private::nalgebra::SMatrix::<f64, #n, #n>::zeros()),
+        )
+    } else {
+        (
+            quote!(::odyn::FaerDense),
+            quote!(jacobian.set(row, column, value)),
+            quote!(::odyn::FaerDense::zeros(
+                ::odyn::State::as_slice(state).len()
+            )),
+        )
+    };
+    let time = if reads_time {
+        quote! {
+            /// True: the model's function reads the time; ∂f/∂t by one dual evaluation.
+            const TIME_DEPENDENT: bool = true;
+            fn time_derivative(&self, t: f64, y: &#state, dfdt: &mut #state) {
+                let out = self.__odyn_dual_at(
+                    ::odyn::Dual::new(t, 1.0),
+                    ::odyn::State::as_slice(y),
+                    usize::MAX,
+                    usize::MAX,
+                );
+                let dfdt = ::odyn::State::as_mut_slice(dfdt);
+                #positions
+                let mut row = #first;
+                dfdt[..row].fill(0.0);
+                ::odyn::__private::Tangent::tangent(&out, &mut |value| {
+                    dfdt[row] = value;
+                    row += 1;
+                });
+            }
+        }
+    } else {
+        time_independent(&state, "The model's function does not read the time")
+    };
+    quote! {
         #[automatically_derived]
         impl #impl_generics ::odyn::Jacobian for #self_ty #where_clause {
             type Matrix = #matrix;
@@ -253,7 +251,7 @@ pub(crate) fn jacobian(
                 for column in 0..values.len() {
                     let out = self.__odyn_dual_at(time, values, column, usize::MAX);
                     // A second-order model's position rows: d(position)/dt = velocity.
-                    let start = #first_row;
+                    let start = #first;
                     for row in 0..start {
                         let value = if column == start + row { 1.0 } else { 0.0 };
                         #store;
@@ -265,9 +263,55 @@ pub(crate) fn jacobian(
                     });
                 }
             }
-            #time_items
+            #time
         }
     }
+}
+
+/// The `Parameters` impl of a model with `#[param]`s: ∂f/∂p column by column, one dual
+/// evaluation of f per parameter.
+fn parameters_impl(
+    model: &Model<'_>,
+    params: &[&Ident],
+    imp: &ItemImpl,
+    rows: &Rows,
+) -> Option<TokenStream> {
+    if params.is_empty() {
+        return None;
+    }
+    let count = params.len();
+    let names: Vec<String> = params.iter().map(ToString::to_string).collect();
+    let doc = format!(
+        "∂f/∂p for the parameters {}: by dual numbers, one evaluation of f per parameter.",
+        names.join(", ")
+    );
+    let Rows { first, positions } = rows;
+    Some(super::parameters::parameters_trait(
+        model,
+        params,
+        imp,
+        &doc,
+        quote! {
+            let values = ::odyn::State::as_slice(y);
+            if dfdp.shape() != (values.len(), #count) {
+                *dfdp = ::odyn::__private::nalgebra::DMatrix::zeros(values.len(), #count);
+            }
+            let time = ::odyn::Dual::constant(t);
+            #positions
+            for column in 0..#count {
+                let out = self.__odyn_dual_at(time, values, usize::MAX, column);
+                let start = #first;
+                for row in 0..start {
+                    dfdp[(row, column)] = 0.0;
+                }
+                let mut row = start;
+                ::odyn::__private::Tangent::tangent(&out, &mut |value| {
+                    dfdp[(row, column)] = value;
+                    row += 1;
+                });
+            }
+        },
+    ))
 }
 
 /// nalgebra's number traits, in scope in the dual copies: `x.floor()`, `x.max(y)`, `x.powi(2)`
@@ -327,6 +371,43 @@ enum Holds {
 }
 
 impl Dualize {
+    fn new(model: &Model<'_>, helpers: &Helpers, params: &[&Ident]) -> Dualize {
+        Dualize {
+            parameters: parameters(model),
+            helpers: helpers.names().collect(),
+            model: model.ident().clone(),
+            state: model.state_ident(),
+            dual_state: format_ident!("__{}Dual", model.state_ident()),
+            seeded: params.iter().map(ToString::to_string).collect(),
+            parameter: format_ident!("__odyn_parameter", span = Span::mixed_site()),
+        }
+    }
+
+    /// The type of a state field of `shape` over dual numbers.
+    fn field_type(&self, model: &Model<'_>, shape: Shape) -> TokenStream {
+        self.tokens(model.type_of(shape))
+    }
+
+    /// The dual copy of helper `f`: its types and body over `Dual`, and the seeded parameter's
+    /// index as its first argument after `self`.
+    fn helper(&mut self, f: &syn::ImplItemFn) -> TokenStream {
+        let mut f = f.clone();
+        f.attrs.retain(|a| !crate::syntax::is_function_attribute(a));
+        f.sig.ident = dual_name(&f.sig.ident);
+        self.visit_signature_mut(&mut f.sig);
+        let parameter = &self.parameter;
+        let at = usize::from(f.sig.receiver().is_some());
+        f.sig
+            .inputs
+            .insert(at, syn::parse_quote!(#parameter: usize));
+        self.visit_block_mut(&mut f.block);
+        crate::math::route_block(&mut f.block);
+        let statements = &f.block.stmts;
+        f.block = syn::parse_quote!({ #NUMBER_TRAITS #(#statements)* });
+        f.vis = syn::Visibility::Inherited;
+        quote!(#[doc(hidden)] #[allow(clippy::all, unused_parens)] #f)
+    }
+
     /// `tokens` (a type) with `f64` read as `Dual`, and the state type as its dual.
     fn tokens(&self, tokens: TokenStream) -> TokenStream {
         tokens
@@ -382,6 +463,39 @@ impl Dualize {
             Expr::Index(i) => element(&self.place_type(&i.expr)?),
             Expr::Paren(p) => self.place_type(&p.expr),
             _ => None,
+        }
+    }
+
+    /// The index of the `#[param]` field `self.<name>` reads, if it reads one.
+    fn seeded_parameter(&self, f: &syn::ExprField) -> Option<usize> {
+        let Member::Named(name) = &f.member else {
+            return None;
+        };
+        if !crate::syntax::is_self(&f.base) {
+            return None;
+        }
+        self.seeded.iter().position(|p| name == p)
+    }
+
+    /// Whether `func` names a helper: `Self::f` or `Model::f`.
+    fn helper_path(&self, func: &Expr) -> bool {
+        let Expr::Path(p) = func else { return false };
+        let segments: Vec<_> = p.path.segments.iter().collect();
+        matches!(segments.as_slice(), [ty, f]
+            if (ty.ident == "Self" || ty.ident == self.model)
+                && self.helpers.contains(&f.ident.to_string()))
+    }
+
+    /// Visits the index expressions of a parameter place, not the place itself.
+    fn visit_indices(&mut self, expr: &mut Expr) {
+        match expr {
+            Expr::Index(i) => {
+                self.visit_expr_mut(&mut i.index);
+                self.visit_indices(&mut i.expr);
+            }
+            Expr::Field(f) => self.visit_indices(&mut f.base),
+            Expr::Paren(p) => self.visit_indices(&mut p.expr),
+            _ => {}
         }
     }
 }
@@ -532,41 +646,6 @@ impl VisitMut for Dualize {
                 None => visit_mut::visit_expr_mut(self, expr),
             },
             _ => visit_mut::visit_expr_mut(self, expr),
-        }
-    }
-}
-
-impl Dualize {
-    /// The index of the `#[param]` field `self.<name>` reads, if it reads one.
-    fn seeded_parameter(&self, f: &syn::ExprField) -> Option<usize> {
-        let Member::Named(name) = &f.member else {
-            return None;
-        };
-        if !crate::syntax::is_self(&f.base) {
-            return None;
-        }
-        self.seeded.iter().position(|p| name == p)
-    }
-
-    /// Whether `func` names a helper: `Self::f` or `Model::f`.
-    fn helper_path(&self, func: &Expr) -> bool {
-        let Expr::Path(p) = func else { return false };
-        let segments: Vec<_> = p.path.segments.iter().collect();
-        matches!(segments.as_slice(), [ty, f]
-            if (ty.ident == "Self" || ty.ident == self.model)
-                && self.helpers.contains(&f.ident.to_string()))
-    }
-
-    /// Visits the index expressions of a parameter place, not the place itself.
-    fn visit_indices(&mut self, expr: &mut Expr) {
-        match expr {
-            Expr::Index(i) => {
-                self.visit_expr_mut(&mut i.index);
-                self.visit_indices(&mut i.expr);
-            }
-            Expr::Field(f) => self.visit_indices(&mut f.base),
-            Expr::Paren(p) => self.visit_indices(&mut p.expr),
-            _ => {}
         }
     }
 }
