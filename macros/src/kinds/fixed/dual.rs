@@ -335,8 +335,9 @@ fn dual_name(name: &Ident) -> Ident {
     format_ident!("__odyn_dual_{}", name)
 }
 
-/// The model's fields that are not state: its parameters, whatever their type.
-fn parameters(model: &Model<'_>) -> Vec<(Ident, Type)> {
+/// The model's fields that are not state, whatever their type: constants of the dual copies
+/// (but for the `#[param]` one seeded).
+fn constant_fields(model: &Model<'_>) -> Vec<(Ident, Type)> {
     model
         .item
         .fields
@@ -348,7 +349,8 @@ fn parameters(model: &Model<'_>) -> Vec<(Ident, Type)> {
 
 /// Rewrites the force's code to compute over `odyn::Dual`.
 struct Dualize {
-    parameters: Vec<(Ident, Type)>,
+    /// The fields that are not state, with their types ([`constant_fields`]).
+    constants: Vec<(Ident, Type)>,
     helpers: Vec<String>,
     model: Ident,
     state: Ident,
@@ -373,7 +375,7 @@ enum Holds {
 impl Dualize {
     fn new(model: &Model<'_>, helpers: &Helpers, params: &[&Ident]) -> Dualize {
         Dualize {
-            parameters: parameters(model),
+            constants: constant_fields(model),
             helpers: helpers.names().collect(),
             model: model.ident().clone(),
             state: model.state_ident(),
@@ -441,15 +443,11 @@ impl Dualize {
     /// The type of a place rooted at a parameter: `self.p`, then fields and indices.
     fn place_type(&self, expr: &Expr) -> Option<Type> {
         match expr {
-            Expr::Field(f) if crate::syntax::is_self(&f.base) => {
-                let Member::Named(name) = &f.member else {
-                    return None;
-                };
-                self.parameters
-                    .iter()
-                    .find(|(p, _)| p == name)
-                    .map(|(_, ty)| ty.clone())
-            }
+            Expr::Field(f) if let Some(name) = self_field(f) => self
+                .constants
+                .iter()
+                .find(|(p, _)| p == name)
+                .map(|(_, ty)| ty.clone()),
             Expr::Field(f) => {
                 let outer = self.place_type(&f.base)?;
                 let Member::Named(name) = &f.member else {
@@ -468,12 +466,7 @@ impl Dualize {
 
     /// The index of the `#[param]` field `self.<name>` reads, if it reads one.
     fn seeded_parameter(&self, f: &syn::ExprField) -> Option<usize> {
-        let Member::Named(name) = &f.member else {
-            return None;
-        };
-        if !crate::syntax::is_self(&f.base) {
-            return None;
-        }
+        let name = self_field(f)?;
         self.seeded.iter().position(|p| name == p)
     }
 
@@ -497,6 +490,14 @@ impl Dualize {
             Expr::Paren(p) => self.visit_indices(&mut p.expr),
             _ => {}
         }
+    }
+}
+
+/// The field `self.<name>` reads, if `f` is such a read.
+fn self_field(f: &syn::ExprField) -> Option<&Ident> {
+    match &f.member {
+        Member::Named(name) if crate::syntax::is_self(&f.base) => Some(name),
+        _ => None,
     }
 }
 
