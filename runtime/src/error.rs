@@ -22,6 +22,19 @@ pub enum Error {
         /// ½ Σ wₖ² rₖ² where it stopped.
         cost: f64,
     },
+    /// A fit ([`crate::fit::fit`]) cannot start from its initial guess: the model cannot be
+    /// solved there, or the cost there is not finite.
+    #[error(
+        "the fit cannot start from its initial guess ({parameters}): {problem}; give a guess \
+         closer to the data, or fit log-parameters (`FitOptions::log_parameters`) so the \
+         search moves rates by factors"
+    )]
+    FitStart {
+        /// The guess, `name = value` for each parameter.
+        parameters: String,
+        /// What failed there.
+        problem: String,
+    },
     /// A run-time input was rejected before any step was taken.
     #[error("invalid {field}: {reason}")]
     InvalidInput {
@@ -118,6 +131,27 @@ pub enum Error {
         cause: NewtonFailure,
         /// How many times the step was halved before giving up.
         halvings: u32,
+    },
+    /// An implicit method's Jacobian ∂f/∂y had a NaN or infinite entry at the state its step
+    /// started from: the model's derivative there is undefined or overflows (a square root or
+    /// logarithm at 0, a power of a negative number, a quotient by zero), and no step size
+    /// makes I − γh·J of such a J regular.
+    #[error(
+        "the Jacobian ∂f/∂y is not finite at t = {t:?}: the derivative of `{row}`'s rate with \
+         respect to `{column}` is {value:?}; the model's code has no finite derivative at this \
+         state (a square root or logarithm at zero, a power of a negative number, a quotient \
+         by zero, an overflow) — check the state and parameters there, or write the code so \
+         that its derivative exists"
+    )]
+    NonFiniteJacobian {
+        /// The time of the state.
+        t: f64,
+        /// The component whose rate's derivative is not finite (J's row).
+        row: String,
+        /// The component it was taken with respect to (J's column).
+        column: String,
+        /// The entry: NaN or ±∞.
+        value: f64,
     },
     /// The matrix I − c·J of a linearly implicit step was singular (c = γ·h): the step is
     /// retried smaller; past the smallest it is this error.

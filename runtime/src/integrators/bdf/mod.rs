@@ -14,6 +14,7 @@ use newton::Convergence;
 
 use crate::math::Transcendental;
 use super::DenseStep;
+use super::linearization::finite_jacobian;
 use super::{Integrator, Step, copies};
 use crate::{
     Error, Jacobian, Method, NewtonMatrix, NewtonOptions, Result, State, Stats,
@@ -232,9 +233,11 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
         let iters = loop {
             if !self.factored {
                 s.stats.factorizations += 1;
-                self.jacobian
-                    .factorize(c, &mut self.factors)
-                    .map_err(|_| Error::SingularMatrix { t, dt: h })?;
+                if self.jacobian.factorize(c, &mut self.factors).is_err() {
+                    // A J that is not finite, rather than a step too large for it.
+                    finite_jacobian(&self.jacobian, t, s.y)?;
+                    return Err(Error::SingularMatrix { t, dt: h });
+                }
                 self.factored = true;
                 self.factored_c = c;
             }
@@ -253,7 +256,10 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
                     // A matrix made with another c: refactorize with this one, same J, first.
                     self.factored = false;
                 }
-                Err(failure) if self.fresh => return Err(failure),
+                Err(failure) if self.fresh => {
+                    finite_jacobian(&self.jacobian, t, s.y)?;
+                    return Err(failure);
+                }
                 Err(_) => {
                     // An old J: evaluate it at the predictor and try again.
                     model.jacobian(t_new, &self.predict, &mut self.jacobian);
