@@ -18,13 +18,17 @@
 //! gives a result bit-identical to a one-machine run. With a batch scheduler's job array (e.g.
 //! Slurm's `sbatch --array=0-9`), each job runs `--shard $SLURM_ARRAY_TASK_ID/10` and a final job
 //! merges the ten files; the `monte_carlo` example's `--shard` and `--merge` flags do exactly this.
+mod file;
 mod members;
+mod merge;
 mod shard;
 mod statistics;
 
 pub use members::Members;
 pub use shard::{MemberRng, Shard, member_rng};
 pub use statistics::Statistics;
+
+pub(crate) use merge::bad_shards_text;
 
 use rayon::prelude::*;
 
@@ -127,6 +131,7 @@ impl Ensemble {
         let members = Members {
             members: self.members,
             seed: self.seed,
+            shard: self.shard,
             rows,
         };
         members.check()?;
