@@ -29,6 +29,7 @@
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::time::Instant;
 
 use clap::Parser;
 use odyn::ensemble::{Ensemble, MemberRng, Members, Shard};
@@ -117,10 +118,23 @@ fn run(cli: Cli) -> odyn::Result<()> {
         pi(&cli.out, cli.seed)?;
         ensemble.run(pendulum_member)?
     } else {
-        Members::merge_files(&cli.merge)?
+        let clock = Instant::now();
+        let members = Members::merge_files(&cli.merge)?;
+        println!(
+            "merged {} shard files, {} members, in {:.2} s",
+            cli.merge.len(),
+            members.rows.len(),
+            clock.elapsed().as_secs_f64()
+        );
+        members
     };
+    let clock = Instant::now();
     pendulum_report(&cli.out, &members)?;
-    println!("wrote {}/", cli.out.display());
+    println!(
+        "wrote {}/ (statistics and plot in {:.2} s)",
+        cli.out.display(),
+        clock.elapsed().as_secs_f64()
+    );
     Ok(())
 }
 
