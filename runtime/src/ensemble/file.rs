@@ -94,7 +94,11 @@ impl Members {
             .byte_headers()
             .map_err(|e| bad(format!("row 1: {e}")))?
             .clone();
-        if header.iter().take(HEADER.len()).ne(HEADER.map(str::as_bytes)) {
+        if header
+            .iter()
+            .take(HEADER.len())
+            .ne(HEADER.map(str::as_bytes))
+        {
             return Err(bad(format!(
                 "its header is `{}`, not `{},y0,…`: it is not a shard file written by \
                  `Members::write_csv`",

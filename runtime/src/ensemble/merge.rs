@@ -38,7 +38,10 @@ impl Members {
             ));
         }
         let (members, seed, count) = (first.members, first.seed, first.shard.count);
-        if let Some(other) = parts.iter().find(|p| (p.members, p.seed) != (members, seed)) {
+        if let Some(other) = parts
+            .iter()
+            .find(|p| (p.members, p.seed) != (members, seed))
+        {
             return Err(Error::invalid(
                 "shards",
                 format!(
@@ -66,7 +69,11 @@ impl Members {
         for part in &parts {
             *seen.entry(part.shard.index).or_default() += 1;
         }
-        let twice: Vec<u64> = seen.iter().filter(|&(_, &n)| n > 1).map(|(&k, _)| k).collect();
+        let twice: Vec<u64> = seen
+            .iter()
+            .filter(|&(_, &n)| n > 1)
+            .map(|(&k, _)| k)
+            .collect();
         let missing = missing_ranges(&seen, count);
         if !missing.is_empty() || !twice.is_empty() {
             return Err(Error::BadShards {
@@ -83,7 +90,11 @@ impl Members {
         let rows: Vec<(u64, Vec<f64>)> = parts.into_iter().flat_map(|p| p.rows).collect();
         if rows.len() as u64 != members {
             let missing = (0..members)
-                .zip(rows.iter().map(|(i, _)| *i).chain(std::iter::repeat(u64::MAX)))
+                .zip(
+                    rows.iter()
+                        .map(|(i, _)| *i)
+                        .chain(std::iter::repeat(u64::MAX)),
+                )
                 .find(|(want, have)| want != have)
                 .map_or(0, |(want, _)| want);
             return Err(Error::invalid(
@@ -143,13 +154,11 @@ pub(crate) fn bad_shards_text(
 ) -> String {
     const SHOWN: usize = 5;
     let shard = |index| Shard { index, count };
-    let members_of = |first: u64, last: u64| match (
-        shard(first).range(members),
-        shard(last).range(members),
-    ) {
-        (Ok(a), Ok(b)) => format!(" (members {})", span(&(a.start..b.end))),
-        _ => String::new(),
-    };
+    let members_of =
+        |first: u64, last: u64| match (shard(first).range(members), shard(last).range(members)) {
+            (Ok(a), Ok(b)) => format!(" (members {})", span(&(a.start..b.end))),
+            _ => String::new(),
+        };
     let mut text = Vec::new();
     let how_many: u64 = missing.iter().map(|r| r.end - r.start).sum();
     if how_many > 0 {
@@ -178,7 +187,11 @@ pub(crate) fn bad_shards_text(
             named.join(", "),
             if one { "is" } else { "are" },
             if one { "its task" } else { "their tasks" },
-            if one { "its file was" } else { "their files were" },
+            if one {
+                "its file was"
+            } else {
+                "their files were"
+            },
             if one { "it" } else { "them" },
         ));
     }
@@ -193,7 +206,11 @@ pub(crate) fn bad_shards_text(
         }
         text.push(format!(
             "{} given more than once: {}; give each shard's file once",
-            if twice.len() == 1 { "a shard is" } else { "shards are" },
+            if twice.len() == 1 {
+                "a shard is"
+            } else {
+                "shards are"
+            },
             named.join(", ")
         ));
     }
