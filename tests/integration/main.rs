@@ -23,6 +23,7 @@ mod differences;
 mod dual;
 mod energy;
 mod ensemble;
+mod ensemble_files;
 mod extremes;
 mod fit;
 mod fluids;
