@@ -237,6 +237,21 @@ pub enum Error {
         /// The operating-system error.
         source: std::io::Error,
     },
+    /// Shards to merge ([`crate::ensemble::Members::merge`]) that are not every shard of their
+    /// ensemble exactly once: some missing (their tasks failed, or their files were not
+    /// gathered), or given more than once. Nothing was merged: what is there would be a
+    /// silently smaller ensemble.
+    #[error("{}", crate::ensemble::bad_shards_text(*members, *count, missing, twice))]
+    BadShards {
+        /// Members in the whole ensemble.
+        members: u64,
+        /// The shards it was split into: the n of every shard k/n.
+        count: u64,
+        /// The k of the shards missing, as ascending ranges (`1..2` is shard 1 alone).
+        missing: Vec<std::ops::Range<u64>>,
+        /// The k of each shard given more than once, ascending.
+        twice: Vec<u64>,
+    },
     /// A step of one of the solvers beside the ODE runner ([`crate::xpbd::Xpbd`],
     /// [`crate::fluids::StableFluids`]) left its state NaN or infinite: the step was too large
     /// for its forces, or a setting too extreme. The solver's state is left as that step made

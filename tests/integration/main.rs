@@ -24,6 +24,7 @@ mod dual;
 mod dual_rules;
 mod energy;
 mod ensemble;
+mod ensemble_files;
 mod extremes;
 mod fit;
 mod fluids;
