@@ -249,7 +249,7 @@ fn solve_problem(error: &Error) -> String {
         Error::StepSizeTooSmall { t, dt, .. } => {
             format!("its solve's step size fell to {dt:e} at t = {t:?}")
         }
-        Error::MaxSteps { t, steps } => {
+        Error::MaxSteps { t, steps, .. } => {
             format!("its solve used up its {steps} steps by t = {t:?}")
         }
         other => format!("its solve failed ({other})"),
