@@ -104,3 +104,7 @@ pub mod prelude {
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 pub struct ReadmeDoctests;
+
+/// The guide's chapters, compiled and run as doctests (see the module).
+#[cfg(any(test, doctest))]
+mod guide;
