@@ -79,7 +79,10 @@ mod tests {
         files.sort();
         let mut listed: Vec<String> = CHAPTERS.iter().map(|c| (*c).to_owned()).collect();
         listed.sort();
-        assert_eq!(files, listed, "a chapter file without a SUMMARY.md line, or the reverse");
+        assert_eq!(
+            files, listed,
+            "a chapter file without a SUMMARY.md line, or the reverse"
+        );
     }
 
     #[test]
