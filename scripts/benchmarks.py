@@ -172,9 +172,12 @@ def machine() -> str:
 def commit() -> str:
     head = subprocess.run(["git", "rev-parse", "--short=10", "HEAD"], capture_output=True,
                           text=True, cwd=ROOT).stdout.strip()
-    dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"],
+    # Uncommitted changes to what is measured (sources, manifests, locks), not to the docs
+    # (BENCHMARKS.md itself changes as the run goes).
+    dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no", "--",
+                            "*.rs", "*Cargo.toml", "*Cargo.lock", "*.py", "*.c"],
                            capture_output=True, text=True, cwd=ROOT).stdout.strip()
-    return head + (" with uncommitted changes" if dirty else "")
+    return head + (" with uncommitted changes to the code" if dirty else "")
 
 
 # ------------------------------------------------------------------------------------------
