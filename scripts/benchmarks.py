@@ -10,6 +10,7 @@ anything else the command printed (calibrations, the scripts' tables) verbatim. 
 run keep what they had; the past-measurements section at the end is never touched.
 
     python3 scripts/benchmarks.py [--list] [SECTION ...]     # no SECTION: all of them
+    python3 scripts/benchmarks.py --rerender [SECTION ...]   # reformat from the kept logs
 """
 
 import os
@@ -32,8 +33,8 @@ SECTIONS = [
      ["cargo", "bench", "--bench", "generated_vs_hand"],
      "10⁶ steps of each generated model under each integrator, beside the same arithmetic "
      "written by hand in the same process (`generated`: the `Integrator` trait driven directly; "
-     "`runner`: the whole `Simulation::run`). ÷ baseline is the median over the group's "
-     "hand-written median: about 1 is parity."),
+     "`runner`: the whole `Simulation::run`). ÷ baseline is over the hand-written loop of the "
+     "same method: about 1 is parity."),
     ("deterministic", "The `deterministic` feature's cost",
      ["cargo", "bench", "--bench", "generated_vs_hand", "--features", "deterministic", "--",
       "double_pendulum"],
@@ -49,12 +50,20 @@ SECTIONS = [
      "One Baraff–Witkin step of the `cloth` example's sheet at rest (k = 10⁴) and its parts: "
      "kernel blocks, assembly, numeric Cholesky, solve; and half a second of the falling cloth, "
      "Cholesky against block-Jacobi CG."),
-    ("gray_scott", "Gray–Scott: one implicit step by size, Krylov solves, equal accuracy",
-     ["cargo", "bench", "--bench", "gray_scott"],
-     "One linearized implicit Euler step at Pearson's set-up (h = 10) and its parts, with the "
-     "sparse LU and with Krylov solves; ten full-Newton steps; the explicit rate; the runner's "
-     "overhead; and whole solves of \"coral\" on 64² cells at equal final error (the "
-     "calibration is printed first)."),
+    ("gray_scott", "Gray–Scott: one implicit step by size, and Krylov solves",
+     ["cargo", "bench", "--bench", "gray_scott", "--", "--skip", "equal_accuracy"],
+     "One linearized implicit Euler step at Pearson's set-up (h = 10) and its parts (`jacobian`, "
+     "`assembly`, `factorization` (sparse LU; `factorization_symmetric`: Cholesky of the "
+     "symmetric matrix at the background state), `solve`), the step with Krylov solves "
+     "(`step_krylov`: block Jacobi, `step_ilu`, `step_multigrid`), ten full-Newton steps "
+     "(`run_direct` against `run_krylov`), the explicit rate against a hand-written loop, and "
+     "1000 explicit steps through the runner against the bare integrator. The argument is the "
+     "grid's side."),
+    ("gray_scott_equal_accuracy", "Gray–Scott at equal error",
+     ["cargo", "bench", "--bench", "gray_scott", "--", "equal_accuracy"],
+     "Whole solves of \"coral\" on 64² cells to t = 500, each method at the loosest half-decade "
+     "tolerance whose final error is within the target (printed first) against a DOP853 "
+     "reference at rtol 1e-12; the SciPy side is `scipy_gray_scott` below."),
     ("fluids", "Stable Fluids: one step by size",
      ["cargo", "bench", "--bench", "fluids"],
      "One step of the `smoke` example's plume at 32² to 256² cells, and the projection's "
@@ -106,10 +115,12 @@ SECTIONS = [
      "The `fit_robertson` example's fit, and the same fit by `least_squares` driving "
      "`solve_ivp` on the same data, weights, guess and search variables (needs the example "
      "built in target/release, which this section does first)."),
-    ("scipy_tradeoff", "SciPy against odyn's fixed-step methods on the tradeoff scenes",
+    ("scipy_tradeoff", "SciPy against odyn on the tradeoff scenes",
      ["python3", "scripts/scipy_tradeoff.py"],
      "For each SciPy run (RK45, DOP853, Radau over a sweep of tolerances), odyn's fastest run "
-     "of the `tradeoff` example at least as accurate (this section runs the example first)."),
+     "of the `tradeoff` example at least as accurate, fixed-step or adaptive (this section runs "
+     "the example first). The SciPy right-hand sides are Python, so much of the gap is the "
+     "interpreter, not the algorithm."),
     ("compile_cost", "Compile cost of big models",
      ["python3", "scripts/compile_cost.py", "--cases",
       "dense:40,dense:200,chain:1000,dense:1000,stencil:1024,terms:3000",
@@ -118,6 +129,16 @@ SECTIONS = [
      "`#[system]` model alone (dependencies built beforehand): dense models of n² structural "
      "non-zeros, a written-out 1-D chain and 2-D stencil, and 3 000 terms in 30 `let`s."),
 ]
+
+# Divan arguments that are indices into a bench's own list, named for the table.
+LABELS = {
+    ("gray_scott_equal_accuracy", "equal_accuracy"): [
+        "Tsit5 1e-3", "Tsit5 1e-6", "DOP853 1e-3", "DOP853 1e-6", "Rosenbrock23 1e-3",
+        "Rosenbrock23 1e-6", "Rodas5P 1e-3", "Rodas5P 1e-6"],  # benches/gray_scott.rs, RACES
+}
+
+# Benchmarks a section's command skips (`--skip`), left out when its log is rendered again.
+SKIPS = {"gray_scott": ["equal_accuracy"]}
 
 # Commands a section needs run first (not timed, not recorded). Examples are built with the
 # bench profile (the release profile with line tables), so they reuse the benches' build in
@@ -141,8 +162,9 @@ more under load (the load average at each section's start is given). Compare wit
 the rows of a table ran side by side in one process — rather than across tables or dates. The
 peer comparisons are at equal accuracy: each solver's tolerance is calibrated to the same error
 against a reference, never set equal. Divan's times are per iteration of the benchmarked
-closure; "÷ baseline" is a row's median over its group's baseline median (the hand-written
-loop, or odyn's fastest method). The peer benches live in `peers/`, a workspace of their own
+closure; "÷ baseline" is a row's fastest time over its group's baseline's (the hand-written
+loop, or odyn's fastest method): on a loaded machine the fastest of many samples is the one
+least disturbed by other processes, where the medians move with the load. The peer benches live in `peers/`, a workspace of their own
 that `cargo test` never builds; the SciPy scripts need `pip install numpy scipy mpmath`, the
 CVODE peer `apt-get install libsundials-dev`.
 """
@@ -191,43 +213,72 @@ def seconds(text: str):
     return float(match.group(1)) * UNITS[match.group(2)] if match else None
 
 
+TIME = r"[\d.]+ (?:ps|ns|µs|us|ms|s)"
+
+
 def parse_divan(lines):
     """(rows, other): rows are (path, fastest, median, mean, samples) for every timed leaf of
-    divan's tree tables, other the lines that belong to none."""
-    rows, other, stack, in_table = [], [], [], False
+    divan's tree tables, other the lines that belong to none. A bench that prints while it runs
+    (a calibration on its first sample) splits its row: the name, the printed lines, then the
+    times on a line of their own; the row is put back together."""
+    rows, other, stack, in_table, pending = [], [], [], False, None
+
+    def add(path, fastest, cells):
+        # cells: [name and fastest, slowest, median, mean, samples, iterations]
+        if len(cells) >= 5 and cells[2].strip():
+            rows.append((path, fastest, cells[2].strip(), cells[3].strip(), cells[4].strip()))
+
     for line in lines:
         if re.search(r"\bfastest\s+│\s+slowest\s+│\s+median", line):
-            stack = [line.split()[0]]
-            in_table = True
+            stack, in_table, pending = [line.split()[0]], True, None
             continue
         branch = re.search(r"[├╰]─ ", line)
         if in_table and branch:
             depth = branch.start() // 3
             cells = line[branch.end():].split("│")
-            # The name, then (for a timed row) the fastest time: "10  173.5 µs".
-            head = re.match(r"^(.*?)\s+([\d.]+ (?:ps|ns|µs|us|ms|s))\s*$", cells[0].strip())
-            name = head.group(1) if head else cells[0].strip()
+            head = re.match(rf"^(.*?)\s+({TIME})\s*$", cells[0].strip())
+            if head:
+                name = head.group(1)
+            else:
+                parts = re.split(r"\s{2,}", cells[0].strip(), maxsplit=1)
+                name = parts[0]
+                if len(parts) == 2:
+                    other.append(parts[1])  # the start of what the bench printed
             stack = stack[: depth + 1] + [name]
-            if head and len(cells) >= 5 and cells[2].strip():
-                rows.append((stack[1:], head.group(2), cells[2].strip(), cells[3].strip(),
-                             cells[4].strip()))
+            pending = None
+            if head:
+                add(stack[1:], head.group(2), cells)
+            elif len(cells) == 1:
+                pending = stack[1:]  # its times come after what the bench printed
+            continue
+        resumed = re.match(rf"^\s*({TIME})\s*│(.*)$", line)
+        if in_table and pending and resumed:
+            add(pending, resumed.group(1), ["", *resumed.group(2).split("│")])
+            pending = None
             continue
         if in_table and "│" in line:
             continue  # a throughput or counter line under a row
         if line.startswith("Timer precision"):
             continue
-        in_table = False
+        if not pending:
+            in_table = False
         other.append(line)
     return rows, other
 
 
-def baseline(siblings):
-    """The row a group's medians are divided by: its hand-written variant, else odyn's fastest
-    variant when the group also holds other libraries' (the peers)."""
-    hand = [r for r in siblings if re.match(r"hand", r[0][-1])]
-    if hand:
-        return seconds(hand[0][2])
-    ours = [seconds(r[2]) for r in siblings if r[0][-1].startswith("odyn")]
+HAND = re.compile(r"^(?:(.*)_)?hand(?:_written)?$")
+
+
+def baseline(row, siblings):
+    """The fastest time a row is divided by: the hand-written variant beside it (`hand`,
+    `hand_written`, or `<prefix>_hand` for the rows named `<prefix>_…`), else odyn's fastest
+    variant when the group also holds other libraries' (the peers); None without one."""
+    name = row[0][-1]
+    for sibling in siblings:
+        match = HAND.match(sibling[0][-1])
+        if match and (match.group(1) is None or name.startswith(match.group(1) + "_")):
+            return seconds(sibling[1])
+    ours = [seconds(r[1]) for r in siblings if r[0][-1].startswith("odyn")]
     others = [r for r in siblings if not r[0][-1].startswith("odyn")]
     ours = [s for s in ours if s]
     if ours and others:
@@ -239,23 +290,33 @@ def table(rows) -> str:
     groups = {}
     for row in rows:
         groups.setdefault(tuple(row[0][:-1]), []).append(row)
-    with_ratio = any(baseline(g) for g in groups.values())
+    bases = [baseline(row, groups[tuple(row[0][:-1])]) for row in rows]
+    with_ratio = any(bases)
     head = "| benchmark | fastest | median | mean | samples |" + (" ÷ baseline |" if with_ratio else "")
     rule = "|---|---:|---:|---:|---:|" + ("---:|" if with_ratio else "")
     out = [head, rule]
-    for row in rows:
+    for row, base in zip(rows, bases):
         path, fastest, median, mean, samples = row
         cells = [" / ".join(path), fastest, median, mean, samples]
         if with_ratio:
-            base = baseline(groups[tuple(path[:-1])])
-            value = seconds(median)
+            value = seconds(fastest)
             cells.append(f"{value / base:.2f}" if base and value else "")
         out.append("| " + " | ".join(cells) + " |")
     return "\n".join(out)
 
 
+CARGO_STATUS = re.compile(r"^\s*(Compiling|Finished|Running|Blocking|Fresh|Updating|Locking|"
+                          r"Downloading|Downloaded|Adding|Checking|Executable)\b")
+
+
 def render(name, title, command, about, log_lines, started, load, finished_ok, elapsed) -> str:
+    log_lines = [line for line in log_lines if not CARGO_STATUS.match(line)]
     rows, other = parse_divan(log_lines)
+    rows = [r for r in rows if r[0][0] not in SKIPS.get(name, [])]
+    for i, row in enumerate(rows):
+        labels = LABELS.get((name, row[0][0]))
+        if labels and len(row[0]) == 2 and row[0][1].isdigit() and int(row[0][1]) < len(labels):
+            rows[i] = ([row[0][0], labels[int(row[0][1])]], *row[1:])
     while other and not other[0].strip():
         other.pop(0)
     while other and not other[-1].strip():
@@ -318,21 +379,42 @@ def run(name, title, command, about) -> str:
     print(f"benchmarks: {name}: {' '.join(command)}", flush=True)
     begin = time.time()
     log = LOGS / f"{name}.log"
+    # Both streams, in the order they were written: some benches print their calibration on
+    # standard error (cargo's own progress lines are dropped when the log is rendered).
     with open(log, "w", encoding="utf-8") as out:
-        done = subprocess.run(command, cwd=ROOT, stdout=out, stderr=subprocess.PIPE, text=True)
+        done = subprocess.run(command, cwd=ROOT, stdout=out, stderr=subprocess.STDOUT, text=True)
     elapsed = time.time() - begin
     lines = log.read_text(encoding="utf-8").splitlines()
-    if done.returncode != 0:
-        lines += [""] + done.stderr.splitlines()[-20:]
     print(f"benchmarks: {name}: {'ok' if done.returncode == 0 else 'FAILED'} in {elapsed:.0f} s",
           flush=True)
     return render(name, title, command, about, lines, started, load, done.returncode == 0,
                   elapsed)
 
 
+def rerender(name, title, command, about, old: str) -> str:
+    """The section rebuilt from its kept log and its old heading line (after a change to this
+    script's formatting), without running anything."""
+    meta = re.search(r"^`[^\n]*— (.*)$", old, re.M)
+    lines = (LOGS / f"{name}.log").read_text(encoding="utf-8").splitlines()
+    section = render(name, title, command, about, lines, "", 0.0, "**The command failed**" not in old,
+                     0.0)
+    if meta:
+        section = re.sub(r"^(`[^\n]*— ).*$", lambda m: m.group(1) + meta.group(1), section,
+                         count=1, flags=re.M)
+    return section
+
+
 def main() -> int:
     args = sys.argv[1:]
     known = {s[0]: s for s in SECTIONS}
+    if "--rerender" in args:
+        names = [a for a in args if a != "--rerender"] or [s[0] for s in SECTIONS]
+        sections, past = read_sections(OUT.read_text(encoding="utf-8"))
+        for name in names:
+            if name in sections and (LOGS / f"{name}.log").exists():
+                sections[name] = rerender(*known[name], sections[name])
+        write(sections, past)
+        return 0
     if "--list" in args:
         for name, title, command, _ in SECTIONS:
             print(f"{name:<22}{' '.join(command)}")
