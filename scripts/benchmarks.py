@@ -164,9 +164,9 @@ peer comparisons are at equal accuracy: each solver's tolerance is calibrated to
 against a reference, never set equal. Divan's times are per iteration of the benchmarked
 closure; "÷ baseline" is a row's fastest time over its group's baseline's (the hand-written
 loop, or odyn's fastest method): on a loaded machine the fastest of many samples is the one
-least disturbed by other processes, where the medians move with the load. The peer benches live in `peers/`, a workspace of their own
-that `cargo test` never builds; the SciPy scripts need `pip install numpy scipy mpmath`, the
-CVODE peer `apt-get install libsundials-dev`.
+least disturbed by other processes, where the medians move with the load. The peer benches
+live in `peers/`, a workspace of their own that `cargo test` never builds; the SciPy scripts
+need `pip install numpy scipy mpmath`, the CVODE peer `apt-get install libsundials-dev`.
 """
 
 PAST_MARK = "<!-- past measurements: kept by hand below this line -->"
