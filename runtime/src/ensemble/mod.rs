@@ -40,13 +40,14 @@ use crate::{Error, Result};
 /// An ensemble's settings: plain data with a [`Default`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct Ensemble {
-    /// Members in the whole ensemble (over all shards).
+    /// Members in the whole ensemble (over all shards), at least 1 (default 100).
     pub members: u64,
-    /// The base seed every member's generator derives from.
+    /// The base seed every member's generator derives from (default 0).
     pub seed: u64,
     /// The share of the members this run takes ([`Shard::WHOLE`] by default).
     pub shard: Shard,
-    /// Show a progress bar on standard error (not on WebAssembly, which has no terminal).
+    /// Show a progress bar on standard error (not on WebAssembly, which has no terminal;
+    /// default false). The results do not depend on it.
     pub progress: bool,
 }
 

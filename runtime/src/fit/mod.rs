@@ -48,7 +48,7 @@ pub struct FitOptions {
     /// accurate than the solves its residuals come from). The sensitivities ∂y/∂pⱼ are held
     /// to atol/|pⱼ| (CVODES's rule with p̄ = p; `Sensitive::tolerances`).
     pub rtol: f64,
-    /// See [`FitOptions::rtol`].
+    /// The absolute tolerance (default 1e-12); see [`FitOptions::rtol`].
     pub atol: f64,
     /// Whether the sensitivities count in the solves' error test (default true, CVODES's
     /// default); false sizes the steps for the state alone (`Sensitive::tolerances`).

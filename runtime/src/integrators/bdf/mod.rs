@@ -48,12 +48,9 @@ use crate::{
 ///   remaining error at most a tenth of the error test's allowance — with R the rate of
 ///   convergence (max(0.3·R, ‖Δ‖/‖Δ_prev‖), 1 at the first iteration of each step), abandoned
 ///   when ‖Δ‖ more than doubles. SciPy's tol is 300–1 000 times tighter at rtol 1e-6 and
-///   always takes two iterations. Measured on the Brusselator (README, "Big sparse systems"):
-///   at a final error of 1e-6 CVODE's test took half the solves and 0.62–0.72× the time at
-///   32², 64² and 128² cells. On small dense systems it was no better: at rtol 1e-6 on
-///   Robertson, HIRES and van der Pol μ = 1000 16–26 % more steps for 22–31 % fewer f
-///   evaluations and solves, and at equal error the stiff peers' bench moved 0.79–1.45× and
-///   Robertson's sensitivities to t = 10⁵ 1.59× slower, so dense models keep SciPy's.
+///   always takes two iterations. On the sparse systems CVODE's test halves the solves at
+///   equal error; on small dense systems it takes more steps for fewer evaluations and does not
+///   pay, so dense models keep SciPy's (the measurements are in `BENCHMARKS.md`).
 /// - **Reuse**: the LU of I − c·J is kept while c = h/αₖ stays within
 ///   [`NewtonOptions::refactor_ratio`] (default 0.3) of the c it was made with, each Newton
 ///   update then scaled by 2/(1 + c/c_old) (CVODE's rule: Hindmarsh et al., "SUNDIALS", ACM
