@@ -237,8 +237,8 @@ int main(int argc, char **argv) {
   if (strcmp(argv[3], "sweep") != 0) {
     double rtol = atof(argv[3]);
     double atol = argc > 4 ? atof(argv[4]) : rtol * d.p->atol_scale;
-    if (!(rtol > 0.0) || !(atol > 0.0)) {
-      fprintf(stderr, "RTOL and ATOL must be positive numbers\n");
+    if (!(rtol > 0.0 && isfinite(rtol)) || !(atol > 0.0 && isfinite(atol))) {
+      fprintf(stderr, "RTOL and ATOL must be positive finite numbers\n");
       return 2;
     }
     return isnan(report(&d, argv[2], rtol, atol, 1)) ? 1 : 0;
