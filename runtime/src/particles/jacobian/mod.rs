@@ -173,12 +173,16 @@ impl<const D: usize> NewtonMatrix for ParticleJacobian<D> {
                 .position(|x| !x.is_finite())
                 .map(|k| (n + D * a + k % D, column + k / D, block[k]))
         };
-        let pairs = self.ends.iter().zip(&self.pairs).find_map(|(&[a, b], blocks)| {
-            find(&blocks[0], a, a, false)
-                .or_else(|| find(&blocks[1], a, b, false))
-                .or_else(|| find(&blocks[2], a, a, true))
-                .or_else(|| find(&blocks[3], a, b, true))
-        });
+        let pairs = self
+            .ends
+            .iter()
+            .zip(&self.pairs)
+            .find_map(|(&[a, b], blocks)| {
+                find(&blocks[0], a, a, false)
+                    .or_else(|| find(&blocks[1], a, b, false))
+                    .or_else(|| find(&blocks[2], a, a, true))
+                    .or_else(|| find(&blocks[3], a, b, true))
+            });
         pairs.or_else(|| {
             self.diagonal.iter().enumerate().find_map(|(i, blocks)| {
                 find(&blocks[0], i, i, false).or_else(|| find(&blocks[1], i, i, true))
