@@ -50,8 +50,9 @@ pub use error::{Error, NewtonFailure, Rejection, Result};
 pub use fingerprint::Fingerprint;
 pub use integrators::Integrator;
 pub use linalg::{
-    DenseMatrix, FactorizeError, FaerDense, Krylov, KrylovCounts, LinearSolver, NewtonMatrix,
-    NewtonOptions, Preconditioner, SolveError, Solves,
+    DenseMatrix, FactorizeError, FaerDense, Krylov, KrylovCounts, LinearSolver, LinkLaplacian,
+    NewtonMatrix, NewtonOptions, ParticleSolve, Preconditioner, QuasiNewtonOptions, SolveError,
+    Solves,
 };
 pub use method::{Method, MethodInfo};
 pub use model::dual::Dual;

@@ -37,6 +37,7 @@ mod krylov;
 mod output;
 mod parameters;
 mod particles;
+mod quasi_newton;
 mod reference_dop853;
 mod rosenbrock;
 mod runner;

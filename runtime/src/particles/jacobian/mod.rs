@@ -2,6 +2,7 @@
 
 mod assembly;
 mod blocks;
+mod laplacian;
 
 use std::fmt;
 
@@ -119,6 +120,7 @@ impl<const D: usize> ParticleJacobian<D> {
 
 impl<const D: usize> NewtonMatrix for ParticleJacobian<D> {
     const COSTLY_SOLVES: bool = true;
+    const LINKS: bool = true;
 
     fn configure(&mut self, newton: &crate::NewtonOptions, solves: crate::Solves) {
         self.definite = newton.definite;
@@ -159,6 +161,17 @@ impl<const D: usize> NewtonMatrix for ParticleJacobian<D> {
             *x += c * dv;
         }
         finite(b)
+    }
+
+    /// Only when some link has stiffness: without it the Laplacian is M and the quasi-Newton
+    /// solve would be a gradient method.
+    fn link_laplacian(&self) -> Option<crate::LinkLaplacian> {
+        let laplacian = self.laplacian();
+        laplacian
+            .links
+            .iter()
+            .any(|&(_, k, _)| k > 0.0)
+            .then_some(laplacian)
     }
 
     /// In the first-order layout (every position, then every velocity): a force block of
