@@ -16,7 +16,8 @@
 //!
 //! and the time of each step.
 //!
-//! `cargo run --release --example cloth_solves [-- --sizes 32,64,128]`
+//! `cargo run --release --example cloth_solves [-- --sizes 32,64]` (about a minute at 32²; the
+//! converged step from the buckling cloth at 0.5 s takes most of it, and minutes at 64²)
 
 use std::process::ExitCode;
 use std::time::Instant;
@@ -33,7 +34,7 @@ use scenes::{Cloth, Sheet};
 #[command(about)]
 struct Cli {
     /// Particles per side, comma-separated.
-    #[arg(long, value_delimiter = ',', default_value = "32,64")]
+    #[arg(long, value_delimiter = ',', default_value = "32")]
     sizes: Vec<usize>,
     /// Checkpoint times (s), comma-separated and increasing.
     #[arg(long, value_delimiter = ',', default_value = "0.5,1,2,5")]
