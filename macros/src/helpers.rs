@@ -86,7 +86,6 @@ impl Helpers {
         let helper = self.get(&name)?;
         (helper.receiver == receiver).then(|| (helper, args.iter().collect()))
     }
-
 }
 
 impl crate::rewrite::Methods for Helpers {
