@@ -14,6 +14,8 @@
 //! - [`cloth`] — the Baraff–Witkin [`Cloth`] and the [`Sheet`] that builds it.
 //! - [`fields`] — Gray–Scott reaction–diffusion, [`GrayScott`].
 //! - [`fluids`] — the SPH [`dam_break`].
+//! - [`hybrid`] — MPM's scenes: the 88-line program's ([`hybrid::mpm88`]), jelly, water and
+//!   snow, a ringing block, a spinning disc, a snow column.
 //! - [`analysis`] — the fitted [`slope`] of a convergence study.
 //!
 //! Not published: the scenes serve odyn's own checks and examples; each example that uses one
@@ -24,6 +26,7 @@ pub mod chaos;
 pub mod cloth;
 pub mod fields;
 pub mod fluids;
+pub mod hybrid;
 pub mod orbits;
 pub mod oscillators;
 pub mod pendulums;

@@ -32,6 +32,7 @@ mod helpers;
 mod implicit;
 mod jacobian;
 mod krylov;
+mod mpm;
 mod output;
 mod parameters;
 mod particles;
