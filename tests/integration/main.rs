@@ -25,6 +25,7 @@ mod energy;
 mod ensemble;
 mod extremes;
 mod fit;
+mod flip;
 mod fluids;
 mod grid;
 mod hardening;

@@ -5,6 +5,7 @@
 //! |---|---|---|
 //! | SPH ([`crate::sph`]) | particles | free surfaces, splashes; no grid, neighbours searched every step |
 //! | Stable Fluids ([`crate::fluids`]) | grid | smoke, closed boxes; no free surface |
+//! | FLIP/APIC ([`flip`]) | particles, pressure on a MAC grid | incompressible liquids with free surfaces |
 //! | MPM ([`mpm`]) | particles, grid as scratch | solids and fluids together: jelly, water, snow |
 //!
 //! Both hybrids share the particle–grid transfer: quadratic B-spline weights (`bspline.rs`),
@@ -13,6 +14,7 @@
 //! the particles' positions, so a run is bit-identical on any number of threads.
 
 mod bspline;
+pub mod flip;
 pub mod mpm;
 mod strips;
 mod transfer;

@@ -17,10 +17,16 @@ use rayon::prelude::*;
 /// Rows of a strip: each parallel task scatters the particles of 4 stencil rows, writing 6.
 pub(crate) const ROWS: usize = 4;
 
-/// Particles from which the passes of a step run on rayon's threads; below, one thread does the
-/// same work in the same order (so the same bits), without handing each pass to the pool, which
-/// costs microseconds a pass from a thread outside it.
+/// Particles from which the passes of a step run on rayon's threads.
 pub(crate) const PARALLEL_FROM: usize = 4096;
+
+/// Whether a pass over `particles` particles runs on rayon's threads: from [`PARALLEL_FROM`]
+/// particles, in a pool of more than one thread. Otherwise the calling thread does the same
+/// work in the same order (so the same bits) without handing the pass to the pool, which costs
+/// microseconds a pass (a wake-up and a wait) from a thread outside it.
+pub(crate) fn parallel(particles: usize) -> bool {
+    particles >= PARALLEL_FROM && rayon::current_num_threads() > 1
+}
 
 /// The particles sorted by strip.
 #[derive(Clone, Debug, Default)]
@@ -92,7 +98,7 @@ impl Strips {
         };
         for parity in 0..2 {
             let skip = (parity * ROWS * row_len).min(grid.len());
-            if self.order.len() < PARALLEL_FROM {
+            if !parallel(self.order.len()) {
                 for (k, rows) in grid[skip..].chunks_mut(band).enumerate() {
                     strip(parity, k, rows);
                 }

@@ -7,7 +7,7 @@ use super::Mpm;
 use nalgebra::Vector2;
 
 use crate::hybrid::bspline::base_row;
-use crate::hybrid::strips::PARALLEL_FROM;
+use crate::hybrid::strips::parallel;
 use crate::{Error, Result};
 
 /// Particles a parallel task of the check takes.
@@ -54,7 +54,7 @@ impl Mpm {
             bad
         };
         let first = |a: Option<usize>, b: Option<usize>| a.into_iter().chain(b).min();
-        let bad = if n < PARALLEL_FROM {
+        let bad = if !parallel(n) {
             self.base
                 .chunks_mut(CHUNK)
                 .zip(self.x.chunks(CHUNK))

@@ -3,7 +3,7 @@
 use rayon::prelude::*;
 
 use super::{Mpm, Walls};
-use crate::hybrid::strips::PARALLEL_FROM;
+use crate::hybrid::strips::parallel;
 
 impl Mpm {
     /// vᵢ = pᵢ/mᵢ + Δt·g on every node with mass (others get 0), then the walls: a node with
@@ -51,7 +51,7 @@ impl Mpm {
             }
         };
         let rows = &mut self.grid[rows.start * nx..rows.end * nx];
-        if self.mass.len() < PARALLEL_FROM {
+        if !parallel(self.mass.len()) {
             rows.chunks_mut(nx).enumerate().for_each(update);
         } else {
             rows.par_chunks_mut(nx)

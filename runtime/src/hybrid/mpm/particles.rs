@@ -6,7 +6,7 @@ use rayon::prelude::*;
 
 use super::Mpm;
 use crate::hybrid::bspline::Stencil;
-use crate::hybrid::strips::PARALLEL_FROM;
+use crate::hybrid::strips::parallel;
 use crate::hybrid::transfer::Transfer;
 
 /// Particles a parallel task of the gather takes: fixed, so the work is split the same way on
@@ -25,7 +25,7 @@ impl Mpm {
         let high = now.end.max(self.written.end);
         if low < high {
             let rows = &mut self.grid[low * nx..high * nx];
-            if self.mass.len() < PARALLEL_FROM {
+            if !parallel(self.mass.len()) {
                 rows.fill([0.0; 3]);
             } else {
                 rows.par_chunks_mut(16 * nx)
@@ -118,7 +118,7 @@ impl Mpm {
             escaped
         };
         let first = |a: Option<usize>, b: Option<usize>| a.into_iter().chain(b).min();
-        if self.mass.len() < PARALLEL_FROM {
+        if !parallel(self.mass.len()) {
             self.x
                 .chunks_mut(CHUNK)
                 .zip(self.v.chunks_mut(CHUNK))
