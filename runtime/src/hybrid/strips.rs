@@ -80,15 +80,24 @@ impl Strips {
     /// Runs `scatter(rows, first_row, particles)` for every strip, even strips in parallel and
     /// then odd ones, `rows` the grid's rows from `first_row` on (`row_len` nodes each) that the
     /// strip may write, `particles` its particles in order.
+    ///
+    /// Each row is handed once to `prepare(rows, first_row)` before any particle adds to it, and
+    /// once to `finish(rows, first_row)` after every particle has: the even pass's bands of
+    /// 2·[`ROWS`] rows tile the grid, so each prepares its band and then scatters its strip;
+    /// the odd pass's bands, [`ROWS`] rows up, scatter their strip and then finish their band,
+    /// which no later strip reaches (strip s writes rows below (s + 1)·ROWS + 2 ≤ (s + 2)·ROWS);
+    /// the first [`ROWS`] rows are finished between the passes. Zeroing the grid and updating
+    /// its nodes ride in the scatter's two passes instead of passes of their own.
     pub(crate) fn scatter<T: Send>(
         &self,
         grid: &mut [T],
         row_len: usize,
+        prepare: impl Fn(&mut [T], usize) + Sync,
         scatter: impl Fn(&mut [T], usize, &[u32]) + Sync,
+        finish: impl Fn(&mut [T], usize) + Sync,
     ) {
         let band = 2 * ROWS * row_len;
-        let strip = |parity: usize, k: usize, rows: &mut [T]| {
-            let s = 2 * k + parity;
+        let strip = |s: usize, rows: &mut [T]| {
             if s + 1 < self.start.len() {
                 let particles = &self.order[self.start[s]..self.start[s + 1]];
                 if !particles.is_empty() {
@@ -96,18 +105,25 @@ impl Strips {
                 }
             }
         };
-        for parity in 0..2 {
-            let skip = (parity * ROWS * row_len).min(grid.len());
-            if !parallel(self.order.len()) {
-                for (k, rows) in grid[skip..].chunks_mut(band).enumerate() {
-                    strip(parity, k, rows);
-                }
-            } else {
-                grid[skip..]
-                    .par_chunks_mut(band)
-                    .enumerate()
-                    .for_each(|(k, rows)| strip(parity, k, rows));
-            }
+        let even = |(k, rows): (usize, &mut [T])| {
+            prepare(rows, 2 * k * ROWS);
+            strip(2 * k, rows);
+        };
+        let odd = |(k, rows): (usize, &mut [T])| {
+            strip(2 * k + 1, rows);
+            finish(rows, (2 * k + 1) * ROWS);
+        };
+        if !parallel(self.order.len()) {
+            grid.chunks_mut(band).enumerate().for_each(even);
+        } else {
+            grid.par_chunks_mut(band).enumerate().for_each(even);
+        }
+        let (head, rest) = grid.split_at_mut((ROWS * row_len).min(grid.len()));
+        finish(head, 0);
+        if !parallel(self.order.len()) {
+            rest.chunks_mut(band).enumerate().for_each(odd);
+        } else {
+            rest.par_chunks_mut(band).enumerate().for_each(odd);
         }
     }
 }
@@ -141,21 +157,34 @@ mod tests {
                 .build()
                 .unwrap();
             pool.install(|| {
-                let mut grid = vec![0.0f64; rows * 3];
-                strips.scatter(&mut grid, 3, |band, first, particles| {
-                    for &p in particles {
-                        let r = base[p as usize] as usize - first;
-                        for k in 0..3 {
-                            band[(r + k) * 3 + 1] += 1.0 / (1.0 + p as f64);
+                // Each row is prepared (set to 0 from NaN) before any particle adds to it, and
+                // finished (its first node counts the finishes) after all have.
+                let mut grid = vec![f64::NAN; rows * 3];
+                strips.scatter(
+                    &mut grid,
+                    3,
+                    |band, _| band.fill(0.0),
+                    |band, first, particles| {
+                        for &p in particles {
+                            let r = base[p as usize] as usize - first;
+                            for k in 0..3 {
+                                band[(r + k) * 3 + 1] += 1.0 / (1.0 + p as f64);
+                            }
                         }
-                    }
-                });
+                    },
+                    |band, _| {
+                        for row in band.chunks_mut(3) {
+                            row[0] += 1.0;
+                        }
+                    },
+                );
                 grid
             })
         };
         let one = run(1);
         assert_eq!(one, run(4));
-        let total: f64 = one.iter().sum();
+        assert!(one.chunks(3).all(|row| row[0] == 1.0 && row[2] == 0.0));
+        let total: f64 = one.chunks(3).map(|row| row[1]).sum();
         let expected: f64 = (0..5000).map(|p| 3.0 / (1.0 + p as f64)).sum();
         assert!((total - expected).abs() < 1e-12);
         assert_eq!(strips.touched_rows().end, rows);

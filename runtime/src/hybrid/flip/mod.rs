@@ -32,7 +32,7 @@ mod volume;
 
 use nalgebra::{Matrix2, Vector2};
 
-use super::strips::Strips;
+use super::strips::{Strips, parallel};
 use super::transfer::Transfer;
 use crate::{Error, Preconditioner, Result};
 use mac::{Cell, Mac};
@@ -231,6 +231,34 @@ impl Flip {
                 format!("must be finite and positive, got {dt:?}"),
             ));
         }
+        // A parallel step runs whole on one of rayon's threads (see `Mpm::step`).
+        if parallel(self.x.len()) {
+            rayon::scope(|_| self.advance(dt))?;
+        } else {
+            self.advance(dt)?;
+        }
+        self.steps += 1;
+        self.t += dt;
+        if let Some(p) = self.v.iter().position(|v| !v.iter().all(|c| c.is_finite())) {
+            return Err(Error::NotFinite {
+                solver: "Flip",
+                step: self.steps,
+                t: self.t,
+                dt,
+                component: format!("v[{p}]"),
+                value: if self.v[p].x.is_finite() {
+                    self.v[p].y
+                } else {
+                    self.v[p].x
+                },
+                advice: "take shorter steps (see `Flip::stable_dt`)",
+            });
+        }
+        Ok(())
+    }
+
+    /// The step's stages after the check of `dt`.
+    fn advance(&mut self, dt: f64) -> Result<()> {
         self.check_particles()?;
         let limit = 5.0 * self.stable_dt();
         if dt > limit {
@@ -266,23 +294,6 @@ impl Flip {
         self.correct_volume()?;
         self.mac.extrapolate(2);
         self.gather(dt);
-        self.steps += 1;
-        self.t += dt;
-        if let Some(p) = self.v.iter().position(|v| !v.iter().all(|c| c.is_finite())) {
-            return Err(Error::NotFinite {
-                solver: "Flip",
-                step: self.steps,
-                t: self.t,
-                dt,
-                component: format!("v[{p}]"),
-                value: if self.v[p].x.is_finite() {
-                    self.v[p].y
-                } else {
-                    self.v[p].x
-                },
-                advice: "take shorter steps (see `Flip::stable_dt`)",
-            });
-        }
         Ok(())
     }
 

@@ -85,9 +85,9 @@ impl Flip {
         let (x, v, c) = (&self.x, &self.v, &self.c);
         let Mac { u, v: vf, .. } = &mut self.mac;
         for (axis, (faces, row_len)) in [(u, nx + 1), (vf, nx)].into_iter().enumerate() {
-            faces.fill([0.0; 2]);
             let [ox, oy] = OFFSETS[axis];
-            self.strips[axis].scatter(faces, row_len, |band, first, particles| {
+            let zero = |rows: &mut [[f64; 2]], _| rows.fill([0.0; 2]);
+            let scatter = |band: &mut [[f64; 2]], first: usize, particles: &[u32]| {
                 for &p in particles {
                     let p = p as usize;
                     let s = Stencil::at([x[p].x * inv_h - ox, x[p].y * inv_h - oy]);
@@ -105,7 +105,8 @@ impl Flip {
                         }
                     }
                 }
-            });
+            };
+            self.strips[axis].scatter(faces, row_len, zero, scatter, |_, _| {});
         }
     }
 

@@ -12,7 +12,8 @@
 //!    Kirchhoff stress τₚ over the step, in one term (MLS's choice of the force's gradient
 //!    makes the two share a form).
 //! 2. **Grid**: velocity vᵢ = (momentum)/mᵢ + Δt·g; nodes within `wall` nodes of the box's
-//!    edge lose the velocity into the wall (or all of it, [`Walls::Sticky`]).
+//!    edge lose the velocity into the wall (or all of it, [`Walls::Sticky`]). Each row is
+//!    updated as soon as its particles have all scattered, inside the scatter's passes.
 //! 3. **Grid to particles**: vₚ = Σ wᵢₚvᵢ, Cₚ = 4/h²·Σ wᵢₚvᵢ(xᵢ − xₚ)ᵀ (which is also the
 //!    velocity gradient), xₚ += Δt·vₚ; the deformation follows, F ← (I + Δt·Cₚ)·F (or
 //!    J ← J·(1 + Δt·tr Cₚ) for a fluid), then snow's plasticity, then the stress τ for the next
@@ -25,8 +26,8 @@
 //!
 //! # Threads, deterministically
 //!
-//! Steps 2 and 3 are independent per node and per particle (rayon, fixed chunks). Step 1 is a
-//! scatter, which threads would race on: the particles are sorted into strips of grid rows and
+//! Step 3 is independent per particle (rayon, fixed chunks). Step 1 is a scatter, which threads
+//! would race on: the particles are sorted into strips of grid rows and
 //! strips of one parity scatter in parallel (`strips.rs`), so every node sums its particles in
 //! an order fixed by the positions. A run is bit-identical on any number of threads.
 
@@ -42,7 +43,7 @@ use nalgebra::{Matrix2, Vector2};
 
 pub use material::{Elastic, Fluid, Material, Snow};
 
-use super::strips::Strips;
+use super::strips::{Strips, parallel};
 use super::transfer::Transfer;
 use crate::{Error, Result};
 use material::Model;
@@ -239,17 +240,28 @@ impl Mpm {
                 format!("must be finite and positive, got {dt:?}"),
             ));
         }
-        self.check_particles()?;
-        self.strips.sort(&self.base, self.options.ny);
-        self.scatter(dt);
-        self.update_grid(dt);
-        let escaped = self.gather(dt);
+        // A parallel step runs whole on one of rayon's threads: its passes then fork from inside
+        // the pool, rather than each handing itself over from the caller's thread and waiting.
+        let escaped = if parallel(self.mass.len()) {
+            rayon::scope(|_| self.transfer(dt))?
+        } else {
+            self.transfer(dt)?
+        };
         self.steps += 1;
         self.t += dt;
         match escaped {
             None => Ok(()),
             Some(p) => Err(self.escape_error(p, dt)),
         }
+    }
+
+    /// The step's passes after the checks of `dt`: returns the first particle that left the
+    /// grid's reach, if any.
+    fn transfer(&mut self, dt: f64) -> Result<Option<usize>> {
+        self.check_particles()?;
+        self.strips.sort(&self.base, self.options.ny);
+        self.scatter(dt);
+        Ok(self.gather(dt))
     }
 
     /// The largest step the explicit update is stable at, about: 0.5·h/(c + |v|) at the

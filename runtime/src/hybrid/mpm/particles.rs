@@ -5,6 +5,7 @@ use nalgebra::{Matrix2, Vector2};
 use rayon::prelude::*;
 
 use super::Mpm;
+use super::grid::Update;
 use crate::hybrid::bspline::Stencil;
 use crate::hybrid::strips::parallel;
 use crate::hybrid::transfer::Transfer;
@@ -14,25 +15,33 @@ use crate::hybrid::transfer::Transfer;
 const CHUNK: usize = 512;
 
 impl Mpm {
-    /// Mass and momentum to the grid: each particle adds wᵢₚ·mₚ and
-    /// wᵢₚ·(mₚvₚ + Aₚ·(xᵢ − xₚ)), Aₚ = mₚCₚ (APIC only) − Δt·4/h²·Vₚ⁰τₚ.
+    /// Mass and momentum to the grid, and the grid update: each particle adds wᵢₚ·mₚ and
+    /// wᵢₚ·(mₚvₚ + Aₚ·(xᵢ − xₚ)), Aₚ = mₚCₚ (APIC only) − Δt·4/h²·Vₚ⁰τₚ; each row, once all
+    /// its particles have added to it, gets its velocities ([`Update::row`]). Rows no particle
+    /// reaches are zero.
     pub(super) fn scatter(&mut self, dt: f64) {
         let (nx, h) = (self.options.nx, self.options.cell);
         let inv_h = 1.0 / h;
         // Rows written last step or this one: every other node is zero already.
         let now = self.strips.touched_rows();
-        let low = now.start.min(self.written.start);
-        let high = now.end.max(self.written.end);
-        if low < high {
-            let rows = &mut self.grid[low * nx..high * nx];
-            if !parallel(self.mass.len()) {
-                rows.fill([0.0; 3]);
-            } else {
-                rows.par_chunks_mut(16 * nx)
-                    .for_each(|rows| rows.fill([0.0; 3]));
+        let clear = now.start.min(self.written.start)..now.end.max(self.written.end);
+        self.written = now.clone();
+        let update = Update::new(&self.options, dt);
+        let prepare = |rows: &mut [[f64; 3]], first: usize| {
+            let (low, high) = (
+                clear.start.max(first),
+                clear.end.min(first + rows.len() / nx),
+            );
+            if low < high {
+                rows[(low - first) * nx..(high - first) * nx].fill([0.0; 3]);
             }
-        }
-        self.written = now;
+        };
+        let finish = |rows: &mut [[f64; 3]], first: usize| {
+            let (low, high) = (now.start.max(first), now.end.min(first + rows.len() / nx));
+            for j in low..high {
+                update.row(j, &mut rows[(j - first) * nx..(j - first + 1) * nx]);
+            }
+        };
         let affine = if self.options.transfer == Transfer::Apic {
             1.0
         } else {
@@ -40,32 +49,33 @@ impl Mpm {
         };
         let impulse = -dt * 4.0 * inv_h * inv_h;
         let (x, v, c, mass, stress) = (&self.x, &self.v, &self.c, &self.mass, &self.stress);
-        self.strips
-            .scatter(&mut self.grid, nx, |band, first, particles| {
-                for &p in particles {
-                    let p = p as usize;
-                    let s = Stencil::at([x[p].x * inv_h, x[p].y * inv_h]);
-                    let m = mass[p];
-                    let [sxx, sxy, syy] = stress[p];
-                    let a = (affine * m) * c[p] + impulse * Matrix2::new(sxx, sxy, sxy, syy);
-                    // A·(xᵢ − xₚ) with xᵢ − xₚ = ((i, j) − fx)·h, split so the loop adds columns.
-                    let q = m * v[p] - h * (a * Vector2::new(s.fx[0], s.fx[1]));
-                    let (a0, a1) = (h * a.column(0), h * a.column(1));
-                    for j in 0..3 {
-                        let row = (s.base[1] + j - first) * nx + s.base[0];
-                        let qj = q + a1 * j as f64;
-                        let wy = s.w[1][j];
-                        for i in 0..3 {
-                            let w = s.w[0][i] * wy;
-                            let momentum = qj + a0 * i as f64;
-                            let node = &mut band[row + i];
-                            node[0] += w * momentum.x;
-                            node[1] += w * momentum.y;
-                            node[2] += w * m;
-                        }
+        let scatter = |band: &mut [[f64; 3]], first: usize, particles: &[u32]| {
+            for &p in particles {
+                let p = p as usize;
+                let s = Stencil::at([x[p].x * inv_h, x[p].y * inv_h]);
+                let m = mass[p];
+                let [sxx, sxy, syy] = stress[p];
+                let a = (affine * m) * c[p] + impulse * Matrix2::new(sxx, sxy, sxy, syy);
+                // A·(xᵢ − xₚ) with xᵢ − xₚ = ((i, j) − fx)·h, split so the loop adds columns.
+                let q = m * v[p] - h * (a * Vector2::new(s.fx[0], s.fx[1]));
+                let (a0, a1) = (h * a.column(0), h * a.column(1));
+                for j in 0..3 {
+                    let row = (s.base[1] + j - first) * nx + s.base[0];
+                    let qj = q + a1 * j as f64;
+                    let wy = s.w[1][j];
+                    for i in 0..3 {
+                        let w = s.w[0][i] * wy;
+                        let momentum = qj + a0 * i as f64;
+                        let node = &mut band[row + i];
+                        node[0] += w * momentum.x;
+                        node[1] += w * momentum.y;
+                        node[2] += w * m;
                     }
                 }
-            });
+            }
+        };
+        self.strips
+            .scatter(&mut self.grid, nx, prepare, scatter, finish);
     }
 
     /// Velocity and affine velocity from the grid, the move, the deformation and the stress of
