@@ -15,21 +15,21 @@
 //! `pi.png`, `pendulum.csv` (t, mean, standard deviation, 5 %, 50 %, 95 % quantiles) and
 //! `pendulum.png`.
 //!
-//! # On a cluster
+//! # Sharded: on a cluster, or under any driver
 //!
-//! The pendulum ensemble can be split over machines. Each job runs a deterministic share and
-//! writes its members' raw results; a last step merges them into statistics bit-identical to one
-//! machine's run. With a Slurm job array of 10 tasks:
-//!
-//! ```text
-//! sbatch --array=0-9 --wrap 'cargo run --release --example monte_carlo -- --shard $SLURM_ARRAY_TASK_ID/10'
-//! # after all ten finish (e.g. sbatch --dependency=afterok:<array job id>):
-//! cargo run --release --example monte_carlo -- --merge out/monte_carlo/pendulum-shard-*.csv
-//! ```
+//! `--shard k/n` runs shard k of n of the pendulum members (0 ≤ k < n ≤ members) and writes
+//! their raw results to `OUT/pendulum-shard-k-of-n.csv`, whole or not at all; `--merge FILES…`
+//! merges the files of every shard into the `pendulum.csv` and `pendulum.png` that the
+//! one-process run writes, byte for byte, and refuses (exit status 1, the shards named on
+//! standard error) when a shard is missing, given twice, cut short or written twice. The flags
+//! name no scheduler: a Slurm job array, GNU parallel or a Python loop hands out k and n. The
+//! contract and the Slurm recipe that `scripts/slurm.sh` runs on a real Slurm are in
+//! `docs/book/src/distributed.md`.
 
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::time::Instant;
 
 use clap::Parser;
 use odyn::ensemble::{Ensemble, MemberRng, Members, Shard};
@@ -71,10 +71,11 @@ struct Cli {
     /// Base seed of every member's generator.
     #[arg(long, default_value_t = 1)]
     seed: u64,
-    /// Run only share k of n of the pendulum members (`3/10`) and write their raw results.
+    /// Run only shard k of n of the pendulum members (`3/10`) and write their raw results to
+    /// OUT/pendulum-shard-k-of-n.csv.
     #[arg(long, value_parser = parse_shard)]
     shard: Option<Shard>,
-    /// Merge shard files into the pendulum statistics instead of running.
+    /// Merge the files of every shard into the pendulum statistics instead of running.
     #[arg(long, num_args = 1.., conflicts_with = "shard")]
     merge: Vec<PathBuf>,
     /// Output directory.
@@ -117,15 +118,23 @@ fn run(cli: Cli) -> odyn::Result<()> {
         pi(&cli.out, cli.seed)?;
         ensemble.run(pendulum_member)?
     } else {
-        let parts = cli
-            .merge
-            .iter()
-            .map(Members::read_csv)
-            .collect::<odyn::Result<Vec<_>>>()?;
-        Members::merge(parts)?
+        let clock = Instant::now();
+        let members = Members::merge_files(&cli.merge)?;
+        println!(
+            "merged {} shard files, {} members, in {:.2} s",
+            cli.merge.len(),
+            members.rows.len(),
+            clock.elapsed().as_secs_f64()
+        );
+        members
     };
+    let clock = Instant::now();
     pendulum_report(&cli.out, &members)?;
-    println!("wrote {}/", cli.out.display());
+    println!(
+        "wrote {}/ (statistics and plot in {:.2} s)",
+        cli.out.display(),
+        clock.elapsed().as_secs_f64()
+    );
     Ok(())
 }
 

@@ -3,7 +3,7 @@
 # loads it in headless Chromium (web/check.mjs), runs every panel's check and compares the
 # fingerprints with the native build's bit for bit; writes each panel's screenshot and the
 # costs to target/lab/. A page error or a mismatch fails. `--docs` also copies the screenshots
-# to docs/img/lab/ for the README. Installs Debian's chromium and the npm package
+# to docs/img/lab/ for the guide. Installs Debian's chromium and the npm package
 # playwright-core (web/package-lock.json) when they are missing.
 set -euo pipefail
 cd "$(dirname "$0")/.."

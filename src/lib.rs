@@ -1,6 +1,6 @@
 //! odyn: declarative ODE, particle and grid simulation with typed state and measured integrators.
 //!
-//! Annotate a model struct with `#[system]`, write its force (or derivative) and energy in plain
+//! Annotate a model struct with [`system`], write its force (or derivative) and energy in plain
 //! Rust in an impl block also marked `#[system]`, and run it:
 //!
 //! ```
@@ -25,61 +25,97 @@
 //! # fn main() -> odyn::Result<()> {
 //! let spring = Spring { x: 1.0, v: 0.0, k: 50.0, b: 0.5, m: 1.0 };
 //! let run = spring.simulate().duration(10.0).run()?; // the attribute's method and dt
-//! let rk4 = spring.simulate().integrator(Method::Rk4).dt(0.05).steps(400).run()?;
 //! assert_eq!(run.steps(), 625);
-//! // Damping is a force, so the energy only falls.
-//! assert!(rk4.last().energy.unwrap() < rk4.first().energy.unwrap());
-//! let SpringState { x, v } = rk4.last().state; // the generated typed state
+//! let SpringState { x, v } = run.last().state; // the generated typed state
 //! assert!(x.abs() < 1.0 && v.abs() < 10.0);
 //! # Ok(())
 //! # }
 //! ```
 //!
-//! - **Second-order models** mark `#[position]` and `#[velocity]` fields (paired in declaration
-//!   order, of equal shape) and define `fn acceleration(&self) -> T`, where `T` is the velocity's
-//!   type, or a tuple of them when there are several pairs.
-//! - **First-order models** mark `#[state]` fields and define `fn derivative(&self) -> <Model>State`.
-//! - Either function may take a second argument `t: f64`, the time.
-//! - `fn energy(&self) -> f64` is optional; when present it is recorded at every sample.
-//! - State fields are `f64`, `[f64; N]` or `SVector<f64, N>` (`Vector2<f64>`, `Vector3<f64>`…);
-//!   every other field is a parameter. The struct must come before its impl block, in the same
-//!   module.
-//! - Inside the functions, `self` is read only through its fields (`self.k`, `self.x`) and to
-//!   call helpers (below): odyn evaluates them at states other than the struct's own.
+//! # Where to read on
 //!
-//! - The macro also derives the exact Jacobian ∂f/∂y from the function's body, for implicit
-//!   Euler and the stability explorer. A body it cannot differentiate is a compile error at the
-//!   offending sub-expression; `#[system(jacobian = false)]` opts out and keeps the explicit
-//!   methods.
-//! - **Helper functions**: a method of the model's impl block marked `#[odyn::function]`
-//!   (`fn restoring(&self, x: f64) -> f64` reading parameters, or `fn drag(b: f64, v: f64) -> f64`)
-//!   may be called on the state (`self.restoring(self.x)`, `Self::drag(self.b, self.v)`): the
-//!   macro inlines its body where it differentiates, so the Jacobian stays exact through it. It
-//!   takes and returns numbers (`f64`, arrays and vectors of them, or a tuple), reads the state
-//!   only through its arguments, and may call other helpers but not itself. Marking a function
-//!   anywhere else is a compile error; see [`function`].
+//! - **The guide**, `docs/book/` in the repository (`mdbook serve docs/book`): one chapter per
+//!   topic — models, running, integrators, adaptive stepping and events, Jacobians, stiff
+//!   problems, linear solvers, fitting, stability, ensembles, determinism, particles, fields,
+//!   constraints and fluids. Every example in it is compiled and run by `cargo test`.
+//! - **The attribute's reference**: [`system`] (arguments, model kinds, generated items, and the
+//!   Rust the generated Jacobian follows) and [`function`] (helper functions).
+//! - **The runtime**, re-exported here: [`Simulation`] (a run's options) and [`Trajectory`] (what
+//!   it returns), [`Method`] (the integrators; one file each under [`integrators`]),
+//!   [`Model`], [`SecondOrder`], [`Jacobian`] and [`Parameters`] (what `#[system]` implements),
+//!   [`Error`] (every failure, typed), [`NewtonOptions`] and [`LinearSolver`] (implicit
+//!   solves), [`stability`] and [`work_precision`] (measuring a method on a model),
+//!   [`sensitivity`] and [`fit`], [`ensemble`], [`particles`], [`grid`], [`xpbd`], [`sph`],
+//!   [`fluids`], [`plot`] and [`output`].
+//! - **Benchmarks**: `BENCHMARKS.md` in the repository, each table with the command that
+//!   regenerates it.
 //!
-//! - **Particle models** have `Vec<Vector3<f64>>` (or `Vec<Vector2<f64>>`) `#[position]` and
-//!   `#[velocity]` fields, a `#[mass]` field `Vec<f64>`, optionally `#[pinned]` particles
-//!   (`Vec<usize>`), and forces as kernels: `#[pair(links)]` on
-//!   `fn(&self, link: &L, xa, xb[, va, vb]) -> Vector3<f64>` (the force on `a` of each link in
-//!   `self.links`; `b` gets its opposite) and `#[particle]` on
-//!   `fn(&self[, i: usize], x[, v]) -> Vector3<f64>`; `fn potential(&self) -> f64` is optional.
-//!   The macro differentiates each kernel into 3×3 blocks and implicit Euler solves with a
-//!   sparse Newton matrix; see [`particles`].
-//! - **Field models** have one or more `#[field]` grids ([`grid::Grid`], each with its
-//!   [`grid::Boundary`]) and one `#[cell]` method taking a [`grid::Stencil`] per field it reads,
-//!   named like the field, and returning each field's rate at the cell (`f64` for one field,
-//!   `[f64; F]` for F): `#[cell] fn rate(&self, u: Stencil) -> f64 { self.d * u.laplacian() }`.
-//!   The macro differentiates it into one block per stencil offset, and the runtime assembles
-//!   the sparse Jacobian from stencil × grid × boundary; see [`grid`].
+//! # Features
 //!
-//! The macro generates `<Model>State` (named fields, arithmetic, a zero-copy `SVector` view) and
-//! implements [`Model`] (and [`SecondOrder`], [`Jacobian`]), which [`Simulation`] runs with any
-//! [`Method`]. [`work_precision`] measures the speed/accuracy trade on a model and [`stability`]
-//! finds each method's largest stable step.
+//! - `plot` (default): PNG/SVG charts with plotters and a bundled font ([`plot`]).
+//! - `deterministic`: bit-identical runs across platforms; every transcendental function odyn
+//!   and the generated code call goes through the pure-Rust `libm` crate ([`math`]).
 
-pub use odyn_macros::{function, system};
+#[doc(inline)]
+#[doc = include_str!("system.md")]
+pub use odyn_macros::system;
+
+/// Marks a helper function of a model, which [`system`] reads and differentiates wherever the
+/// force calls it.
+///
+/// A helper is a method of the model's `#[system]` impl block: `fn restoring(&self, x: f64) -> f64`
+/// (reading parameters as `self.k`) or `fn drag(b: f64, v: f64) -> f64` (no receiver), called
+/// on the state as `self.restoring(self.x)` or `Self::drag(self.b, self.v)`. The macro inlines
+/// its body into the expression graph at each call, so the Jacobian is exact through it and
+/// through the helpers it calls; at run time the force calls it as the ordinary method it stays.
+///
+/// - It takes numbers (`f64`, `[f64; N]`, `VectorN<f64>`, `SVector<f64, N>`, by value or `&`)
+///   and returns one or a tuple of them.
+/// - Its body may use everything the force's may; its problems are reported at its own tokens.
+/// - It reads the state only through its arguments (`self.x` inside it is refused: odyn calls it
+///   at states other than the struct's own), and may not call itself, directly or through other
+///   helpers (inlining would never end).
+/// - It works in particle kernels and cell methods too, and under `jacobian = dual` it gets a
+///   dual-number copy.
+///
+/// ```
+/// use odyn::prelude::*;
+///
+/// /// Duffing oscillator with quadratic drag: ẍ = −x − c·x³ − b·ẋ·|ẋ|.
+/// #[system]
+/// pub struct Duffing { #[position] pub x: f64, #[velocity] pub v: f64, pub c: f64, pub b: f64 }
+///
+/// #[system]
+/// impl Duffing {
+///     fn acceleration(&self) -> f64 { self.restoring(self.x) + Self::drag(self.b, self.v) }
+///
+///     #[odyn::function]
+///     fn restoring(&self, x: f64) -> f64 { -x - self.c * x.powi(3) }
+///
+///     #[odyn::function]
+///     fn drag(b: f64, v: f64) -> f64 { -b * v * v.abs() }
+/// }
+///
+/// let duffing = Duffing { x: 2.0, v: -0.5, c: 40.0, b: 0.2 };
+/// let mut j = duffing.jacobian_matrix(&duffing.state());
+/// duffing.jacobian(0.0, &duffing.state(), &mut j);
+/// assert_eq!(j[(1, 0)], -1.0 - 3.0 * 40.0 * 4.0); // through `restoring`
+/// assert_eq!(j[(1, 1)], -2.0 * 0.2 * 0.5);        // through `drag`
+/// ```
+///
+/// Written anywhere else — on a free function, in another impl block — it is a compile error
+/// asking for the helper to be moved into the model's impl block: an attribute sees only its own
+/// item, so `#[system]` could not read a body written elsewhere.
+///
+/// ```compile_fail
+/// // error: `#[odyn::function]` marks a helper of a model, read by `#[system]`: move `cubic`
+/// // into the model's `#[system]` impl block …
+/// #[odyn::function]
+/// fn cubic(x: f64) -> f64 { x * x * x }
+/// ```
+#[doc(inline)]
+pub use odyn_macros::function;
+
 pub use odyn_runtime::*;
 
 /// What code generated by `#[system]` refers to; not a stable API.
@@ -104,3 +140,7 @@ pub mod prelude {
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 pub struct ReadmeDoctests;
+
+/// The guide's chapters, compiled and run as doctests (see the module).
+#[cfg(any(test, doctest))]
+mod guide;

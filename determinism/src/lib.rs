@@ -111,7 +111,7 @@ fn gray_scott_explicit() -> odyn::Result<u64> {
 /// Cholesky every step. At 32² the trajectories part: faer picks its dense kernels by CPU
 /// (FMA and AVX2 or AVX-512 on x86-64, other sums in another order on WebAssembly) once its
 /// supernodes are big enough to use them, so the bits of big sparse factorizations are not
-/// portable (README, "Determinism").
+/// portable (the guide's chapter *Determinism and the browser lab*).
 fn cloth_implicit_euler() -> odyn::Result<u64> {
     let (cloth, _) = Sheet::falling(12).build();
     let run = cloth

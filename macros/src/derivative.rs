@@ -149,13 +149,14 @@ impl Differentiator {
             Node::Call2(f, a, b) => {
                 let (da, db) = (self.differentiate(g, a, var), self.differentiate(g, b, var));
                 match f {
-                    // atan2(a, b)′ = (b·a′ − a·b′)/(a² + b²)
+                    // atan2(a, b)′ = (b·a′ − a·b′)/(a² + b²), as ((b/h)·a′ − (a/h)·b′)/h with
+                    // h = hypot(a, b): a² + b² overflows at 1e155 and underflows at 1e-162.
                     Func2::Atan2 => {
-                        let (p, q) = (g.mul(b, da), g.mul(a, db));
+                        let h = g.call2(Func2::Hypot, a, b);
+                        let (b_h, a_h) = (g.div(b, h), g.div(a, h));
+                        let (p, q) = (g.mul(b_h, da), g.mul(a_h, db));
                         let numerator = g.sub(p, q);
-                        let (a2, b2) = (g.powi(a, 2), g.powi(b, 2));
-                        let denominator = g.add(a2, b2);
-                        g.div(numerator, denominator)
+                        g.div(numerator, h)
                     }
                     // hypot(a, b)′ = (a·a′ + b·b′)/hypot(a, b), reusing the node e.
                     Func2::Hypot => {

@@ -66,24 +66,15 @@ mod validate;
 
 use proc_macro::TokenStream;
 
-/// Declares an odyn model: on a struct it generates the typed state; on the struct's impl block it
-/// reads the force (or derivative) and energy functions and implements the runtime traits.
-///
-/// See the `odyn` crate's documentation for the full syntax.
+/// *`odyn-macros` defines this attribute for the `odyn` crate, which re-exports it as
+/// `odyn::system` and documents it there (the code it generates names `odyn`'s items).*
 #[proc_macro_attribute]
 pub fn system(args: TokenStream, item: TokenStream) -> TokenStream {
     expand::system(args.into(), item.into()).into()
 }
 
-/// Marks a helper function of a model: a method of the model's `#[system]` impl block,
-/// `fn restoring(&self, x: f64) -> f64` (reading parameters as `self.k`) or
-/// `fn restoring(x: f64) -> f64`, whose body `#[system]` reads and differentiates wherever the
-/// force calls it (`self.restoring(self.x)`, `Self::restoring(self.x)`).
-///
-/// `#[system]` reads the attribute and removes it; written anywhere else, on a free function or
-/// in another impl block, it is a compile error asking for the helper to be moved into the
-/// model's impl block (an attribute sees only its own item, so a free function's body would be
-/// out of `#[system]`'s sight). See the `odyn` crate's documentation.
+/// *`odyn-macros` defines this attribute for the `odyn` crate, which re-exports it as
+/// `odyn::function` and documents it there.*
 #[proc_macro_attribute]
 pub fn function(args: TokenStream, item: TokenStream) -> TokenStream {
     expand::function(args.into(), item.into()).into()

@@ -22,6 +22,19 @@ pub enum Error {
         /// ½ Σ wₖ² rₖ² where it stopped.
         cost: f64,
     },
+    /// A fit ([`crate::fit::fit`]) cannot start from its initial guess: the model cannot be
+    /// solved there, or the cost there is not finite.
+    #[error(
+        "the fit cannot start from its initial guess ({parameters}): {problem}; give a guess \
+         closer to the data, or fit log-parameters (`FitOptions::log_parameters`) so the \
+         search moves rates by factors"
+    )]
+    FitStart {
+        /// The guess, `name = value` for each parameter.
+        parameters: String,
+        /// What failed there.
+        problem: String,
+    },
     /// A run-time input was rejected before any step was taken.
     #[error("invalid {field}: {reason}")]
     InvalidInput {
@@ -119,6 +132,27 @@ pub enum Error {
         /// How many times the step was halved before giving up.
         halvings: u32,
     },
+    /// An implicit method's Jacobian ∂f/∂y had a NaN or infinite entry at the state its step
+    /// started from: the model's derivative there is undefined or overflows (a square root or
+    /// logarithm at 0, a power of a negative number, a quotient by zero), and no step size
+    /// makes I − γh·J of such a J regular.
+    #[error(
+        "the Jacobian ∂f/∂y is not finite at t = {t:?}: the derivative of `{row}`'s rate with \
+         respect to `{column}` is {value:?}; the model's code has no finite derivative at this \
+         state (a square root or logarithm at zero, a power of a negative number, a quotient \
+         by zero, an overflow) — check the state and parameters there, or write the code so \
+         that its derivative exists"
+    )]
+    NonFiniteJacobian {
+        /// The time of the state.
+        t: f64,
+        /// The component whose rate's derivative is not finite (J's row).
+        row: String,
+        /// The component it was taken with respect to (J's column).
+        column: String,
+        /// The entry: NaN or ±∞.
+        value: f64,
+    },
     /// The matrix I − c·J of a linearly implicit step was singular (c = γ·h): the step is
     /// retried smaller; past the smallest it is this error.
     #[error(
@@ -131,25 +165,22 @@ pub enum Error {
         /// Its size.
         dt: f64,
     },
-    /// An adaptive run needed a step smaller than `dt_min` or the resolution of t: the problem
-    /// is stiff for this method, or its solution blows up or jumps at t.
+    /// An adaptive run needed a step smaller than `dt_min` or the resolution of t. What the
+    /// message advises follows from the method and from why the last steps were rejected
+    /// ([`Rejection`]): an explicit method failing its error test meets stiffness; an implicit
+    /// one meets a switch in f that no step resolves, or a solution that blows up.
     #[error(
-        "the step size fell to {dt:e} at t = {t:?}, below {}: the problem is probably stiff here \
-         (use an implicit method) or singular at t{}",
+        "{method} could not take a step at t = {t:?}: the step size fell to {dt:e}, below {}; {}",
         if dt_min >= resolution {
             format!("`dt_min` = {dt_min:e}")
         } else {
             format!("the resolution of t there ({resolution:e}, ten float spacings)")
         },
-        if dt_min >= resolution {
-            ", or `dt_min` is too large"
-        } else if t.abs() >= 1e6 {
-            ", or t is so large there that its floats are coarse: start the run nearer 0"
-        } else {
-            ""
-        }
+        step_advice(*method, *rejection, *dt_min >= *resolution, t.abs() >= 1e6)
     )]
     StepSizeTooSmall {
+        /// The method that was stepping.
+        method: Method,
         /// Where the run stopped.
         t: f64,
         /// The step it would have needed.
@@ -158,13 +189,24 @@ pub enum Error {
         dt_min: f64,
         /// The smallest step t can take there: ten spacings of floats at t.
         resolution: f64,
+        /// Why the last attempt was rejected.
+        rejection: Rejection,
     },
     /// An adaptive run used up its step budget (`AdaptiveOptions::max_steps`).
     #[error(
-        "{steps} steps were not enough to reach the end (stopped at t = {t:?}): the problem is \
-         probably stiff for this method (use an implicit one), or raise `max_steps`"
+        "{method} took {steps} steps and did not reach the end (stopped at t = {t:?}): {}",
+        if method.needs_jacobian() {
+            "its steps stayed short, so f is probably not smooth there (a switch such as `abs`, \
+             `signum`, `min`/`max` or an `if` on the state, which a step straddles over and \
+             over: stop the run there with an event and restart from it), or raise `max_steps`"
+        } else {
+            "the problem is probably stiff for this method (use an implicit one: Rodas5P or \
+             Bdf), or raise `max_steps`"
+        }
     )]
     MaxSteps {
+        /// The method that was stepping.
+        method: Method,
         /// Where the run stopped.
         t: f64,
         /// The budget, accepted and rejected steps together.
@@ -203,6 +245,21 @@ pub enum Error {
         /// The operating-system error.
         source: std::io::Error,
     },
+    /// Shards to merge ([`crate::ensemble::Members::merge`]) that are not every shard of their
+    /// ensemble exactly once: some missing (their tasks failed, or their files were not
+    /// gathered), or given more than once. Nothing was merged: what is there would be a
+    /// silently smaller ensemble.
+    #[error("{}", crate::ensemble::bad_shards_text(*members, *count, missing, twice))]
+    BadShards {
+        /// Members in the whole ensemble.
+        members: u64,
+        /// The shards it was split into: the n of every shard k/n.
+        count: u64,
+        /// The k of the shards missing, as ascending ranges (`1..2` is shard 1 alone).
+        missing: Vec<std::ops::Range<u64>>,
+        /// The k of each shard given more than once, ascending.
+        twice: Vec<u64>,
+    },
     /// A step of one of the solvers beside the ODE runner ([`crate::xpbd::Xpbd`],
     /// [`crate::fluids::StableFluids`]) left its state NaN or infinite: the step was too large
     /// for its forces, or a setting too extreme. The solver's state is left as that step made
@@ -228,6 +285,49 @@ pub enum Error {
         /// What to change, in the solver's terms.
         advice: &'static str,
     },
+}
+
+/// Why an adaptive run's last attempt at a step was rejected (see [`Error::StepSizeTooSmall`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Rejection {
+    /// Its error estimate exceeded the tolerances.
+    ErrorTest,
+    /// The matrix I − γh·J of its linear solves was singular.
+    SingularMatrix,
+    /// Its Newton iteration failed (BDF, implicit Euler).
+    Newton,
+    /// None yet: the step size proposed was already too small.
+    None,
+}
+
+/// What a step size that fell to nothing says about the problem.
+fn step_advice(method: Method, rejection: Rejection, dt_min: bool, large_t: bool) -> String {
+    if dt_min {
+        return "lower `dt_min`, or see why the method needs steps that small there".to_owned();
+    }
+    let mut advice = match (method.needs_jacobian(), rejection) {
+        (false, _) => "the problem is probably stiff here (use an implicit method: Rodas5P or \
+                       Bdf), or its solution blows up or jumps at t"
+            .to_owned(),
+        (true, Rejection::SingularMatrix) => "the matrix I − γh·J was singular at every step \
+             size tried: ∂f/∂y has an eigenvalue that keeps pace with 1/(γh) — check the \
+             Jacobian at this state"
+            .to_owned(),
+        (true, Rejection::Newton) => "Newton's method failed at every step size tried: f is \
+             not smooth here (a switch such as `abs`, `signum`, `min`/`max` or an `if` on the \
+             state), or the solution blows up at t"
+            .to_owned(),
+        (true, _) => "the error estimate stays above the tolerances however short the step: f \
+             switches abruptly here (`abs`, `signum`, `min`/`max` or an `if` on the state, \
+             which no step resolves: stop the run there with an event and restart from it), or \
+             the solution blows up at t"
+            .to_owned(),
+    };
+    if large_t {
+        advice.push_str("; or t is so large there that its floats are coarse: start the run nearer 0");
+    }
+    advice
 }
 
 /// Why an attempt at an implicit step's Newton iteration failed.

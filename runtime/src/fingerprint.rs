@@ -9,7 +9,7 @@ use crate::{State, Trajectory};
 /// Not cryptographic: it tells two runs apart when one last bit of one number differs (the
 /// tests show it), which is what comparing runs across platforms needs. With odyn's
 /// `deterministic` feature the same run gives the same fingerprint on x86-64 and WebAssembly
-/// (README, "Determinism across platforms").
+/// (the guide's chapter *Determinism and the browser lab*).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Fingerprint(u64);
 

@@ -49,7 +49,7 @@ pub use drive::{
     Action, AdaptiveOptions, Atol, Controller, Direction, Event, EventRecord, Progress, Stats,
     Tolerances,
 };
-pub use error::{Error, NewtonFailure, Result};
+pub use error::{Error, NewtonFailure, Rejection, Result};
 pub use fingerprint::Fingerprint;
 pub use integrators::Integrator;
 pub use linalg::{

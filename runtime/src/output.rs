@@ -11,6 +11,9 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use crate::{Error, Result, State, Trajectory};
 
 /// Writes `bytes` to `path` atomically, creating missing parent directories.
+///
+/// Errors: [`Error::Io`] when the directory cannot be created or the file written or renamed
+/// into place (a read-only target included); an older file at `path` is then left untouched.
 pub fn write_atomic(path: impl AsRef<Path>, bytes: &[u8]) -> Result<()> {
     let path = path.as_ref();
     with_temporary(path, |temp| {
@@ -85,7 +88,11 @@ impl Drop for Temporary {
 /// one row per recorded sample, trajectories one after another.
 ///
 /// The energy column is present when the first trajectory's model defines an energy. All
-/// trajectories share the state type, so the component columns agree.
+/// trajectories share the state type, so the component columns agree. Every number is printed
+/// so that it reads back to the same bits.
+///
+/// Errors: [`Error::InvalidInput`] for an empty list or a trajectory without samples;
+/// [`Error::Csv`] or [`Error::Io`] when the file cannot be written (see [`write_atomic`]).
 pub fn write_csv<S: State>(path: impl AsRef<Path>, runs: &[&Trajectory<S>]) -> Result<()> {
     let path = path.as_ref();
     let first = runs
@@ -122,6 +129,9 @@ pub fn write_csv<S: State>(path: impl AsRef<Path>, runs: &[&Trajectory<S>]) -> R
 }
 
 /// Writes a CSV table with a header row, atomically.
+///
+/// Errors: [`Error::Csv`] when a row cannot be encoded, [`Error::Io`] when the file cannot be
+/// written (see [`write_atomic`]).
 pub fn write_table<H: AsRef<str>, C: AsRef<str>>(
     path: impl AsRef<Path>,
     header: &[H],

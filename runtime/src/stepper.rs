@@ -32,8 +32,10 @@ impl<'m, M: Model, I: Integrator<M>> Stepper<'m, M, I> {
         Self::with_newton(model, state, t0, dt, &NewtonOptions::default())
     }
 
-    /// [`Stepper::new`] with the Newton options of implicit methods (checked, see
-    /// [`NewtonOptions::check`]).
+    /// [`Stepper::new`] with the Newton options of implicit methods.
+    ///
+    /// Errors: as [`Stepper::new`], and [`Error::InvalidInput`] for Newton options out of their
+    /// ranges (see [`NewtonOptions::check`]).
     pub fn with_newton(
         model: &'m M,
         state: M::State,

@@ -72,36 +72,67 @@ impl<S: State> Trajectory<S> {
         self.samples.iter().map(|s| s.t)
     }
 
-    /// The sample recorded at time `t` — a `save_at` time, a step, an event — found without an
-    /// exact float comparison: the last sample within 1e-9·max(1, |t|) of `t` (at an event that
-    /// changed the state, the one after the change). Samples are in time order, so this is a
+    /// The sample recorded at time `t` — a `save_at` time, a step, an event. A sample at exactly
+    /// `t` wins (at an event that changed the state, the one after the change). Otherwise the
+    /// nearest sample wins if it is within 1e-9 of the spacing between it and its neighbours,
+    /// or within four float spacings of `t` (so a time computed by other arithmetic, 0.1·3
+    /// against 0.3, still finds its sample) — never a tolerance that could reach a neighbouring
+    /// sample, however closely the samples are spaced. Samples are in time order, so this is a
     /// binary search.
     ///
-    /// Errors: [`Error::InvalidInput`] when no sample was recorded that near `t`, naming the
-    /// nearest one (record `t` with `.save_at(..)`, or read any time with [`Trajectory::at`]).
+    /// Errors: [`Error::InvalidInput`] for a non-finite `t`, or when no sample was recorded that
+    /// near `t`, naming the nearest one (record `t` with `.save_at(..)`, or read any time with
+    /// [`Trajectory::at`]).
     pub fn sample_at(&self, t: f64) -> Result<&Sample<S>> {
-        let tolerance = 1e-9 * t.abs().max(1.0);
-        let after = self.samples.partition_point(|s| s.t <= t + tolerance);
-        if let Some(sample) = after.checked_sub(1).map(|k| &self.samples[k])
-            && (sample.t - t).abs() <= tolerance
-        {
-            return Ok(sample);
+        if !t.is_finite() {
+            return Err(Error::invalid(
+                "sample time",
+                format!("t = {t:?} is not a time a sample can be recorded at"),
+            ));
         }
-        let nearest = self.samples[after.saturating_sub(1)..]
-            .iter()
-            .take(2)
-            .map(|s| s.t)
-            .min_by(|a, b| (a - t).abs().total_cmp(&(b - t).abs()));
+        let samples = &self.samples;
+        let after = samples.partition_point(|s| s.t <= t);
+        if after > 0 && samples[after - 1].t == t {
+            return Ok(&samples[after - 1]);
+        }
+        // The nearest distinct time on either side of t, and how far it is from its own
+        // neighbours.
+        let below = after.checked_sub(1).map(|k| samples[k].t);
+        let above = samples.get(after).map(|s| s.t);
+        let nearest = match (below, above) {
+            (Some(b), Some(a)) => {
+                if t - b <= a - t {
+                    b
+                } else {
+                    a
+                }
+            }
+            (Some(b), None) => b,
+            (None, Some(a)) => a,
+            (None, None) => {
+                return Err(Error::invalid("sample time", "the trajectory has no samples"));
+            }
+        };
+        let (first, end) = (
+            samples.partition_point(|s| s.t < nearest),
+            samples.partition_point(|s| s.t <= nearest),
+        );
+        let before = first.checked_sub(1).map(|k| nearest - samples[k].t);
+        let past = samples.get(end).map(|s| s.t - nearest);
+        let spacing = before.into_iter().chain(past).fold(f64::INFINITY, f64::min);
+        let tolerance = (1e-9 * spacing)
+            .min(f64::MAX)
+            .max(4.0 * f64::EPSILON * t.abs().max(nearest.abs()));
+        if (nearest - t).abs() <= tolerance {
+            // The last sample at that time (after an event's change).
+            return Ok(&samples[end - 1]);
+        }
         Err(Error::invalid(
             "sample time",
-            match nearest {
-                Some(near) => format!(
-                    "no sample was recorded within {tolerance:e} of t = {t:?} (the nearest is at \
-                     {near:?}); record it with `.save_at(..)`, or read any time with `at(t)` on a \
-                     run with dense output"
-                ),
-                None => "the trajectory has no samples".to_owned(),
-            },
+            format!(
+                "no sample was recorded at t = {t:?} (the nearest is at {nearest:?}); record it \
+                 with `.save_at(..)`, or read any time with `at(t)` on a run with dense output"
+            ),
         ))
     }
 

@@ -404,7 +404,7 @@ fn a_stiff_problem_under_tsit5_hits_the_step_budget() {
         .run()
         .unwrap_err();
     assert!(
-        matches!(error, Error::MaxSteps { steps: 20_000, t } if t > 0.0 && t < 1e5),
+        matches!(error, Error::MaxSteps { steps: 20_000, t, .. } if t > 0.0 && t < 1e5),
         "{error}"
     );
     assert!(error.to_string().contains("stiff"), "{error}");

@@ -291,7 +291,7 @@ fn step_counts_match_scipys_bdf() {
 /// LUs than SciPy's (refactorize whenever h or the order changes) for about the same steps and
 /// error. Measured: 67 / 71 / 212 LU against 81 / 85 / 286 (Robertson, HIRES, van der Pol),
 /// 391 / 325 / 1218 steps against 392 / 327 / 1257, errors 5.6e-6 / 9.6e-6 / 1.7e-5 against
-/// 6.0e-6 / 8.6e-6 / 1.2e-5 (BDF's error is 4–27× rtol either way, README).
+/// 6.0e-6 / 8.6e-6 / 1.2e-5 (BDF's error is 4–27× rtol either way; the guide's *Stiff problems*).
 #[test]
 fn jacobians_and_factorizations_are_reused() {
     for ((name, stats, error), (_, scipy, scipy_error)) in

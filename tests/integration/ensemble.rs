@@ -21,7 +21,7 @@ fn pi_estimate(n: u64, rng: &mut MemberRng) -> f64 {
     4.0 * hits as f64 / n as f64
 }
 
-fn pi_ensemble(members: u64, shard: Shard) -> Members {
+pub(super) fn pi_ensemble(members: u64, shard: Shard) -> Members {
     let ensemble = Ensemble {
         members,
         seed: 2026,
@@ -81,13 +81,23 @@ fn shards_merge_bit_identical_to_one_run_through_files() {
 #[test]
 fn shards_that_do_not_add_up_are_typed_errors() {
     let part = |index| pi_ensemble(10, Shard { index, count: 3 });
+    // Shard 1 of 3 of 10 members is members ⌊10/3⌋ … ⌊20/3⌋ − 1 = 3 … 5.
     let missing = Members::merge(vec![part(0), part(2)]).unwrap_err();
     assert!(
-        missing.to_string().contains("member 3 is missing"),
+        matches!(&missing, Error::BadShards { members: 10, count: 3, missing, twice }
+            if missing.as_slice() == std::slice::from_ref(&(1..2)) && twice.is_empty())
+            && missing
+                .to_string()
+                .contains("shard 1/3 (members 3 … 5) is missing"),
         "{missing}"
     );
     let twice = Members::merge(vec![part(0), part(1), part(1), part(2)]).unwrap_err();
-    assert!(twice.to_string().contains("appears twice"), "{twice}");
+    assert!(
+        matches!(&twice, Error::BadShards { missing, twice, .. }
+            if missing.is_empty() && *twice == [1])
+            && twice.to_string().contains("1/3 (members 3 … 5)"),
+        "{twice}"
+    );
     let mut other = part(1);
     other.seed += 1;
     let mixed = Members::merge(vec![part(0), other, part(2)]).unwrap_err();
@@ -230,7 +240,7 @@ fn monte_carlo_error_falls_as_one_over_sqrt_n() {
 // ----- bad input ---------------------------------------------------------------------------
 
 /// A directory of its own per test (tests run in parallel in one process).
-fn scratch(test: &str) -> std::path::PathBuf {
+pub(super) fn scratch(test: &str) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("odyn-ensemble-{}-{test}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     dir
@@ -356,7 +366,7 @@ fn an_unreadable_shard_file_says_what_is_wrong_with_it() {
     );
 
     let mut lines: Vec<String> = text.lines().map(str::to_owned).collect();
-    lines[1] = "0,4,2026,3.1,abc".to_owned();
+    lines[1] = "0,4,2026,0,1,3.1,abc".to_owned();
     std::fs::write(&path, lines.join("\n") + "\n").unwrap();
     let nan = Members::read_csv(&path).unwrap_err().to_string();
     assert!(
@@ -373,6 +383,7 @@ fn merging_an_empty_shard_says_it_is_empty() {
     let empty = Members {
         members: 0,
         seed: 0,
+        shard: Shard::WHOLE,
         rows: Vec::new(),
     };
     for parts in [

@@ -268,3 +268,163 @@ fn standard_errors_cover_the_truth_over_repeated_noise() {
         );
     }
 }
+
+/// ċ = −k·(c − level): relaxation to a level, at rate k.
+#[system]
+#[derive(Clone, Copy, Debug)]
+struct Relax {
+    #[state]
+    c: f64,
+    #[param]
+    k: f64,
+    #[param]
+    level: f64,
+}
+
+#[system]
+impl Relax {
+    fn derivative(&self) -> RelaxState {
+        RelaxState {
+            c: -self.k * (self.c - self.level),
+        }
+    }
+}
+
+/// Ten samples between 1e-10 and 1e-9 of a relaxation at k = 1e9: the fit once read all ten
+/// from the one sample within 1e-9 of them (k = 9.8e8, level 1.04 instead of 1e9 and 0.5);
+/// it reads each sample at its own time now. The data are the closed form
+/// c = level + (c₀ − level)·e^{−kt}.
+#[test]
+fn closely_spaced_samples_are_read_at_their_own_times() {
+    let (k, level) = (1e9, 0.5);
+    let times: Vec<f64> = (1..=10).map(|i| i as f64 * 1e-10).collect();
+    let values = times
+        .iter()
+        .map(|t| level + (1.0 - level) * (-k * t).exp())
+        .collect();
+    let data = Data {
+        component: 0,
+        times,
+        values,
+        weights: Vec::new(),
+    };
+    let guess = Relax {
+        c: 1.0,
+        k: 0.7e9,
+        level: 0.6,
+    };
+    let options = FitOptions {
+        log_parameters: true,
+        ..FitOptions::default()
+    };
+    let found = fit(&guess, &[data], &options).unwrap();
+    assert!(
+        (found.parameters[0] / k - 1.0).abs() < 1e-6 && (found.parameters[1] - level).abs() < 1e-6,
+        "{found:?}"
+    );
+}
+
+/// What once returned Ok without fitting: a value of 1e300 (cost ∞ at the guess, parameters
+/// unchanged), all weights zero (cost 0 after one iteration, NaN standard errors); and options
+/// that were not checked (a NaN step tolerance ran out the iterations, a fixed-step method was
+/// told to take a `dt` it cannot be given).
+#[test]
+fn fits_that_cannot_fit_are_typed_errors() {
+    let truth = Decay { c: 2.0, k: 0.7 };
+    let data = samples(&truth, 0, &times(10, 2.0), 0.0, 1);
+    let options = FitOptions::default();
+    let mut huge = data.clone();
+    huge.values[3] = 1e300;
+    match fit(&truth, &[huge], &options) {
+        Err(Error::FitStart { parameters, problem }) => {
+            assert!(parameters.contains("k = 7e-1") && problem.contains("sample 3"), "{problem}");
+        }
+        other => panic!("expected FitStart, got {other:?}"),
+    }
+    let zero = Data {
+        weights: vec![0.0; 10],
+        ..data.clone()
+    };
+    let error = fit(&truth, &[zero], &options).unwrap_err();
+    assert!(
+        matches!(&error, Error::InvalidInput { reason, .. } if reason.contains("non-zero weight")),
+        "{error}"
+    );
+    let bad_options = [
+        FitOptions {
+            step_tolerance: f64::NAN,
+            ..FitOptions::default()
+        },
+        FitOptions {
+            method: Method::Rk4,
+            ..FitOptions::default()
+        },
+        FitOptions {
+            rtol: -1.0,
+            ..FitOptions::default()
+        },
+        FitOptions {
+            max_iterations: 0,
+            ..FitOptions::default()
+        },
+    ];
+    for (options, field) in bad_options.iter().zip([
+        "FitOptions::step_tolerance",
+        "FitOptions::method",
+        "FitOptions::rtol",
+        "FitOptions::max_iterations",
+    ]) {
+        match fit(&truth, std::slice::from_ref(&data), options) {
+            Err(Error::InvalidInput { field: f, .. }) => assert_eq!(f, field),
+            other => panic!("{field}: expected InvalidInput, got {other:?}"),
+        }
+    }
+    // A guess whose solve blows up names the parameters, not the sensitivity component, and
+    // does not advise a dt.
+    let blowing = Decay { c: 2.0, k: -800.0 };
+    match fit(&blowing, std::slice::from_ref(&data), &options) {
+        Err(error @ Error::FitStart { .. }) => {
+            let text = error.to_string();
+            assert!(text.contains("k = -8e2") && !text.contains("dt"), "{text}");
+        }
+        other => panic!("expected FitStart, got {other:?}"),
+    }
+}
+
+/// ẍ = −k·x: an undamped oscillator whose one parameter sets its frequency.
+#[system]
+#[derive(Clone, Copy, Debug)]
+struct Tone {
+    #[position]
+    x: f64,
+    #[velocity]
+    v: f64,
+    #[param]
+    k: f64,
+}
+
+#[system]
+impl Tone {
+    fn acceleration(&self) -> f64 {
+        -self.k * self.x
+    }
+}
+
+/// The reduced χ² of a fit and its consistency with weights 1/σ: from a guess near the truth
+/// the oscillator's frequency is found (χ²/ν near 1, consistent); from one far from it, a local
+/// minimum of the oscillating residuals (χ²/ν in the thousands, inconsistent). ν = 100 − 1.
+#[test]
+fn a_local_minimum_is_reported_inconsistent_with_its_noise() {
+    let truth = Tone { x: 1.0, v: 0.0, k: 50.0 };
+    let sigma = 0.01;
+    let data = samples(&truth, 0, &times(100, 10.0), sigma, 3);
+    let near = fit(&Tone { k: 48.0, ..truth }, std::slice::from_ref(&data), &FitOptions::default())
+        .unwrap();
+    assert_eq!(near.degrees_of_freedom, 99);
+    assert!(near.consistent() && (near.parameters[0] - 50.0).abs() < 0.1, "{near:?}");
+    // From k = 40 the search stops at k ≈ 39.6, a minimum of the residuals' oscillation in k.
+    let far = fit(&Tone { k: 40.0, ..truth }, std::slice::from_ref(&data), &FitOptions::default())
+        .unwrap();
+    assert!((far.parameters[0] - 50.0).abs() > 5.0, "{far:?}");
+    assert!(!far.consistent() && far.reduced_chi_squared > 100.0, "{far:?}");
+}

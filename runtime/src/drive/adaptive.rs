@@ -2,6 +2,8 @@
 //! Hairer's algorithm, landing on the end and on time events.
 
 use super::*;
+use crate::error::Rejection;
+use crate::{Error, Method};
 
 impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
     /// Steps adaptively until `t_end`, keeping the error estimate of every step within
@@ -19,8 +21,9 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
         let mut h = self.track.first_step(tolerances, control, order)?;
         let mut control_state = ControllerState::new(control.controller.unwrap_or(controller));
         let mut until_record = self.track.recording.every;
+        let mut rejection = Rejection::None;
         while self.track.t < t_end {
-            let aim = self.track.aim(h, t_end, control)?;
+            let aim = self.track.aim(h, t_end, control, (I::METHOD, rejection))?;
             // A method that sizes its own steps (`Integrator::next_step`) overrides the
             // controller after each outcome; the caps and landings of `aim` still apply.
             match self.attempt(aim.h, Some(tolerances)) {
@@ -35,14 +38,19 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
                 }
                 Ok(err) => {
                     self.track.stats.rejected += 1;
+                    rejection = Rejection::ErrorTest;
                     let controlled = control_state.rejected(aim.h, err);
                     h = self.integrator.next_step().unwrap_or(controlled);
                     if h < aim.floor {
-                        return Err(self.track.too_small(h, control));
+                        return Err(self.track.too_small(h, control, (I::METHOD, rejection)));
                     }
                 }
                 Err(error) if error.is_retriable() => {
                     self.track.stats.rejected += 1;
+                    rejection = match error {
+                        Error::SingularMatrix { .. } => Rejection::SingularMatrix,
+                        _ => Rejection::Newton,
+                    };
                     h = self.integrator.next_step().unwrap_or(0.25 * aim.h);
                 }
                 Err(error) => return Err(error),
@@ -97,21 +105,30 @@ impl<M: Model> Track<'_, '_, M> {
     /// end or a time event (stretched by up to 1 % to get there rather than leave a sliver of a
     /// step, as Hairer's codes do). Errors when the step collapsed below its floor or the step
     /// budget ran out.
-    fn aim(&self, h: f64, t_end: f64, control: &AdaptiveOptions) -> Result<Aim> {
+    fn aim(
+        &self,
+        h: f64,
+        t_end: f64,
+        control: &AdaptiveOptions,
+        why: (Method, Rejection),
+    ) -> Result<Aim> {
         let stop = t_end.min(self.watch.next_stop());
-        let mut h = h.min(control.dt_max);
+        // A proposal below the resolution of t (a low-order first step at t = 1e12) is tried at
+        // the resolution: only a step rejected there has nowhere smaller to go (`run_adaptive`).
+        let floor = control.dt_min.max(10.0 * ulp(self.t));
+        let mut h = h.max(10.0 * ulp(self.t)).min(control.dt_max);
         let t1 = if self.t + 1.01 * h >= stop {
             h = stop - self.t;
             stop
         } else {
             self.t + h
         };
-        let floor = control.dt_min.max(10.0 * ulp(self.t));
         if h < floor && t1 != stop {
-            return Err(self.too_small(h, control));
+            return Err(self.too_small(h, control, why));
         }
         if self.stats.steps + self.stats.rejected >= control.max_steps {
             return Err(Error::MaxSteps {
+                method: why.0,
                 t: self.t,
                 steps: control.max_steps,
             });
@@ -119,13 +136,21 @@ impl<M: Model> Track<'_, '_, M> {
         Ok(Aim { h, t1, floor })
     }
 
-    /// The error for a step of `dt` from the current time, below its floor.
-    fn too_small(&self, dt: f64, control: &AdaptiveOptions) -> Error {
+    /// The error for a step of `dt` from the current time, below its floor, of `method` after
+    /// a `rejection`.
+    fn too_small(
+        &self,
+        dt: f64,
+        control: &AdaptiveOptions,
+        (method, rejection): (Method, Rejection),
+    ) -> Error {
         Error::StepSizeTooSmall {
+            method,
             t: self.t,
             dt,
             dt_min: control.dt_min,
             resolution: 10.0 * ulp(self.t),
+            rejection,
         }
     }
 

@@ -28,7 +28,7 @@ mod track;
 pub use crate::integrators::DenseStep;
 pub use controller::{AdaptiveOptions, Controller};
 pub use dense::DenseOutput;
-pub use events::{Action, Direction, Event, EventRecord, StateChange};
+pub use events::{Action, Direction, Event, EventRecord, Jump, StateChange};
 pub use stats::Stats;
 pub use tolerances::{Atol, Tolerances};
 

@@ -144,6 +144,7 @@ impl<'a, 'm, M: Model> Track<'a, 'm, M> {
                 | Error::Diverged { .. }
                 | Error::NewtonDidNotConverge { .. }
                 | Error::SingularMatrix { .. }
+                | Error::NonFiniteJacobian { .. }
         );
         if !(blames_the_step && self.t == self.t0 && self.stats.steps == 0) {
             return error;
@@ -274,6 +275,7 @@ impl<'a, 'm, M: Model> Track<'a, 'm, M> {
     ) -> Result<Flow> {
         let outcome = if events {
             self.watch.handle(
+                self.model,
                 &self.dense,
                 t1,
                 &self.y_new,

@@ -13,18 +13,24 @@
 //!
 //! [`Ensemble::shard`] runs a deterministic share of the members: shard `k` of `n` takes members
 //! `⌊kM/n⌋ … ⌊(k+1)M/n⌋ − 1` ([`Shard::range`]). Each shard writes its members' raw observations
-//! ([`Members::write_csv`], numbers printed so they read back to the same bits); [`Members::merge`]
-//! reads them back, checks that together they are every member exactly once under one seed, and
-//! gives a result bit-identical to a one-machine run. With a batch scheduler's job array (e.g.
-//! Slurm's `sbatch --array=0-9`), each job runs `--shard $SLURM_ARRAY_TASK_ID/10` and a final job
-//! merges the ten files; the `monte_carlo` example's `--shard` and `--merge` flags do exactly this.
+//! ([`Members::write_csv`], whole or not at all, numbers printed so they read back to the same
+//! bits, the shard `k/n` in every row); [`Members::merge`] (or [`Members::merge_files`]) reads
+//! them back, checks that they are every shard of one ensemble exactly once, naming any shard
+//! missing or given twice ([`Error::BadShards`]), and gives a result bit-identical to a
+//! one-machine run. The `monte_carlo` example's `--shard k/n` and `--merge FILES…` do this under
+//! any driver; `docs/book/src/distributed.md` has the contract and a Slurm recipe that CI runs
+//! on a real Slurm.
+mod file;
 mod members;
+mod merge;
 mod shard;
 mod statistics;
 
 pub use members::Members;
 pub use shard::{MemberRng, Shard, member_rng};
 pub use statistics::Statistics;
+
+pub(crate) use merge::bad_shards_text;
 
 use rayon::prelude::*;
 
@@ -34,13 +40,14 @@ use crate::{Error, Result};
 /// An ensemble's settings: plain data with a [`Default`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct Ensemble {
-    /// Members in the whole ensemble (over all shards).
+    /// Members in the whole ensemble (over all shards), at least 1 (default 100).
     pub members: u64,
-    /// The base seed every member's generator derives from.
+    /// The base seed every member's generator derives from (default 0).
     pub seed: u64,
     /// The share of the members this run takes ([`Shard::WHOLE`] by default).
     pub shard: Shard,
-    /// Show a progress bar on standard error (not on WebAssembly, which has no terminal).
+    /// Show a progress bar on standard error (not on WebAssembly, which has no terminal;
+    /// default false). The results do not depend on it.
     pub progress: bool,
 }
 
@@ -127,6 +134,7 @@ impl Ensemble {
         let members = Members {
             members: self.members,
             seed: self.seed,
+            shard: self.shard,
             rows,
         };
         members.check()?;

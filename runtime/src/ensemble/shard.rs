@@ -28,6 +28,13 @@ pub struct Shard {
     pub count: u64,
 }
 
+impl std::fmt::Display for Shard {
+    /// `k/n`, as [`Shard::parse`] reads it.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}/{}", self.index, self.count)
+    }
+}
+
 impl Shard {
     /// All members in one run.
     pub const WHOLE: Shard = Shard { index: 0, count: 1 };

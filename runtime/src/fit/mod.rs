@@ -16,10 +16,13 @@
 //! need their own math backend crate per nalgebra version; the method itself is the ~65 lines
 //! of `levenberg_marquardt` below.
 
+mod check;
+mod marquardt;
+
 use nalgebra::{DMatrix, DVector};
 
-use crate::sensitivity::Sensitive;
-use crate::{DenseMatrix, Error, Jacobian, Method, Model, Parameters, Result, State};
+use crate::sensitivity::{Sensitive, SensitivityState};
+use crate::{DenseMatrix, Error, Jacobian, Method, Model, Parameters, Result, Sample};
 
 /// Measured samples of one state component: `(t, value)` pairs, with optional weights
 /// (1/σ of each measurement; all 1 when empty). A fit takes one per measured component.
@@ -45,7 +48,7 @@ pub struct FitOptions {
     /// accurate than the solves its residuals come from). The sensitivities ∂y/∂pⱼ are held
     /// to atol/|pⱼ| (CVODES's rule with p̄ = p; `Sensitive::tolerances`).
     pub rtol: f64,
-    /// See [`FitOptions::rtol`].
+    /// The absolute tolerance (default 1e-12); see [`FitOptions::rtol`].
     pub atol: f64,
     /// Whether the sensitivities count in the solves' error test (default true, CVODES's
     /// default); false sizes the steps for the state alone (`Sensitive::tolerances`).
@@ -92,6 +95,25 @@ pub struct Fit {
     pub iterations: usize,
     /// Model solves (with sensitivities) in all.
     pub solves: usize,
+    /// m − n: the samples of non-zero weight less the parameters.
+    pub degrees_of_freedom: usize,
+    /// The reduced χ², 2·cost/(m − n) (NaN without degrees of freedom). With weights 1/σᵢ of
+    /// independent normal errors it is near 1 at the best fit; see [`Fit::consistent`].
+    pub reduced_chi_squared: f64,
+}
+
+impl Fit {
+    /// Whether the fit is consistent with weights that are 1/σ of each sample's error: 2·cost
+    /// then follows a χ² distribution of ν = m − n degrees of freedom, whose mean is ν and
+    /// standard deviation √(2ν), so the rule is reduced χ² ≤ 1 + 3·√(2/ν) (three standard
+    /// deviations; the χ²'s own upper tail is heavier for small ν, so the rule is strict there).
+    /// False at a local minimum that fits the data worse than its noise explains — try other
+    /// starting guesses, fit log-parameters, or start closer. Meaningless unless the weights are
+    /// 1/σ (with the default weights 1, compare `reduced_chi_squared` with σ² instead).
+    pub fn consistent(&self) -> bool {
+        let nu = self.degrees_of_freedom as f64;
+        self.degrees_of_freedom > 0 && self.reduced_chi_squared <= 1.0 + 3.0 * (2.0 / nu).sqrt()
+    }
 }
 
 /// Fits the `#[param]` parameters of `model` (its values are the initial guess) to `data`: one
@@ -100,15 +122,18 @@ pub struct Fit {
 /// # Errors
 ///
 /// [`Error::InvalidInput`] for data that cannot be fitted (unequal lengths, times not
-/// increasing or before the start, a component out of range, fewer samples than parameters, a
-/// non-positive parameter with `log_parameters`); [`Error::FitDidNotConverge`] when the
-/// iterations run out; any error of the solves.
+/// increasing or before the start, a component out of range, non-finite values or weights,
+/// negative weights, fewer samples of non-zero weight than parameters, a non-positive parameter
+/// with `log_parameters`) and for options that cannot be met (a fixed-step method, a tolerance
+/// that is not finite and positive); [`Error::FitStart`] when the model cannot be solved at the
+/// initial guess or its cost there is not finite; [`Error::FitDidNotConverge`] when the
+/// iterations run out.
 pub fn fit<M>(model: &M, data: &[Data], options: &FitOptions) -> Result<Fit>
 where
     M: Parameters + Jacobian + Clone,
     M::Matrix: DenseMatrix,
 {
-    check(model, data, options)?;
+    check::check(model, data, options)?;
     let mut times: Vec<f64> = data.iter().flat_map(|d| d.times.iter().copied()).collect();
     times.sort_by(f64::total_cmp);
     times.dedup();
@@ -142,7 +167,19 @@ where
         Ok((r, jacobian))
     };
     let q0 = DVector::from_vec(to_search(&guess));
-    let result = levenberg_marquardt(&mut residuals, q0, options)?;
+    let start = residuals(&q0).map_err(|error| start_error::<M>(&guess, solve_problem(&error)))?;
+    if !start.0.norm_squared().is_finite() {
+        // The residual whose square overflows (or is not finite itself).
+        let k = start.0.iamax();
+        let (set, sample) = locate(data, k);
+        let problem = format!(
+            "the cost is not finite: the weighted residual of data set {set}, sample {sample} \
+             (t = {:e}, value {:e}) is {:?}",
+            data[set].times[sample], data[set].values[sample], start.0[k]
+        );
+        return Err(start_error::<M>(&guess, problem));
+    }
+    let result = marquardt::levenberg_marquardt(&mut residuals, q0, start, options)?;
     let p = from_search(result.q.as_slice());
     let standard_errors = result
         .standard_errors
@@ -150,6 +187,14 @@ where
         .zip(&p)
         .map(|(s, pj)| if options.log_parameters { s * pj } else { *s })
         .collect();
+    let weighted: usize = data
+        .iter()
+        .map(|d| match d.weights.is_empty() {
+            true => d.times.len(),
+            false => d.weights.iter().filter(|&&w| w > 0.0).count(),
+        })
+        .sum();
+    let degrees_of_freedom = weighted.saturating_sub(M::NAMES.len());
     Ok(Fit {
         parameters: p,
         standard_errors,
@@ -157,76 +202,63 @@ where
         initial_cost: result.initial_cost,
         iterations: result.iterations,
         solves,
+        degrees_of_freedom,
+        reduced_chi_squared: if degrees_of_freedom > 0 {
+            2.0 * result.cost / degrees_of_freedom as f64
+        } else {
+            f64::NAN
+        },
     })
 }
 
-fn check<M: Parameters>(model: &M, data: &[Data], options: &FitOptions) -> Result<()> {
-    let n = model.state().as_slice().len();
-    let reject = |reason: String| Err(Error::invalid("fit data", reason));
-    for (i, data) in data.iter().enumerate() {
-        let m = data.times.len();
-        if data.values.len() != m || !(data.weights.is_empty() || data.weights.len() == m) {
-            return reject(format!(
-                "data set {i}: {m} times, {} values and {} weights; give one value (and \
-                 weight, if any) per time",
-                data.values.len(),
-                data.weights.len()
-            ));
+/// (data set, sample) of residual `k`, the residuals being every data set's in order.
+fn locate(data: &[Data], mut k: usize) -> (usize, usize) {
+    for (set, d) in data.iter().enumerate() {
+        if k < d.times.len() {
+            return (set, k);
         }
-        if data.component >= n {
-            return reject(format!(
-                "data set {i}: component {} of a state of {n} components",
-                data.component
-            ));
-        }
-        if data.times.iter().any(|t| !t.is_finite()) || data.times.windows(2).any(|w| w[1] <= w[0])
-        {
-            return reject(format!(
-                "data set {i}: the times must be finite and increasing"
-            ));
-        }
-        if let Some(k) = data.values.iter().position(|v| !v.is_finite()) {
-            return reject(format!(
-                "data set {i}: value {k} is {:?}; every value must be finite",
-                data.values[k]
-            ));
-        }
-        if let Some(k) = data
-            .weights
-            .iter()
-            .position(|w| !(w.is_finite() && *w >= 0.0))
-        {
-            return reject(format!(
-                "data set {i}: weight {k} is {:?}; weights must be finite and non-negative",
-                data.weights[k]
-            ));
-        }
-        if data.times.first().is_some_and(|&t| t < 0.0) {
-            return reject(format!(
-                "data set {i}: the first sample is at t = {}, before the model's start at t = 0",
-                data.times[0]
-            ));
-        }
+        k -= d.times.len();
     }
-    let m: usize = data.iter().map(|d| d.times.len()).sum();
-    if m < M::NAMES.len() {
-        return reject(format!(
-            "{m} samples for {} parameters: a fit needs at least one sample per parameter",
-            M::NAMES.len()
-        ));
+    unreachable!("a residual index within the data")
+}
+
+/// [`Error::FitStart`] at `guess`.
+fn start_error<M: Parameters>(guess: &[f64], problem: String) -> Error {
+    let parameters = M::NAMES
+        .iter()
+        .zip(guess)
+        .map(|(name, value)| format!("{name} = {value:e}"))
+        .collect::<Vec<_>>()
+        .join(", ");
+    Error::FitStart {
+        parameters,
+        problem,
     }
-    if options.log_parameters && model.parameters().iter().any(|p| p.is_nan() || *p <= 0.0) {
-        return reject(format!(
-            "log-parameters need positive initial values; got {:?} for {:?}",
-            model.parameters(),
-            M::NAMES
-        ));
+}
+
+/// What went wrong in a solve, in the fit's terms: the step-size advice of a run's error is for
+/// a run, which a fit does not size by hand.
+fn solve_problem(error: &Error) -> String {
+    match error {
+        Error::Diverged {
+            t,
+            component,
+            value,
+            ..
+        } => format!("its solution blows up: `{component}` = {value:e} at t = {t:?}"),
+        Error::StepSizeTooSmall { t, dt, .. } => {
+            format!("its solve's step size fell to {dt:e} at t = {t:?}")
+        }
+        Error::MaxSteps { t, steps, .. } => {
+            format!("its solve used up its {steps} steps by t = {t:?}")
+        }
+        other => format!("its solve failed ({other})"),
     }
-    Ok(())
 }
 
 /// The weighted residuals wₖ·(y_c(tₖ) − dₖ) of every data set, one after the other, and their
-/// Jacobian wₖ·∂y_c(tₖ)/∂p, from one solve saving at `times` (every data set's, merged).
+/// Jacobian wₖ·∂y_c(tₖ)/∂p, from one solve saving at `times` (every data set's, merged, sorted
+/// and without repeats).
 fn residuals_and_jacobian<M>(
     model: &M,
     data: &[Data],
@@ -252,6 +284,7 @@ where
         .save_at(times)
         .dense_output(false)
         .run()?;
+    let samples = at_times(&run.samples, times)?;
     let m: usize = data.iter().map(|d| d.times.len()).sum();
     let p = M::NAMES.len();
     let mut r = DVector::zeros(m);
@@ -259,11 +292,8 @@ where
     let mut row = 0;
     for data in data {
         for (k, &t) in data.times.iter().enumerate() {
-            let sample = if t == 0.0 {
-                run.first()
-            } else {
-                run.sample_at(t)?
-            };
+            let index = times.partition_point(|&s| s < t);
+            let sample = samples[index];
             let w = data.weights.get(k).copied().unwrap_or(1.0);
             r[row] = w * (sample.state.state()[data.component] - data.values[k]);
             let s = sample.state.sensitivities();
@@ -276,119 +306,27 @@ where
     Ok((r, jacobian))
 }
 
-/// r and ∂r/∂q at q.
-type Residuals<'a> = dyn FnMut(&DVector<f64>) -> Result<(DVector<f64>, DMatrix<f64>)> + 'a;
-
-/// The minimiser's result in the search variables.
-struct Minimum {
-    q: DVector<f64>,
-    cost: f64,
-    initial_cost: f64,
-    iterations: usize,
-    standard_errors: Vec<f64>,
-}
-
-/// Levenberg–Marquardt with Marquardt's diagonal scaling and Nielsen's damping update, on
-/// `residuals` (r and ∂r/∂q at q) from `q`.
-fn levenberg_marquardt(
-    residuals: &mut Residuals<'_>,
-    mut q: DVector<f64>,
-    options: &FitOptions,
-) -> Result<Minimum> {
-    let (mut r, mut jacobian) = residuals(&q)?;
-    let mut cost = 0.5 * r.norm_squared();
-    let initial_cost = cost;
-    let (mut lambda, mut nu) = (1e-3, 2.0);
-    for iteration in 1..=options.max_iterations {
-        let normal = jacobian.tr_mul(&jacobian);
-        let gradient = jacobian.tr_mul(&r);
-        let mut damped = normal.clone();
-        for i in 0..q.len() {
-            damped[(i, i)] += lambda * normal[(i, i)].max(1e-300);
-        }
-        let Some(step) = damped.cholesky().map(|c| c.solve(&-&gradient)) else {
-            lambda *= nu;
-            nu *= 2.0;
-            continue;
-        };
-        // A step this small, taken or not, changes nothing the solves can resolve: done.
-        if small(&step, &q, options.step_tolerance) {
-            return Ok(minimum(q, &jacobian, cost, initial_cost, iteration));
-        }
-        let trial = &q + &step;
-        let outcome = residuals(&trial);
-        let accepted = match outcome {
-            Ok((r_new, j_new)) => {
-                let new_cost = 0.5 * r_new.norm_squared();
-                // The decrease the linear model predicts: ½δᵀ(λ·D·δ − g).
-                let scaled: f64 = (0..q.len())
-                    .map(|i| lambda * normal[(i, i)] * step[i] * step[i])
-                    .sum();
-                let predicted = 0.5 * (scaled - step.dot(&gradient));
-                let rho = (cost - new_cost) / predicted.max(f64::MIN_POSITIVE);
-                if new_cost.is_finite() && new_cost < cost && rho > 0.0 {
-                    let decrease = cost - new_cost;
-                    q = trial;
-                    (r, jacobian) = (r_new, j_new);
-                    cost = new_cost;
-                    lambda *= (1.0 - (2.0 * rho - 1.0).powi(3)).max(1.0 / 3.0);
-                    nu = 2.0;
-                    if decrease <= options.cost_tolerance * cost || cost == 0.0 {
-                        return Ok(minimum(q, &jacobian, cost, initial_cost, iteration));
-                    }
-                    true
-                } else {
-                    false
-                }
+/// The sample recorded at each of `times` (sorted, no repeats), by exact time: `save_at`
+/// records each at exactly its time, and t₀ is the initial sample. Matching by nearness would
+/// read one sample for data spaced closer than the nearness (the fourth hardening probe: ten
+/// samples between 1e-10 and 1e-9 all read the one at 5e-10).
+fn at_times<'s>(
+    samples: &'s [Sample<SensitivityState>],
+    times: &[f64],
+) -> Result<Vec<&'s Sample<SensitivityState>>> {
+    let mut rest = samples;
+    times
+        .iter()
+        .map(|&t| {
+            let skip = rest.partition_point(|s| s.t < t);
+            rest = &rest[skip..];
+            match rest.first() {
+                Some(sample) if sample.t == t => Ok(sample),
+                _ => Err(Error::invalid(
+                    "fit data",
+                    format!("the solve recorded no sample at t = {t:?}, a time of the data"),
+                )),
             }
-            // A trial so far off that its solve failed: shorten the step.
-            Err(_) => false,
-        };
-        if !accepted {
-            lambda *= nu;
-            nu *= 2.0;
-        }
-    }
-    Err(Error::FitDidNotConverge {
-        iterations: options.max_iterations,
-        cost,
-    })
-}
-
-/// Whether every component of `step` is within `tolerance` of `q`'s, relatively.
-fn small(step: &DVector<f64>, q: &DVector<f64>, tolerance: f64) -> bool {
-    step.iter()
-        .zip(q.iter())
-        .all(|(d, x)| d.abs() <= tolerance * x.abs().max(1e-300))
-}
-
-/// The result at `q`, with the standard errors √diag(σ²(JᵀJ)⁻¹), σ² = 2·cost/(m − n) (NaN when
-/// JᵀJ is singular or there are no degrees of freedom left).
-fn minimum(
-    q: DVector<f64>,
-    jacobian: &DMatrix<f64>,
-    cost: f64,
-    initial_cost: f64,
-    iterations: usize,
-) -> Minimum {
-    let (m, n) = jacobian.shape();
-    let covariance = jacobian.tr_mul(jacobian).try_inverse();
-    let variance = if m > n {
-        2.0 * cost / (m - n) as f64
-    } else {
-        f64::NAN
-    };
-    let standard_errors = (0..n)
-        .map(|j| match &covariance {
-            Some(c) => (variance * c[(j, j)]).sqrt(),
-            None => f64::NAN,
         })
-        .collect();
-    Minimum {
-        q,
-        cost,
-        initial_cost,
-        iterations,
-        standard_errors,
-    }
+        .collect()
 }

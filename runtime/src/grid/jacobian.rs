@@ -238,6 +238,20 @@ impl NewtonMatrix for GridJacobian {
     fn solve(&mut self, _: &mut (), b: &mut [f64]) -> Result<(), SolveError> {
         self.substitute(b)
     }
+
+    fn non_finite_entry(&self) -> Option<(usize, usize, f64)> {
+        if self.jacobian.iter().all(|x| x.is_finite()) {
+            return None;
+        }
+        let matrix = SparseColMatRef::new(self.solver.matrix().symbolic(), &self.jacobian);
+        (0..matrix.ncols()).find_map(|column| {
+            matrix
+                .row_idx_of_col(column)
+                .zip(matrix.val_of_col(column))
+                .find(|(_, value)| !value.is_finite())
+                .map(|(row, &value)| (row, column, value))
+        })
+    }
 }
 
 impl Clone for GridJacobian {

@@ -104,6 +104,10 @@ impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
             let solved = self.jacobian.factorize(h, &mut self.factors).is_ok()
                 && self.jacobian.solve(&mut self.factors, rhs).is_ok();
             if !solved {
+                // J at yₙ itself (the first iterate) that is not finite: no smaller step helps.
+                if iter == 1 {
+                    super::linearization::finite_jacobian(&self.jacobian, t1, y)?;
+                }
                 let residual = residual_of(model, t1, h, s.y, y, &mut self.force);
                 let cause = if residual.is_finite() && rhs.iter().all(|x| x.is_finite()) {
                     NewtonFailure::Singular

@@ -37,18 +37,28 @@ impl<M: Jacobian> Linearization<M> {
     }
 
     /// Evaluates J and ∂f/∂t at (t, y) unless they are already the current state's.
-    pub(super) fn evaluate(&mut self, model: &M, t: f64, y: &M::State, stats: &mut Stats) {
+    ///
+    /// Errors: [`Error::NonFiniteJacobian`] when J has a NaN or infinite entry.
+    pub(super) fn evaluate(
+        &mut self,
+        model: &M,
+        t: f64,
+        y: &M::State,
+        stats: &mut Stats,
+    ) -> Result<()> {
         if self.current {
-            return;
+            return Ok(());
         }
         model.jacobian(t, y, &mut self.jacobian);
         stats.jacobian_evaluations += 1;
+        finite_jacobian(&self.jacobian, t, y)?;
         if M::TIME_DEPENDENT {
             model.time_derivative(t, y, &mut self.dfdt);
             stats.time_derivative_evaluations += 1;
         }
         self.current = true;
         self.factored = None;
+        Ok(())
     }
 
     /// Factorizes W = I − c·J unless it already is, for this c.
@@ -81,6 +91,26 @@ impl<M: Jacobian> Linearization<M> {
     pub(super) fn invalidate(&mut self) {
         self.current = false;
         self.factored = None;
+    }
+}
+
+/// Ok when every entry of J, as last evaluated at (t, y), is finite.
+///
+/// Errors: [`Error::NonFiniteJacobian`] naming the first entry that is not.
+#[inline]
+pub(crate) fn finite_jacobian<S: crate::State>(
+    jacobian: &impl NewtonMatrix,
+    t: f64,
+    y: &S,
+) -> Result<()> {
+    match jacobian.non_finite_entry() {
+        None => Ok(()),
+        Some((row, column, value)) => Err(Error::NonFiniteJacobian {
+            t,
+            row: y.component_name(row),
+            column: y.component_name(column),
+            value,
+        }),
     }
 }
 

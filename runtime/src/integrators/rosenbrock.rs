@@ -97,7 +97,7 @@ impl<M: Jacobian, T: RosenbrockTableau, const K: usize> Integrator<M> for Rosenb
             s.stats.evaluations += 1;
             self.have_f0 = true;
         }
-        self.linear.evaluate(model, t, y, s.stats);
+        self.linear.evaluate(model, t, y, s.stats)?;
         self.linear.factorize(T::GAMMA * h, t, h, s.stats)?;
         T::stages(model, s, &mut self.linear, &self.f0, &mut self.work, y_new)
     }

@@ -95,6 +95,24 @@ pub trait Model {
         Ok(())
     }
 
+    /// Completes the state a change event left, `after` (from `before` at time `t`, changed by
+    /// `jump.change`), with what the change cannot know: a
+    /// [`crate::sensitivity::Sensitive`] model's sensitivities jump there. The drivers call it
+    /// after every change; the default leaves `after` as the change made it.
+    ///
+    /// Errors: a model's own (a sensitivity jump at a grazing crossing).
+    #[doc(hidden)]
+    fn complete_change(
+        &self,
+        t: f64,
+        before: &Self::State,
+        after: &mut Self::State,
+        jump: crate::drive::Jump<'_, Self::State>,
+    ) -> Result<()> {
+        let _ = (t, before, after, jump);
+        Ok(())
+    }
+
     /// Starts configuring a run from the model's own state, method and dt.
     fn simulate(&self) -> Simulation<'_, Self>
     where

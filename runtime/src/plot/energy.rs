@@ -31,11 +31,17 @@ impl Default for EnergyPlot {
 
 /// Draws the energy of several runs on one chart, written atomically to `path` (`.png` or
 /// `.svg`), with the default [`EnergyPlot`] look.
+///
+/// Errors: [`Error::InvalidInput`] when a run's model defines no `fn energy`, and as
+/// [`Chart::write`] (a path that is not `.png`/`.svg`, energies that cannot be drawn, a file
+/// that cannot be written).
 pub fn energy<S: State>(path: impl AsRef<Path>, runs: &[(&str, &Trajectory<S>)]) -> Result<()> {
     energy_with(path, runs, &EnergyPlot::default())
 }
 
 /// [`energy`] with a chosen look.
+///
+/// Errors: as [`energy`].
 pub fn energy_with<S: State>(
     path: impl AsRef<Path>,
     runs: &[(&str, &Trajectory<S>)],

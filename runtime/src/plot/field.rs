@@ -86,9 +86,10 @@ impl<'a> Field<'a> {
 /// How a [`Field`] is coloured, scaled and framed.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FieldStyle {
-    /// Values mapped to the ends of the colour map (below and above are clamped).
+    /// Values mapped to the ends of the colour map (below and above are clamped; default
+    /// (0, 1)).
     pub range: (f64, f64),
-    /// Pixels per cell along each side.
+    /// Pixels per cell along each side (default 4).
     pub scale: u32,
     /// Only the field's pixels: no caption line and no colour bar (default false).
     pub bare: bool,

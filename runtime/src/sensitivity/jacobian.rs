@@ -106,6 +106,18 @@ impl<J: NewtonMatrix + DenseMatrix> NewtonMatrix for AugmentedJacobian<J> {
     fn configure(&mut self, newton: &NewtonOptions, solves: crate::Solves) {
         self.jacobian.configure(newton, solves);
     }
+
+    /// The model's J, then the coupling blocks below it.
+    fn non_finite_entry(&self) -> Option<(usize, usize, f64)> {
+        if let Some(entry) = self.jacobian.non_finite_entry() {
+            return Some(entry);
+        }
+        let n = self.jacobian.dim();
+        (0..self.coupling.ncols())
+            .flat_map(|column| (0..self.coupling.nrows()).map(move |row| (row, column)))
+            .map(|(row, column)| (row + n, column, self.coupling[(row, column)]))
+            .find(|(_, _, value)| !value.is_finite())
+    }
 }
 
 impl<M> Jacobian for Sensitive<'_, M>

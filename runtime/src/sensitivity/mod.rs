@@ -13,6 +13,7 @@
 //! sensitivities, as CVODES does by default (`errconS`); [`crate::fit`] holds ∂y/∂pⱼ to
 //! atol/|pⱼ|, CVODES's scaling.
 
+mod events;
 mod jacobian;
 mod state;
 
@@ -213,6 +214,17 @@ where
 
     fn energy(&self, _: &SensitivityState) -> Option<f64> {
         None
+    }
+
+    /// The sensitivities' jump at the change ([`events`](self) module docs).
+    fn complete_change(
+        &self,
+        t: f64,
+        before: &SensitivityState,
+        after: &mut SensitivityState,
+        jump: crate::drive::Jump<'_, SensitivityState>,
+    ) -> crate::Result<()> {
+        self.jump(t, before, after, jump)
     }
 
     fn as_second_order(&self) -> Option<&Unavailable<Self>> {

@@ -50,7 +50,8 @@ pub struct RunOptions {
     pub divergence_limit: Option<f64>,
     /// Newton's method in implicit steps (see [`NewtonOptions`] for the defaults).
     pub newton: NewtonOptions,
-    /// First step, step bounds, step budget and controller of adaptive runs.
+    /// First step, step bounds, step budget and controller of adaptive runs (see
+    /// [`AdaptiveOptions`] for the defaults).
     pub adaptive: AdaptiveOptions,
     /// Events are located to within this time (default 1e-12, or the resolution of t if
     /// coarser). Crossings within it of each other are one instant (see [`Event`](crate::Event)).

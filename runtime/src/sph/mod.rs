@@ -45,19 +45,21 @@ use neighbours::Grid;
 /// Settings: plain data with a [`Default`] (water at 1/100 of a metre's resolution).
 #[derive(Clone, Debug, PartialEq)]
 pub struct SphOptions {
-    /// Initial particle spacing Δx.
+    /// Initial particle spacing Δx, in m (default 0.01).
     pub spacing: f64,
-    /// Smoothing length h as a multiple of the spacing.
+    /// Smoothing length h as a multiple of the spacing (default 1.3).
     pub smoothing: f64,
-    /// Rest density ρ₀.
+    /// Rest density ρ₀, in kg/m³ (default 1000, water).
     pub rest_density: f64,
-    /// Numerical speed of sound c₀.
+    /// Numerical speed of sound c₀, in m/s: about 10× the fastest flow keeps density variations
+    /// near 1 % (default 30).
     pub sound_speed: f64,
-    /// Artificial viscosity α.
+    /// Monaghan's artificial viscosity α, dimensionless (default 0.02).
     pub viscosity: f64,
-    /// Gravitational acceleration.
+    /// Gravitational acceleration, in m/s² (default (0, −9.81)).
     pub gravity: Vector2<f64>,
-    /// The box [0, width] × [0, height] the walls enclose (open at the top).
+    /// The box [0, width] × [0, height] the walls enclose (open at the top), in m (default
+    /// (1, 1)).
     pub domain: (f64, f64),
 }
 

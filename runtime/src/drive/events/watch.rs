@@ -171,8 +171,9 @@ impl<'a, S: State> Watch<'a, S> {
     /// leaves the state non-finite or its condition NaN; [`Error::EventsAccumulate`] when a
     /// change event fires again sooner than the tolerance resolves, or the run's events exceed
     /// its `max_events`.
-    pub(crate) fn handle(
+    pub(crate) fn handle<M: crate::Model<State = S>>(
         &mut self,
+        model: &M,
         dense: &DenseStep<S>,
         t1: f64,
         y1: &S,
@@ -183,7 +184,8 @@ impl<'a, S: State> Watch<'a, S> {
         let mut found = std::mem::take(&mut self.found);
         found.clear();
         let located = self.locate_all(dense, t1, f0, at, &mut found);
-        let outcome = located.and_then(|()| self.act(&found, dense, t1, y1, at, records));
+        let outcome =
+            located.and_then(|()| self.act(model, &found, dense, t1, y1, at, records));
         self.found = found;
         let outcome = outcome?;
         if let Outcome::Continue = outcome {
@@ -296,8 +298,10 @@ impl<'a, S: State> Watch<'a, S> {
     }
 
     /// Takes the located events instant by instant (see [`Watch::handle`]).
-    fn act(
+    #[allow(clippy::too_many_arguments, reason = "the step's parts, each one borrowed")]
+    fn act<M: crate::Model<State = S>>(
         &mut self,
+        model: &M,
         found: &[Found],
         dense: &DenseStep<S>,
         t1: f64,
@@ -332,6 +336,17 @@ impl<'a, S: State> Watch<'a, S> {
                     Action::Change(change) => {
                         change(t, at);
                         self.check_change(event, t, at)?;
+                        let e = &self.events[event];
+                        let condition = match &e.trigger {
+                            Trigger::Crossing { condition, .. } => Some(&**condition as _),
+                            Trigger::Times(_) => None,
+                        };
+                        let jump = super::Jump {
+                            name: &e.name,
+                            condition,
+                            change: &**change,
+                        };
+                        model.complete_change(t, &before, at, jump)?;
                         changed = true;
                     }
                 }

@@ -13,15 +13,18 @@ use projection::poisson_entries;
 /// The grid and the fluid's constants: plain data with a [`Default`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct FluidOptions {
-    /// Cells across (x), at least 3.
+    /// Cells across (x), at least 3 (default 64).
     pub nx: usize,
-    /// Cells up (y), at least 3.
+    /// Cells up (y), at least 3 (default 64).
     pub ny: usize,
-    /// Cell size h (the domain is nx·h by ny·h), finite and positive.
+    /// Cell size h, in length units (the domain is nx·h by ny·h), finite and positive (default
+    /// 1/64).
     pub cell: f64,
-    /// Kinematic viscosity ν ≥ 0 (0 skips the diffusion solve); ν/h² must be finite.
+    /// Kinematic viscosity ν ≥ 0, in length²/time (0 skips the diffusion solve; default 0);
+    /// ν/h² must be finite.
     pub viscosity: f64,
-    /// Upward acceleration per unit smoke density (a plume's buoyancy).
+    /// Upward acceleration per unit smoke density, in length/time² (a plume's buoyancy; default
+    /// 0).
     pub buoyancy: f64,
 }
 

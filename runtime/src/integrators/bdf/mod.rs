@@ -14,6 +14,7 @@ use newton::Convergence;
 
 use crate::math::Transcendental;
 use super::DenseStep;
+use super::linearization::finite_jacobian;
 use super::{Integrator, Step, copies};
 use crate::{
     Error, Jacobian, Method, NewtonMatrix, NewtonOptions, Result, State, Stats,
@@ -47,12 +48,9 @@ use crate::{
 ///   remaining error at most a tenth of the error test's allowance — with R the rate of
 ///   convergence (max(0.3·R, ‖Δ‖/‖Δ_prev‖), 1 at the first iteration of each step), abandoned
 ///   when ‖Δ‖ more than doubles. SciPy's tol is 300–1 000 times tighter at rtol 1e-6 and
-///   always takes two iterations. Measured on the Brusselator (README, "Big sparse systems"):
-///   at a final error of 1e-6 CVODE's test took half the solves and 0.62–0.72× the time at
-///   32², 64² and 128² cells. On small dense systems it was no better: at rtol 1e-6 on
-///   Robertson, HIRES and van der Pol μ = 1000 16–26 % more steps for 22–31 % fewer f
-///   evaluations and solves, and at equal error the stiff peers' bench moved 0.79–1.45× and
-///   Robertson's sensitivities to t = 10⁵ 1.59× slower, so dense models keep SciPy's.
+///   always takes two iterations. On the sparse systems CVODE's test halves the solves at
+///   equal error; on small dense systems it takes more steps for fewer evaluations and does not
+///   pay, so dense models keep SciPy's (the measurements are in `BENCHMARKS.md`).
 /// - **Reuse**: the LU of I − c·J is kept while c = h/αₖ stays within
 ///   [`NewtonOptions::refactor_ratio`] (default 0.3) of the c it was made with, each Newton
 ///   update then scaled by 2/(1 + c/c_old) (CVODE's rule: Hindmarsh et al., "SUNDIALS", ACM
@@ -232,9 +230,11 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
         let iters = loop {
             if !self.factored {
                 s.stats.factorizations += 1;
-                self.jacobian
-                    .factorize(c, &mut self.factors)
-                    .map_err(|_| Error::SingularMatrix { t, dt: h })?;
+                if self.jacobian.factorize(c, &mut self.factors).is_err() {
+                    // A J that is not finite, rather than a step too large for it.
+                    finite_jacobian(&self.jacobian, t, s.y)?;
+                    return Err(Error::SingularMatrix { t, dt: h });
+                }
                 self.factored = true;
                 self.factored_c = c;
             }
@@ -253,7 +253,10 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
                     // A matrix made with another c: refactorize with this one, same J, first.
                     self.factored = false;
                 }
-                Err(failure) if self.fresh => return Err(failure),
+                Err(failure) if self.fresh => {
+                    finite_jacobian(&self.jacobian, t, s.y)?;
+                    return Err(failure);
+                }
                 Err(_) => {
                     // An old J: evaluate it at the predictor and try again.
                     model.jacobian(t_new, &self.predict, &mut self.jacobian);

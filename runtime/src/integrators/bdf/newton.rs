@@ -141,14 +141,23 @@ impl<M: Jacobian> Bdf<M> {
                     *u *= scale;
                 }
             }
-            let mut sum = 0.0;
-            for (u, w) in update.iter().zip(self.scale.as_slice()) {
+            // The update's norm, and the norm of the rounding of y itself: an update no larger
+            // than that has converged whatever its rate (at h ≫ the solution's time scales,
+            // near an equilibrium, successive updates are rounding noise of equal size, and a
+            // rate near 1 must not read as divergence).
+            let (mut sum, mut noise) = (0.0, 0.0);
+            for ((u, w), yi) in update.iter().zip(self.scale.as_slice()).zip(y.as_slice()) {
                 let r = u / w;
                 sum += r * r;
+                let e = f64::EPSILON * yi.abs() / w;
+                noise += e * e;
             }
-            let norm = (sum / update.len().max(1) as f64).sqrt();
+            let len = update.len().max(1) as f64;
+            let norm = (sum / len).sqrt();
+            let settled = norm <= 4.0 * (noise / len).sqrt();
             let rate = previous.map(|p| norm / p);
             let failure = match (test, rate) {
+                _ if settled => None,
                 (Convergence::SciPy { .. }, Some(rate)) if rate >= 1.0 => {
                     Some(NewtonFailure::Diverging)
                 }
@@ -174,7 +183,8 @@ impl<M: Jacobian> Bdf<M> {
                 *yi += u;
                 *d += u;
             }
-            let converged = match test {
+            let converged = settled
+                || match test {
                 Convergence::SciPy { tol, .. } => {
                     norm == 0.0 || rate.is_some_and(|rate| rate / (1.0 - rate) * norm < tol)
                 }

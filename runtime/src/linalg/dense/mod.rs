@@ -58,6 +58,21 @@ pub trait NewtonMatrix: Clone + fmt::Debug {
     fn configure(&mut self, newton: &crate::NewtonOptions, solves: crate::Solves) {
         let _ = (newton, solves);
     }
+
+    /// The first entry of J, as [`crate::Jacobian::jacobian`] last wrote it, that is NaN or
+    /// infinite: (row, column, value) in the state's layout. The implicit methods check it after
+    /// every evaluation of J and report [`crate::Error::NonFiniteJacobian`]: no step size makes
+    /// such a W regular, and a singular or non-finite W would otherwise surface as a step size
+    /// that falls to nothing.
+    fn non_finite_entry(&self) -> Option<(usize, usize, f64)>;
+}
+
+/// The first non-finite entry of a dense n×n matrix, by columns.
+fn first_non_finite(n: usize, entry: impl Fn(usize, usize) -> f64) -> Option<(usize, usize, f64)> {
+    (0..n)
+        .flat_map(|column| (0..n).map(move |row| (row, column)))
+        .map(|(row, column)| (row, column, entry(row, column)))
+        .find(|(_, _, value)| !value.is_finite())
 }
 
 /// Why [`NewtonMatrix::factorize`] failed. The integrators take it as a failed attempt: a
@@ -226,6 +241,14 @@ macro_rules! dense_matrix {
                 // nalgebra's LU reports a singular U; its solution is not finite then.
                 if solved { finite(b) } else { Err(SolveError::NotFinite) }
             }
+
+            #[inline]
+            fn non_finite_entry(&self) -> Option<(usize, usize, f64)> {
+                if self.iter().all(|x| x.is_finite()) {
+                    return None;
+                }
+                first_non_finite($n, |row, column| self[(row, column)])
+            }
         }
     )*};
 }
@@ -249,6 +272,9 @@ impl NewtonMatrix for nalgebra::SMatrix<f64, 0, 0> {
     }
     fn solve(&mut self, _: &mut (), _: &mut [f64]) -> Result<(), SolveError> {
         Ok(())
+    }
+    fn non_finite_entry(&self) -> Option<(usize, usize, f64)> {
+        None
     }
 }
 
@@ -377,6 +403,10 @@ impl NewtonMatrix for FaerDense {
         let lu = f.lu.as_ref();
         solve::solve_in_place(lu, lu, perm, rhs, Par::Seq, MemStack::new(&mut f.scratch));
         finite(b)
+    }
+
+    fn non_finite_entry(&self) -> Option<(usize, usize, f64)> {
+        first_non_finite(self.dim(), |row, column| self.matrix[(row, column)])
     }
 }
 

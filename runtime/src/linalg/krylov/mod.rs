@@ -11,12 +11,12 @@ pub(crate) use solve::{FourierTrial, KrylovSolver, NoConvergence};
 /// How implicit methods (implicit Euler, Rosenbrock23, Rodas5P, BDF) solve the sparse linear
 /// systems of particle and field models; dense models always factorize.
 ///
-/// A direct solve factorizes every new matrix, at a cost growing like N^1.4–N^1.5 (see the
-/// README's tables); a preconditioned Krylov solve costs a few sparse products per iteration,
-/// and its iteration count grows with the matrix's condition. On reaction–diffusion grids
-/// (I − h·J with h·D/Δx² of a few) that count is small and Krylov wins by 20× at 32² cells and
-/// 40–46× from 64² to 256² (ten full-Newton Gray–Scott steps); on a stiff cloth (M − h²·∂f/∂x with h²k/m ≈ 6·10³ at 32²) block-Jacobi CG needs
-/// hundreds of iterations and the direct solve wins at every size measured. Set it with
+/// A direct solve factorizes every new matrix, at a cost growing like N^1.4–N^1.5; a
+/// preconditioned Krylov solve costs a few sparse products per iteration, and its iteration
+/// count grows with the matrix's condition. On reaction–diffusion grids (I − h·J with h·D/Δx² of
+/// a few) that count is small and Krylov wins; on a stiff cloth (M − h²·∂f/∂x with
+/// h²k/m ≈ 6·10³ at 32²) block-Jacobi CG needs hundreds of iterations and the direct solve wins
+/// (the guide's *Linear solvers* chapter; measured in `BENCHMARKS.md`). Set it with
 /// [`crate::NewtonOptions::linear`].
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[non_exhaustive]
@@ -32,9 +32,7 @@ pub enum LinearSolver {
     /// [`Preconditioner::Multigrid`] from [`LinearSolver::MULTIGRID_FROM`] unknowns
     /// ([`KrylovCounts::switched_to_multigrid`]), else with the direct solver
     /// ([`KrylovCounts::switched_to_direct`]), as it does when multigrid too needs more. The
-    /// Brusselator at α/Δx² ≈ 10⁴ under BDF (rtol 3e-8, a final error of 1e-6): 1.70 s at 128²
-    /// with Fourier against 6.02 s with multigrid; block Jacobi alone ran 2–4× slower than the
-    /// sparse LU (README, "Big sparse systems"). The default.
+    /// default.
     #[default]
     Auto,
     /// Sparse Cholesky when the matrix is symmetric positive definite, else LU (faer).
@@ -54,17 +52,14 @@ pub(crate) enum Structure {
 
 impl LinearSolver {
     /// Where [`LinearSolver::Auto`] switches a field model to Krylov iterations: 1 024
-    /// unknowns. Gray–Scott at h = 10 (Pearson's setup), full Newton, 32² cells (2 048
-    /// unknowns): 0.57 ms a step with block-Jacobi BiCGSTAB against 11.4 ms with sparse LU
-    /// (a one-off measurement, 50 steps; `benches/gray_scott.rs` `run_direct`/`run_krylov`
-    /// measure 64² and up, where the ratio is 19–24×).
+    /// unknowns. From there block-Jacobi BiCGSTAB beats the sparse LU on Gray–Scott at Pearson's
+    /// set-up (`benches/gray_scott.rs`, `run_direct`/`run_krylov`).
     pub const FIELD_KRYLOV_FROM: usize = 1024;
 
     /// Iterations of one solve above which [`LinearSolver::Auto`] gives up block Jacobi for
     /// the run (for multigrid from [`LinearSolver::MULTIGRID_FROM`] unknowns, else for the
-    /// direct solver), and multigrid for the direct solver: 50. Gray–Scott at h = 10 needs 6–12
-    /// per full-Newton solve from 64² to 128² (and wins 40–46×), 30 for a linearized step at
-    /// 256² to 1e-8 (and wins 28–31×).
+    /// direct solver), and multigrid for the direct solver: 50, well above the 6–30 iterations
+    /// of the solves where Krylov pays (Gray–Scott at Pearson's set-up, 64² to 256²).
     pub const AUTO_DIRECT_ABOVE: usize = 50;
 
     /// When [`LinearSolver::Auto`] tries [`Preconditioner::Fourier`] on a field model's
@@ -73,35 +68,25 @@ impl LinearSolver {
     /// iteration would have cost less), and again each time block Jacobi needs twice the
     /// iterations of the solve before the last trial Fourier lost. A trial's Fourier solve
     /// decides: Fourier stays for the run unless its iterations, at that cost each, cost more
-    /// than the block-Jacobi solve before it. The 2-D Brusselator under BDF to a final error of
-    /// 1e-6 (rtol 3e-8): 1.67–1.75 s at 128² against Fourier chosen by hand 1.61–1.76 s (three
-    /// runs each, alternated), where a single trial after a solve of more than 20 iterations
-    /// took 1.95–2.34 s in the same hour. Gray–Scott at Pearson's setup, h = 10, a linearized
-    /// step to 1e-8 at 256²: 27 iterations with block Jacobi, 7.5 with Fourier, ten steps
-    /// 0.55–0.63 s against 0.87–0.91 s (two runs, with the single trial after a solve of more
-    /// than 20 this replaced): tried and given back. A model whose
-    /// diffusion grows in time (`tests/integration/krylov.rs`,
-    /// `auto_tries_fourier_again_as_the_problem_stiffens`): given back twice, kept the third time.
+    /// than the block-Jacobi solve before it. On the 2-D Brusselator this matches Fourier
+    /// chosen by hand; on Gray–Scott at Pearson's set-up Fourier is tried and given back. A model
+    /// whose diffusion grows in time is given it back twice and keeps it the third time
+    /// (`tests/integration/krylov.rs`, `auto_tries_fourier_again_as_the_problem_stiffens`).
     pub fn tries_fourier_after(n: usize) -> f64 {
         Self::fourier_iteration_cost(n)
     }
 
     /// What one iteration preconditioned by [`Preconditioner::Fourier`] costs, in iterations
     /// preconditioned by block Jacobi, on a system of `n` unknowns: 0.33·log₂ n — two
-    /// transforms of each field per application against a few flops per unknown. Measured on
-    /// ten linearized steps of Pearson's Gray–Scott (2 fields, h = 10, solves to 1e-8 without
-    /// the warm start, best of five, the steps' other work timed with solves to 0.999): 4.2 at
-    /// 32² cells, 7.4 at 128², 4.9 at 256² (the model: 3.6, 5.0, 5.6; the Fourier iterations
-    /// include its rebuild at every step): a coarse model, which the measurements scatter
-    /// about.
+    /// transforms of each field per application against a few flops per unknown: a coarse
+    /// model, which measurements on Pearson's Gray–Scott (32² to 256² cells) scatter about.
     pub fn fourier_iteration_cost(n: usize) -> f64 {
         0.33 * (n.max(2) as f64).log2()
     }
 
     /// Unknowns from which [`LinearSolver::Auto`] answers block Jacobi's slow convergence with
-    /// multigrid rather than a direct solve: 8 192. The Brusselator under BDF (rtol 1e-6): at 32²
-    /// cells (2 048 unknowns) the sparse LU took 0.40–0.61 s against multigrid's 0.52 s (a
-    /// draw); at 64² (8 192) 4.1 s against 2.1 s, at 128² 26.4 s against 13.0 s (one run each).
+    /// multigrid rather than a direct solve: 8 192. Below it the sparse LU and multigrid draw on
+    /// the Brusselator under BDF; above it multigrid wins, by about 2× at 64² and 128² cells.
     pub const MULTIGRID_FROM: usize = 8192;
 
     /// The Krylov options for a system of `n` unknowns of a model of kind `structure`, None
@@ -144,26 +129,29 @@ impl LinearSolver {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Krylov {
     /// Relative residual that ends a solve of a one-step method — the Rosenbrock stages, the
-    /// linearized implicit Euler — where nothing corrects the linear error (default 1e-8).
+    /// linearized implicit Euler — where nothing corrects the linear error (default 1e-8; at
+    /// most 1e-2). For an adaptive run keep it below a hundredth of the run's rtol: a stage's
+    /// linear error enters the step's error estimate, and the controller then shrinks the steps
+    /// until that error is below the tolerance. Rodas5P on a periodic 3 × 1000 heat grid at
+    /// rtol 1e-6 (t to 10, D = 1): 21 steps with solves to 1e-8 or 1e-6, 30 to 1e-5, 66 to
+    /// 1e-4, 513 to 1e-3.
     pub rtol: f64,
     /// Relative residual that ends a solve inside a Newton iteration — implicit Euler with full
     /// Newton, and BDF where it keeps SciPy's Newton test (`refactor_ratio` 0; see `bdf_rtol`) —
     /// whose next iteration corrects the linear error (default 1e-3): the
     /// forcing term η of an inexact Newton method, constant here. Each Newton update is then
     /// within about κ·η of the exact one, so Newton converges at a rate of about κ·η per
-    /// iteration at worst, and its own test on the update decides when to stop, as before.
-    /// (CVODE bounds the same residual by 0.05 × its Newton tolerance.) On the Brusselator
-    /// at 64² under BDF at rtol 1e-6, multigrid BiCGSTAB took 4.24 s to 1e-8 and 2.54 s to
-    /// 1e-4; at 1e-2 Newton needed more Jacobians (7 against 3).
+    /// iteration at worst, and its own test on the update decides when to stop. At most 0.1.
+    /// (CVODE bounds the same residual by 0.05 × its Newton tolerance.) Looser than about 1e-2,
+    /// Newton needs more Jacobians.
     pub newton_rtol: f64,
     /// Relative residual that ends a solve inside BDF's Newton iteration where it stops by
     /// CVODE's test (particle and field models; default 0.05, CVODE's `eplifac`, the same
     /// forcing term): that test accepts an update once its remaining error is a tenth of the
-    /// step's error allowance, so a tighter solve buys nothing. On the Brusselator under BDF at
-    /// rtol 3e-8 with multigrid BiCGSTAB, 1e-3 took 1.68 s at 64² cells and 9.76 s at 128²,
-    /// 3e-2 1.27 and 7.91 s, 1e-1 6.80 s at 128², the same final error (3.0–3.8e-7).
-    /// (Full-Newton implicit Euler, whose test is tight, took 40 % more iterations at 5e-2 than
-    /// at 1e-3 on Gray–Scott: it keeps `newton_rtol`.)
+    /// step's error allowance, so a tighter solve buys nothing: on the Brusselator the final
+    /// error is the same from 1e-3 to 1e-1, and the looser solves take less time; at most 0.1.
+    /// (Full-Newton implicit Euler, whose test is tight, needs more iterations when its solves
+    /// are this loose: it keeps `newton_rtol`.)
     pub bdf_rtol: f64,
     /// Iterations allowed per solve (default 500). A solve that has not converged by then —
     /// or breaks down — is redone by the direct solver and counted
@@ -193,15 +181,34 @@ impl Default for Krylov {
 
 impl Krylov {
     fn check(&self) -> crate::Result<()> {
-        for (name, rtol) in [
-            ("Krylov::rtol", self.rtol),
-            ("Krylov::newton_rtol", self.newton_rtol),
-            ("Krylov::bdf_rtol", self.bdf_rtol),
+        for (name, rtol, most, why) in [
+            (
+                "Krylov::rtol",
+                self.rtol,
+                1e-2,
+                "nothing corrects a one-step method's linear error, so a stage solved to a \
+                 residual of more than 1 % is wrong by as much, and an adaptive run shrinks its \
+                 steps to see through it (keep it below a hundredth of the run's rtol)",
+            ),
+            (
+                "Krylov::newton_rtol",
+                self.newton_rtol,
+                0.1,
+                "an inexact Newton iteration converges at about this rate per iteration at \
+                 best, so a looser solve spends more iterations and Jacobians than it saves",
+            ),
+            (
+                "Krylov::bdf_rtol",
+                self.bdf_rtol,
+                0.1,
+                "an inexact Newton iteration converges at about this rate per iteration at \
+                 best, so a looser solve spends more iterations and Jacobians than it saves",
+            ),
         ] {
-            if !(rtol.is_finite() && rtol > 0.0 && rtol < 1.0) {
+            if !(rtol.is_finite() && rtol > 0.0 && rtol <= most) {
                 return Err(crate::Error::invalid(
                     name,
-                    format!("must be in (0, 1), got {rtol:?}"),
+                    format!("must be in (0, {most:e}], got {rtol:?}: {why}"),
                 ));
             }
         }

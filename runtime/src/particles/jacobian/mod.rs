@@ -160,6 +160,31 @@ impl<const D: usize> NewtonMatrix for ParticleJacobian<D> {
         }
         finite(b)
     }
+
+    /// In the first-order layout (every position, then every velocity): a force block of
+    /// particle a with respect to particle b's position or velocity is J's rows of a's velocity,
+    /// columns of b's position or velocity.
+    fn non_finite_entry(&self) -> Option<(usize, usize, f64)> {
+        let n = D * self.particles;
+        let find = |block: &SMatrix<f64, D, D>, a: usize, b: usize, of_velocity: bool| {
+            let column = if of_velocity { n + D * b } else { D * b };
+            block
+                .iter()
+                .position(|x| !x.is_finite())
+                .map(|k| (n + D * a + k % D, column + k / D, block[k]))
+        };
+        let pairs = self.ends.iter().zip(&self.pairs).find_map(|(&[a, b], blocks)| {
+            find(&blocks[0], a, a, false)
+                .or_else(|| find(&blocks[1], a, b, false))
+                .or_else(|| find(&blocks[2], a, a, true))
+                .or_else(|| find(&blocks[3], a, b, true))
+        });
+        pairs.or_else(|| {
+            self.diagonal.iter().enumerate().find_map(|(i, blocks)| {
+                find(&blocks[0], i, i, false).or_else(|| find(&blocks[1], i, i, true))
+            })
+        })
+    }
 }
 
 impl<const D: usize> Clone for ParticleJacobian<D> {

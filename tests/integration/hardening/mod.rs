@@ -1,6 +1,8 @@
 //! Inputs that once crashed, hung, or returned a wrong number without an error: each is now a
 //! typed error or a correct result. One test per failure mode found by bad-input probing.
 
+mod implicit;
+
 use crate::common;
 
 use std::path::PathBuf;
