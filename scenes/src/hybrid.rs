@@ -55,7 +55,7 @@ pub fn mpm88(particles: usize) -> odyn::Result<(Mpm, f64)> {
         .map(|_| Vector2::new(0.2 + 0.4 * draw(), 0.2 + 0.4 * draw()))
         .collect();
     let mut mpm = mpm88_from(&positions, grid)?;
-    mpm.sort_particles();
+    mpm.sort_particles()?;
     Ok((mpm, MPM88_DT * 128.0 / grid as f64))
 }
 

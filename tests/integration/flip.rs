@@ -218,3 +218,64 @@ fn bad_input_is_a_typed_error() {
     flip.v.iter_mut().for_each(|v| v.x = 1e300);
     assert!(flip.step(1.0).is_err());
 }
+
+/// Hostile input probed (issue 53): each is a typed error or a sound result, never a panic.
+#[test]
+fn hostile_input_never_panics() {
+    let v = Vector2::new;
+    let still = |_| Vector2::zeros();
+    // An empty box steps (nothing to move); its stable step is gravity's bound.
+    let mut empty = Flip::new(FlipOptions::default()).unwrap();
+    let dt = empty.stable_dt();
+    assert!(dt.is_finite() && dt > 0.0);
+    empty.step(dt).unwrap();
+    assert_eq!((empty.front(), empty.filled_area()), (0.0, 0.0));
+    // Liquid at rest without gravity: the stable step is infinite, which step refuses.
+    let mut weightless = Flip::new(FlipOptions {
+        gravity: Vector2::zeros(),
+        ..FlipOptions::default()
+    })
+    .unwrap();
+    let h = weightless.options().cell;
+    weightless.add_block(v(h, h), v(0.3, 0.3), still).unwrap();
+    assert_eq!(weightless.stable_dt(), f64::INFINITY);
+    assert!(matches!(
+        weightless.step(f64::INFINITY),
+        Err(Error::InvalidInput { .. })
+    ));
+    // Cells of 10⁻³⁰⁰ m: x·(1/h) and x/h round differently at the room's edge, where a step
+    // once panicked; positions are now judged in cells, as the stencils use them.
+    let h = 1e-300;
+    let mut tiny = Flip::new(FlipOptions {
+        nx: 18,
+        ny: 18,
+        cell: h,
+        ..FlipOptions::default()
+    })
+    .unwrap();
+    tiny.add_block(v(h, h), v(9.0 * h, 12.0 * h), still)
+        .unwrap();
+    for _ in 0..10 {
+        tiny.step(tiny.stable_dt()).unwrap();
+    }
+    assert!(tiny.front() > 0.0);
+    // A particle put outside the room (or at NaN) between steps: the measures skip it and the
+    // step refuses it.
+    let mut flip = Flip::new(FlipOptions::default()).unwrap();
+    let h = flip.options().cell;
+    flip.add_block(v(h, h), v(0.3, 0.3), still).unwrap();
+    let area = flip.filled_area();
+    flip.x[0] = v(100.0, -5.0);
+    flip.x[1] = v(f64::NAN, 0.2);
+    assert!((flip.filled_area() - area).abs() <= 2.0 * h * h);
+    assert!(matches!(flip.step(1e-3), Err(Error::InvalidInput { .. })));
+    // Gravity whose norm overflows: a zero stable step, refused.
+    let mut heavy = Flip::new(FlipOptions {
+        gravity: v(0.0, -1e300),
+        ..FlipOptions::default()
+    })
+    .unwrap();
+    heavy.add_block(v(h, h), v(0.3, 0.3), still).unwrap();
+    assert!(heavy.step(heavy.stable_dt()).is_err());
+    assert!(heavy.step(1e-3).is_err());
+}

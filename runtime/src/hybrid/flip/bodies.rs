@@ -35,7 +35,7 @@ impl Flip {
             .try_reserve_exact(positions.len())
             .map_err(|_| too_many(positions.len()))?;
         for (k, x) in positions.iter().enumerate() {
-            if !(x.x >= h && x.x < w && x.y >= h && x.y < top) {
+            if !self.inside_room(*x) {
                 return Err(Error::invalid(
                     format!("positions[{k}]"),
                     format!(

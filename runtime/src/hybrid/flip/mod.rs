@@ -57,8 +57,9 @@ pub struct FlipOptions {
     pub transfer: Transfer,
     /// Relative residual at which the pressure solve stops (default 10⁻⁸).
     pub tolerance: f64,
-    /// The pressure solve's preconditioner (default [`Preconditioner::Ilu0`]: incomplete
-    /// Cholesky on the Poisson matrix, the MIC(0) of Bridson's book without its modification).
+    /// The pressure solve's preconditioner (default [`Preconditioner::Multigrid`], odyn's
+    /// aggregation multigrid; [`Preconditioner::Ilu0`], incomplete Cholesky on the Poisson
+    /// matrix, is the MIC(0) of Bridson's book without its modification).
     pub preconditioner: Preconditioner,
     /// Particles along each side of a cell in blocks made by [`Flip::add_block`] (default 2).
     pub sampling: usize,
@@ -271,11 +272,11 @@ impl Flip {
             ));
         }
         self.scatter();
-        let h = self.options.cell;
+        let inv_h = 1.0 / self.options.cell;
         self.mac.classify(
             self.x
                 .iter()
-                .map(|x| ((x.x / h) as usize, (x.y / h) as usize)),
+                .map(|x| ((x.x * inv_h) as usize, (x.y * inv_h) as usize)),
         );
         self.mac.normalise();
         let g = self.options.gravity;
@@ -298,7 +299,9 @@ impl Flip {
     }
 
     /// Bridson's step bound (2015, §3.1) at a Courant number of 1: h/(max|v| + √(5h|g|)), the
-    /// √ term bounding what gravity adds over the step.
+    /// √ term bounding what gravity adds over the step. Infinite when nothing moves and
+    /// nothing pulls (an empty box, or liquid at rest without gravity), which [`Flip::step`]
+    /// refuses as a step: choose one yourself there.
     pub fn stable_dt(&self) -> f64 {
         let h = self.options.cell;
         let fastest = self.v.iter().fold(0.0f64, |m, v| m.max(v.norm()));

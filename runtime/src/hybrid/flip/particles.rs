@@ -24,6 +24,16 @@ impl Flip {
         ([h, h], [(nx - 1.0) * h, (ny - 1.0) * h])
     }
 
+    /// Whether `x` is in the room, judged in cells (x·(1/h) in [1, n − 1) on each axis): the
+    /// arithmetic the transfers' stencils use, so that a particle judged inside has every
+    /// stencil on the grid even where x·(1/h) rounds differently from x/h (h = 10⁻³⁰⁰ did).
+    pub(super) fn inside_room(&self, x: Vector2<f64>) -> bool {
+        let inv_h = 1.0 / self.options.cell;
+        let (nx, ny) = (self.options.nx as f64, self.options.ny as f64);
+        let (cx, cy) = (x.x * inv_h, x.y * inv_h);
+        cx >= 1.0 && cx < nx - 1.0 && cy >= 1.0 && cy < ny - 1.0
+    }
+
     /// Checks the public lists and finds each particle's stencil row on both face grids.
     pub(super) fn check_particles(&mut self) -> Result<()> {
         let n = self.c.len();
@@ -39,11 +49,7 @@ impl Flip {
             ));
         }
         let (lo, hi) = self.room();
-        if let Some(p) = self
-            .x
-            .iter()
-            .position(|x| !(x.x >= lo[0] && x.x < hi[0] && x.y >= lo[1] && x.y < hi[1]))
-        {
+        if let Some(p) = self.x.iter().position(|x| !self.inside_room(*x)) {
             return Err(Error::invalid(
                 format!("x[{p}]"),
                 format!(
@@ -65,7 +71,8 @@ impl Flip {
             list.clear();
             list.extend(self.x.iter().map(|x| {
                 let y = x.y * inv_h - OFFSETS[axis][1];
-                base_row(y, rows[axis]).expect("inside the room") as u32
+                // In [½, rows − 3/2): `inside_room` judged y·(1/h) in [1, ny − 1).
+                base_row(y, rows[axis]).unwrap_or(0) as u32
             }));
             self.strips[axis].sort(list, rows[axis]);
         }
@@ -115,7 +122,9 @@ impl Flip {
         let h = self.options.cell;
         let flip = self.options.transfer.flip().ok().flatten();
         let (lo, hi) = self.room();
-        // Half a millionth of a cell inside the room's open upper edge.
+        // Half a millionth of a cell inside the room's edges, so that the next step's
+        // `inside_room`, in cells, agrees whatever x·(1/h) rounds to.
+        let lo = [lo[0] + 1e-6 * h, lo[1] + 1e-6 * h];
         let hi = [hi[0] - 1e-6 * h, hi[1] - 1e-6 * h];
         let mac = &self.mac;
         let chunk = |((x, v), c): Chunk<'_>| {

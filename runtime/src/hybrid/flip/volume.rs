@@ -47,8 +47,9 @@ impl Flip {
 }
 
 /// The particle density of every cell (i + j·nx) into `out`: Σₚ N(xₚ − x_c)/sampling²,
-/// quadratic B-splines about the cell's centre (the particles are inside the fluid's room, so
-/// every stencil is on the grid).
+/// quadratic B-splines about the cell's centre. A particle outside the fluid's room (which a
+/// step refuses, but `x` is public and [`Flip::density`](super::Flip::density) may be asked
+/// before one) adds nothing: inside it, every stencil is on the grid.
 pub(super) fn cell_density(
     x: &[Vector2<f64>],
     h: f64,
@@ -57,9 +58,16 @@ pub(super) fn cell_density(
     out: &mut [f64],
 ) {
     let share = 1.0 / (sampling * sampling) as f64;
+    // x·(1/h), as `Flip::inside_room` judges positions: x/h may round past the last cell.
+    let inv_h = 1.0 / h;
+    let (last_x, last_y) = ((nx - 1) as f64, (out.len() / nx - 1) as f64);
     out.fill(0.0);
     for x in x {
-        let s = Stencil::at([x.x / h - 0.5, x.y / h - 0.5]);
+        let (cx, cy) = (x.x * inv_h, x.y * inv_h);
+        if !(cx >= 1.0 && cx < last_x && cy >= 1.0 && cy < last_y) {
+            continue;
+        }
+        let s = Stencil::at([cx - 0.5, cy - 0.5]);
         for j in 0..3 {
             let row = s.base[0] + (s.base[1] + j) * nx;
             for i in 0..3 {

@@ -193,14 +193,28 @@ impl Mpm {
     /// step 4.7 times slower than in sorted order (`benches/mpm.rs`'s scene, one thread).
     /// Bodies from [`Mpm::add_block`] and [`Mpm::add_disc`] start sorted; a flow that mixes
     /// its particles for long is worth re-sorting now and then.
-    pub fn sort_particles(&mut self) -> Vec<usize> {
+    ///
+    /// Errors: [`Error::InvalidInput`] (nothing moved) when the public position or velocity
+    /// list no longer has one entry a particle.
+    pub fn sort_particles(&mut self) -> Result<Vec<usize>> {
         let inv_h = 1.0 / self.options.cell;
         let nx = self.options.nx;
         let cell = |x: &Vector2<f64>| {
             let (i, j) = ((x.x * inv_h) as usize, (x.y * inv_h) as usize);
             j.saturating_mul(nx).saturating_add(i)
         };
-        let mut order: Vec<usize> = (0..self.x.len().min(self.mass.len())).collect();
+        let n = self.mass.len();
+        if self.x.len() != n || self.v.len() != n {
+            return Err(Error::invalid(
+                "particles",
+                format!(
+                    "{} positions and {} velocities for {n} particles",
+                    self.x.len(),
+                    self.v.len()
+                ),
+            ));
+        }
+        let mut order: Vec<usize> = (0..n).collect();
         order.sort_by_key(|&p| cell(&self.x[p]));
         fn permute<T: Copy>(list: &mut [T], order: &[usize]) {
             let old = list.to_vec();
@@ -208,18 +222,16 @@ impl Mpm {
                 *new = old[from];
             }
         }
-        if self.x.len() == order.len() && self.v.len() == order.len() {
-            permute(&mut self.x, &order);
-            permute(&mut self.v, &order);
-            permute(&mut self.c, &order);
-            permute(&mut self.f, &order);
-            permute(&mut self.j, &order);
-            permute(&mut self.stress, &order);
-            permute(&mut self.mass, &order);
-            permute(&mut self.volume, &order);
-            permute(&mut self.material, &order);
-        }
-        order
+        permute(&mut self.x, &order);
+        permute(&mut self.v, &order);
+        permute(&mut self.c, &order);
+        permute(&mut self.f, &order);
+        permute(&mut self.j, &order);
+        permute(&mut self.stress, &order);
+        permute(&mut self.mass, &order);
+        permute(&mut self.volume, &order);
+        permute(&mut self.material, &order);
+        Ok(order)
     }
 
     /// [`Error::InvalidInput`] unless [lower, upper] lies in the box: a body's particles are

@@ -17,14 +17,16 @@ impl Mpm {
         } else {
             0.0
         };
-        (0..self.mass.len())
-            .map(|p| {
+        // Zipped, not indexed, here and below: `x` and `v` are public and may have been resized
+        // (`step` refuses that); a measure then covers the particles both lists still have.
+        (self.mass.iter().zip(&self.v).zip(&self.c))
+            .map(|((m, v), c)| {
                 let c = if affine > 0.0 {
-                    affine * self.c[p].norm_squared()
+                    affine * c.norm_squared()
                 } else {
                     0.0
                 };
-                0.5 * self.mass[p] * (self.v[p].norm_squared() + c)
+                0.5 * m * (v.norm_squared() + c)
             })
             .sum()
     }
@@ -72,10 +74,10 @@ impl Mpm {
         } else {
             0.0
         };
-        (0..self.mass.len())
-            .map(|p| {
-                let (r, v, c) = (self.x[p] - point, self.v[p], self.c[p]);
-                self.mass[p] * (r.x * v.y - r.y * v.x + spin * (c[(1, 0)] - c[(0, 1)]))
+        (self.mass.iter().zip(&self.x).zip(&self.v).zip(&self.c))
+            .map(|(((m, x), v), c)| {
+                let r = x - point;
+                m * (r.x * v.y - r.y * v.x + spin * (c[(1, 0)] - c[(0, 1)]))
             })
             .sum()
     }

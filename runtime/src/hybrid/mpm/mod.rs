@@ -266,13 +266,18 @@ impl Mpm {
 
     /// The largest step the explicit update is stable at, about: 0.5·h/(c + |v|) at the
     /// particle where it is least, c the material's fastest wave ([`Material`]). The 88-line
-    /// program steps at 0.51·h/c.
+    /// program steps at 0.51·h/c. Infinite for an empty box, which [`Mpm::step`] refuses as a
+    /// step: choose one yourself there.
     pub fn stable_dt(&self) -> f64 {
         let h = self.options.cell;
-        let fastest = (0..self.x.len()).fold(0.0f64, |m, p| {
-            let (material, model) = &self.materials[self.material[p] as usize];
-            m.max(model.wave_speed(material.density(), self.j[p]) + self.v[p].norm())
-        });
+        // Zipped, not indexed: `v` is public and may have been resized (`step` refuses that).
+        let fastest = (self.material.iter().zip(&self.j).zip(&self.v)).fold(
+            0.0f64,
+            |m, ((&material, &j), v)| {
+                let (material, model) = &self.materials[material as usize];
+                m.max(model.wave_speed(material.density(), j) + v.norm())
+            },
+        );
         if fastest > 0.0 {
             0.5 * h / fastest
         } else {
