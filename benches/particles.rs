@@ -7,6 +7,13 @@
 //! which is one force evaluation, one Jacobian, one assembly, one factorization and one solve.
 //! `cargo bench --bench particles`.
 //!
+//! `step_quasi_newton`: the same step by the quasi-Newton solve (L-BFGS on the prefactored link
+//! Laplacian, its default 8 iterations at most), from the same state, beside `step` (the
+//! one-Newton-iteration Baraff–Witkin form on the direct solver); `step_quasi_newton_falling`
+//! and `step_falling` take both from the falling cloth at t = 0.5 s, where the springs are
+//! stretched and the step is no longer near rest; `setup_quasi_newton` is the one-time set-up
+//! (the link weights, the symbolic and numeric Cholesky factorization of M + h²K).
+//!
 //! `half_second_direct` / `half_second_krylov`: 30 consecutive one-step (definite) implicit
 //! Euler steps of the falling cloth from rest at 32² and 64², Cholesky against block-Jacobi CG
 //! with the warm start (`LinearSolver::Krylov`, relative residual 1e-8): a single step from
@@ -15,7 +22,10 @@
 use odyn::integrators::ImplicitEuler;
 use odyn::particles::{ParticleJacobian, ParticleState};
 use odyn::prelude::*;
-use odyn::{Integrator, Jacobian, Krylov, LinearSolver, NewtonOptions, Stats, Stepper};
+use odyn::{
+    Integrator, Jacobian, Krylov, LinearSolver, NewtonOptions, ParticleSolve, QuasiNewtonOptions,
+    Stats, Stepper,
+};
 use scenes::{Cloth, Sheet};
 
 fn main() {
@@ -58,6 +68,90 @@ fn step(bencher: divan::Bencher, n: usize) {
     let (mut y, mut scratch) = (state.clone(), state.clone());
     bencher.bench_local(|| {
         y.clone_from(&state);
+        integrator
+            .step(&model, 0.0, H, &mut y, &mut scratch, &mut stats)
+            .unwrap();
+    });
+}
+
+/// The quasi-Newton options, its defaults.
+fn quasi_newton() -> NewtonOptions {
+    NewtonOptions {
+        particle_solve: ParticleSolve::QuasiNewton(QuasiNewtonOptions::default()),
+        ..NewtonOptions::default()
+    }
+}
+
+/// One step from `state` with `newton`, the integrator made beforehand.
+fn step_from(
+    bencher: divan::Bencher,
+    model: &Cloth,
+    state: &ParticleState<3>,
+    newton: &NewtonOptions,
+) {
+    let mut stats = Stats::default();
+    let mut integrator = ImplicitEuler::start(model, 0.0, state, newton, &mut stats).unwrap();
+    let (mut y, mut scratch) = (state.clone(), state.clone());
+    bencher.bench_local(|| {
+        y.clone_from(state);
+        integrator
+            .step(model, 0.0, H, &mut y, &mut scratch, &mut stats)
+            .unwrap();
+    });
+}
+
+/// The falling cloth at t = 0.5 s (30 Baraff–Witkin steps from rest).
+fn falling(n: usize) -> (Cloth, ParticleState<3>) {
+    let model = cloth(n);
+    let mut stepper = Stepper::<Cloth, ImplicitEuler<Cloth>>::with_newton(
+        &model,
+        model.state(),
+        0.0,
+        H,
+        &NewtonOptions::linearized(),
+    )
+    .unwrap();
+    for _ in 0..30 {
+        stepper.step().unwrap();
+    }
+    let state = stepper.state().clone();
+    (model, state)
+}
+
+/// The quasi-Newton step from rest.
+#[divan::bench(args = SIZES, sample_count = 20)]
+fn step_quasi_newton(bencher: divan::Bencher, n: usize) {
+    let model = cloth(n);
+    step_from(bencher, &model, &model.state(), &quasi_newton());
+}
+
+/// The Baraff–Witkin step from the falling cloth at t = 0.5 s.
+#[divan::bench(args = SIZES, sample_count = 10)]
+fn step_falling(bencher: divan::Bencher, n: usize) {
+    let (model, state) = falling(n);
+    step_from(bencher, &model, &state, &NewtonOptions::linearized());
+}
+
+/// The quasi-Newton step from the falling cloth at t = 0.5 s.
+#[divan::bench(args = SIZES, sample_count = 10)]
+fn step_quasi_newton_falling(bencher: divan::Bencher, n: usize) {
+    let (model, state) = falling(n);
+    step_from(bencher, &model, &state, &quasi_newton());
+}
+
+/// The quasi-Newton solve's one-time set-up: link weights from J, the factorization of
+/// M + h²K (symbolic and numeric), and its first step's evaluation.
+#[divan::bench(args = SIZES, sample_count = 10)]
+fn setup_quasi_newton(bencher: divan::Bencher, n: usize) {
+    let model = cloth(n);
+    let state = model.state();
+    let newton = quasi_newton();
+    bencher.bench_local(|| {
+        let mut stats = Stats::default();
+        let mut integrator =
+            ImplicitEuler::start(&model, 0.0, &state, &newton, &mut stats).unwrap();
+        let (mut y, mut scratch) = (state.clone(), state.clone());
+        // A step of zero iterations' worth would not factorize: the first step does.
         integrator
             .step(&model, 0.0, H, &mut y, &mut scratch, &mut stats)
             .unwrap();

@@ -131,8 +131,8 @@ pub mod prelude {
     pub use crate::nalgebra::{SVector, Vector1, Vector2, Vector3, Vector4, Vector5, Vector6};
     pub use crate::particles::ParticleSystem;
     pub use crate::{
-        Direction, Error, Event, Jacobian, Method, Model, Result, SecondOrder, Simulation, State,
-        Stepping, Tolerances, Trajectory, system,
+        Direction, Error, Event, Jacobian, Method, Model, NewtonOptions, Result, SecondOrder,
+        Simulation, State, Stepping, Tolerances, Trajectory, system,
     };
 }
 

@@ -88,16 +88,23 @@ fn forward_impl(args: TokenStream, item: &ItemImpl) -> TokenStream {
             "expected the model struct's name, such as `impl Spring`",
         );
     }
+    // Whatever becomes of the block, it was marked: the struct's check is satisfied.
+    let marked = model.map(|_| {
+        let (impl_generics, _, where_clause) = item.generics.split_for_impl();
+        let self_ty = &item.self_ty;
+        quote!(impl #impl_generics ::odyn::__private::SystemImpl for #self_ty #where_clause {})
+    });
     match (errors.finish(), model) {
         (Ok(()), Some(model)) => {
             let forwarder = generate::forwarder_name(model);
-            quote!(#forwarder! { #item })
+            quote!(#forwarder! { #item } #marked)
         }
         (result, _) => {
             let error = result.err().unwrap_or_else(|| {
                 syn::Error::new_spanned(&item.self_ty, "`#[system]` rejected this impl block")
             });
-            with_error(item, error)
+            let expanded = with_error(item, error);
+            quote!(#expanded #marked)
         }
     }
 }
@@ -169,7 +176,8 @@ fn too_deep(item: TokenStream, error: syn::Error) -> TokenStream {
             Some(proc_macro2::TokenTree::Group(_)),
         ) if keyword == "impl" => {
             let state = crate::model::state_ident(&model);
-            generate::stub_model(&model, &state)
+            let stub = generate::stub_model(&model, &state);
+            quote!(#stub impl ::odyn::__private::SystemImpl for #model {})
         }
         _ => TokenStream::new(),
     };

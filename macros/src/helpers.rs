@@ -87,8 +87,10 @@ impl Helpers {
         (helper.receiver == receiver).then(|| (helper, args.iter().collect()))
     }
 
-    /// Whether `name` is a helper taking `&self` (a call `self.name(…)` the rewrite keeps).
-    pub(crate) fn is_method(&self, name: &Ident) -> bool {
+}
+
+impl crate::rewrite::Methods for Helpers {
+    fn is_method(&self, name: &Ident) -> bool {
         self.get(&name.to_string()).is_some_and(|h| h.receiver)
     }
 }

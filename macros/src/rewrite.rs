@@ -13,9 +13,15 @@ use syn::visit_mut::{self, VisitMut};
 use syn::{Block, Expr, Ident, Member};
 
 use crate::errors::Errors;
-use crate::helpers::Helpers;
 use crate::model::{Model, Shape};
 use crate::syntax::is_self;
+
+/// The model's helper methods as the rewrite sees them: which names are methods taking `&self`
+/// (implemented by [`crate::helpers::Helpers`], so this module does not depend on it).
+pub(crate) trait Methods {
+    /// Whether `name` is a helper taking `&self` (a call `self.name(…)` the rewrite keeps).
+    fn is_method(&self, name: &Ident) -> bool;
+}
 
 /// The local a state field `x` is bound to inside a rewritten body.
 pub(crate) fn state_local(field: &Ident) -> Ident {
@@ -33,7 +39,7 @@ pub(crate) fn state_local(field: &Ident) -> Ident {
 pub(crate) fn rewrite(
     block: &Block,
     model: &Model<'_>,
-    helpers: &Helpers,
+    helpers: &dyn Methods,
     function: &Ident,
     borrowed: bool,
     errors: &mut Errors,
@@ -55,7 +61,7 @@ pub(crate) fn rewrite(
 /// Replaces `self.<state field>` with the field's local and rejects every other use of `self`.
 struct Rewriter<'m, 'e> {
     model: &'m Model<'m>,
-    helpers: &'m Helpers,
+    helpers: &'m dyn Methods,
     function: &'m Ident,
     borrowed: bool,
     reads: BTreeMap<String, TokenStream>,

@@ -325,7 +325,9 @@ fn step_advice(method: Method, rejection: Rejection, dt_min: bool, large_t: bool
             .to_owned(),
     };
     if large_t {
-        advice.push_str("; or t is so large there that its floats are coarse: start the run nearer 0");
+        advice.push_str(
+            "; or t is so large there that its floats are coarse: start the run nearer 0",
+        );
     }
     advice
 }

@@ -53,8 +53,9 @@ pub use error::{Error, NewtonFailure, Rejection, Result};
 pub use fingerprint::Fingerprint;
 pub use integrators::Integrator;
 pub use linalg::{
-    DenseMatrix, FactorizeError, FaerDense, Krylov, KrylovCounts, LinearSolver, NewtonMatrix,
-    NewtonOptions, Preconditioner, SolveError, Solves,
+    DenseMatrix, FactorizeError, FaerDense, Krylov, KrylovCounts, LinearSolver, LinkLaplacian,
+    NewtonMatrix, NewtonOptions, ParticleSolve, Preconditioner, QuasiNewtonOptions, SolveError,
+    Solves,
 };
 pub use method::{Method, MethodInfo};
 pub use model::dual::Dual;
@@ -96,6 +97,17 @@ pub mod __private {
     pub use crate::__flat_state as flat_state;
     pub use crate::__generic_flat_state as generic_flat_state;
     pub use crate::__state_arithmetic as state_arithmetic;
+
+    /// Implemented by `#[system]` on a model's impl block, whatever becomes of it, and required
+    /// by the struct's expansion: a struct marked `#[system]` whose impl block is not gets this
+    /// message at its name.
+    #[diagnostic::on_unimplemented(
+        message = "`{Self}` has `#[system]` on its struct but no `#[system]` impl block",
+        label = "`{Self}`'s impl block needs `#[system]` too",
+        note = "add `#[system]` above `impl {Self} {{ .. }}`, the block that defines `fn \
+                acceleration` or `fn derivative` (or a particle or field model's kernels)"
+    )]
+    pub trait SystemImpl {}
 
     /// The state type `#[system]` gives a struct it rejected, so the user's crate still
     /// type-checks around the real error: it has no values, and nothing of it ever runs.

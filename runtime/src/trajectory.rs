@@ -110,7 +110,10 @@ impl<S: State> Trajectory<S> {
             (Some(b), None) => b,
             (None, Some(a)) => a,
             (None, None) => {
-                return Err(Error::invalid("sample time", "the trajectory has no samples"));
+                return Err(Error::invalid(
+                    "sample time",
+                    "the trajectory has no samples",
+                ));
             }
         };
         let (first, end) = (

@@ -15,22 +15,64 @@ use odyn::{DenseMatrix, Jacobian};
 
 /// The functions, each with whether the generated Jacobian differentiates it exactly.
 const FUNCTIONS: [(&str, bool); 50] = [
-    ("sqrt", true), ("cbrt", true), ("exp", true), ("exp2", true), ("exp_m1", true),
-    ("ln", true), ("ln_1p", true), ("log2", true), ("log10", true), ("sin", true),
-    ("cos", true), ("tan", true), ("asin", true), ("acos", true), ("atan", true),
-    ("sinh", true), ("cosh", true), ("tanh", true), ("asinh", false), ("acosh", false),
-    ("atanh", false), ("abs", true), ("signum", true), ("recip", true), ("powi(3)", true),
-    ("powi(-2)", true), ("powf(3)", true), ("powf(2)", true), ("powf(1.5)", true),
-    ("powf(-0.5)", true), ("floor", false), ("ceil", false), ("round", false), ("trunc", false),
-    ("fract", false), ("to_degrees", false), ("sin_cos", true), ("sqrt(a²-4).max(0)", true),
-    ("logistic", true), ("atan2", true), ("hypot", true), ("max", true), ("min", true),
-    ("mul_add", true), ("clamp", true), ("a*b", true), ("a/b", true), ("copysign", false),
-    ("rem_euclid", false), ("log", false),
+    ("sqrt", true),
+    ("cbrt", true),
+    ("exp", true),
+    ("exp2", true),
+    ("exp_m1", true),
+    ("ln", true),
+    ("ln_1p", true),
+    ("log2", true),
+    ("log10", true),
+    ("sin", true),
+    ("cos", true),
+    ("tan", true),
+    ("asin", true),
+    ("acos", true),
+    ("atan", true),
+    ("sinh", true),
+    ("cosh", true),
+    ("tanh", true),
+    ("asinh", false),
+    ("acosh", false),
+    ("atanh", false),
+    ("abs", true),
+    ("signum", true),
+    ("recip", true),
+    ("powi(3)", true),
+    ("powi(-2)", true),
+    ("powf(3)", true),
+    ("powf(2)", true),
+    ("powf(1.5)", true),
+    ("powf(-0.5)", true),
+    ("floor", false),
+    ("ceil", false),
+    ("round", false),
+    ("trunc", false),
+    ("fract", false),
+    ("to_degrees", false),
+    ("sin_cos", true),
+    ("sqrt(a²-4).max(0)", true),
+    ("logistic", true),
+    ("atan2", true),
+    ("hypot", true),
+    ("max", true),
+    ("min", true),
+    ("mul_add", true),
+    ("clamp", true),
+    ("a*b", true),
+    ("a/b", true),
+    ("copysign", false),
+    ("rem_euclid", false),
+    ("log", false),
 ];
 
 /// Whether the function is a step function (its difference at a jump is no derivative).
 fn steps(name: &str) -> bool {
-    matches!(name, "floor" | "ceil" | "round" | "trunc" | "fract" | "copysign" | "rem_euclid" | "signum")
+    matches!(
+        name,
+        "floor" | "ceil" | "round" | "trunc" | "fract" | "copysign" | "rem_euclid" | "signum"
+    )
 }
 
 macro_rules! functions {
@@ -77,8 +119,16 @@ functions!(Duals, DualsState, jacobian = dual);
 
 /// The generated and dual ∂(out)/∂(a, b) at (a, b): 2 columns of 50 rows each.
 fn columns(a: f64, b: f64) -> [[(f64, f64); 50]; 2] {
-    let generated = Generated { a, b, out: [0.0; 50] };
-    let dual = Duals { a, b, out: [0.0; 50] };
+    let generated = Generated {
+        a,
+        b,
+        out: [0.0; 50],
+    };
+    let dual = Duals {
+        a,
+        b,
+        out: [0.0; 50],
+    };
     let (y, z) = (generated.state(), dual.state());
     let (mut g, mut d) = (generated.jacobian_matrix(&y), dual.jacobian_matrix(&z));
     generated.jacobian(0.0, &y, &mut g);
@@ -91,9 +141,22 @@ fn columns(a: f64, b: f64) -> [[(f64, f64); 50]; 2] {
 #[test]
 fn dual_numbers_follow_the_generated_rules_at_the_extremes() {
     let points = [
-        (0.7, -1.3), (-0.6, 0.4), (2.5, 3.5), (-2.5, -0.4), (0.0, 0.0), (-0.0, 1.0),
-        (0.0, -1.0), (1e200, 1e200), (1e300, -1e300), (-1e150, 2e150), (1e-200, 1e-200),
-        (-1e-300, 1e-300), (709.0, 1.0), (1.0, 1.0), (-709.0, 3.0), (4.0, 0.5),
+        (0.7, -1.3),
+        (-0.6, 0.4),
+        (2.5, 3.5),
+        (-2.5, -0.4),
+        (0.0, 0.0),
+        (-0.0, 1.0),
+        (0.0, -1.0),
+        (1e200, 1e200),
+        (1e300, -1e300),
+        (-1e150, 2e150),
+        (1e-200, 1e-200),
+        (-1e-300, 1e-300),
+        (709.0, 1.0),
+        (1.0, 1.0),
+        (-709.0, 3.0),
+        (4.0, 0.5),
     ];
     let mut compared = 0;
     for (a, b) in points {
@@ -125,8 +188,7 @@ fn dual_numbers_follow_the_generated_rules_at_the_extremes() {
                 let bound = if exact {
                     4.0 * f64::EPSILON * generated.abs().max(dual.abs()) + 1e-300
                 } else {
-                    1e-6 * generated.abs().max(1e-300)
-                        + 1e-9 * at.abs().max(1.0).recip()
+                    1e-6 * generated.abs().max(1e-300) + 1e-9 * at.abs().max(1.0).recip()
                 };
                 assert!(
                     (generated - dual).abs() <= bound,
@@ -145,7 +207,11 @@ fn dual_numbers_follow_the_generated_rules_at_the_extremes() {
 
 /// Output `row` of the model at (a, b), as its code computes it.
 fn output(row: usize, a: f64, b: f64) -> f64 {
-    let model = Generated { a, b, out: [0.0; 50] };
+    let model = Generated {
+        a,
+        b,
+        out: [0.0; 50],
+    };
     let y = model.state();
     let mut dy = y;
     Model::derivative(&model, 0.0, &y, &mut dy);
@@ -189,11 +255,55 @@ impl Floored {
 /// runs, Rodas5P (c = 40: stiff) within its tolerance of DOP853 at rtol 1e-12.
 #[test]
 fn rounding_functions_do_not_panic_under_dual() {
-    let model = Floored { x: 1.5, v: 0.0, c: 40.0 };
+    let model = Floored {
+        x: 1.5,
+        v: 0.0,
+        c: 40.0,
+    };
     let run = |method: Method, rtol: f64| {
-        model.simulate().integrator(method).tolerances(rtol, rtol * 1e-2).duration(5.0).run()
+        model
+            .simulate()
+            .integrator(method)
+            .tolerances(rtol, rtol * 1e-2)
+            .duration(5.0)
+            .run()
     };
     let reference = run(Method::Dop853, 1e-12).unwrap().last().state;
     let y = run(Method::Rodas5P, 1e-8).unwrap().last().state;
-    assert!((y.x - reference.x).abs() < 1e-6, "{y:?} against {reference:?}");
+    assert!(
+        (y.x - reference.x).abs() < 1e-6,
+        "{y:?} against {reference:?}"
+    );
+}
+
+/// Predicates and orderings on the state, which the generated Jacobian refuses (the refusal
+/// advises `jacobian = dual`), compile and differentiate under `dual`: `is_nan` and `total_cmp`
+/// read the value, so the branch taken is the one `f64` takes.
+#[system(jacobian = dual)]
+#[derive(Clone, Copy, Debug)]
+struct Guarded {
+    #[state]
+    x: f64,
+}
+
+#[system]
+impl Guarded {
+    fn derivative(&self) -> GuardedState {
+        let finite = !self.x.is_nan() && self.x.total_cmp(&0.0) == std::cmp::Ordering::Greater;
+        GuardedState {
+            x: if finite { -self.x * self.x } else { 0.0 },
+        }
+    }
+}
+
+/// d(−x²)/dx = −2x on the positive branch, 0 on the other.
+#[test]
+fn predicates_on_the_state_differentiate_under_dual() {
+    for (x, expected) in [(3.0, -6.0), (-1.0, 0.0)] {
+        let model = Guarded { x };
+        let y = model.state();
+        let mut j = model.jacobian_matrix(&y);
+        model.jacobian(0.0, &y, &mut j);
+        assert_eq!(j[(0, 0)], expected, "at x = {x}");
+    }
 }

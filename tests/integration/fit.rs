@@ -336,8 +336,14 @@ fn fits_that_cannot_fit_are_typed_errors() {
     let mut huge = data.clone();
     huge.values[3] = 1e300;
     match fit(&truth, &[huge], &options) {
-        Err(Error::FitStart { parameters, problem }) => {
-            assert!(parameters.contains("k = 7e-1") && problem.contains("sample 3"), "{problem}");
+        Err(Error::FitStart {
+            parameters,
+            problem,
+        }) => {
+            assert!(
+                parameters.contains("k = 7e-1") && problem.contains("sample 3"),
+                "{problem}"
+            );
         }
         other => panic!("expected FitStart, got {other:?}"),
     }
@@ -415,16 +421,34 @@ impl Tone {
 /// minimum of the oscillating residuals (χ²/ν in the thousands, inconsistent). ν = 100 − 1.
 #[test]
 fn a_local_minimum_is_reported_inconsistent_with_its_noise() {
-    let truth = Tone { x: 1.0, v: 0.0, k: 50.0 };
+    let truth = Tone {
+        x: 1.0,
+        v: 0.0,
+        k: 50.0,
+    };
     let sigma = 0.01;
     let data = samples(&truth, 0, &times(100, 10.0), sigma, 3);
-    let near = fit(&Tone { k: 48.0, ..truth }, std::slice::from_ref(&data), &FitOptions::default())
-        .unwrap();
+    let near = fit(
+        &Tone { k: 48.0, ..truth },
+        std::slice::from_ref(&data),
+        &FitOptions::default(),
+    )
+    .unwrap();
     assert_eq!(near.degrees_of_freedom, 99);
-    assert!(near.consistent() && (near.parameters[0] - 50.0).abs() < 0.1, "{near:?}");
+    assert!(
+        near.consistent() && (near.parameters[0] - 50.0).abs() < 0.1,
+        "{near:?}"
+    );
     // From k = 40 the search stops at k ≈ 39.6, a minimum of the residuals' oscillation in k.
-    let far = fit(&Tone { k: 40.0, ..truth }, std::slice::from_ref(&data), &FitOptions::default())
-        .unwrap();
+    let far = fit(
+        &Tone { k: 40.0, ..truth },
+        std::slice::from_ref(&data),
+        &FitOptions::default(),
+    )
+    .unwrap();
     assert!((far.parameters[0] - 50.0).abs() > 5.0, "{far:?}");
-    assert!(!far.consistent() && far.reduced_chi_squared > 100.0, "{far:?}");
+    assert!(
+        !far.consistent() && far.reduced_chi_squared > 100.0,
+        "{far:?}"
+    );
 }

@@ -39,6 +39,7 @@ mod mpm;
 mod output;
 mod parameters;
 mod particles;
+mod quasi_newton;
 mod reference_dop853;
 mod rosenbrock;
 mod runner;

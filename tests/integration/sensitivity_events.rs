@@ -74,11 +74,17 @@ fn sensitivities_jump_at_a_bounce() {
     let d = 1e-5;
     let by_g = |i: usize| {
         let (plus, minus) = (closed_form(2.0, g + d, h), closed_form(2.0, g - d, h));
-        [(plus.0 - minus.0) / (2.0 * d), (plus.1 - minus.1) / (2.0 * d)][i]
+        [
+            (plus.0 - minus.0) / (2.0 * d),
+            (plus.1 - minus.1) / (2.0 * d),
+        ][i]
     };
     let by_h = |i: usize| {
         let (plus, minus) = (closed_form(2.0, g, h + d), closed_form(2.0, g, h - d));
-        [(plus.0 - minus.0) / (2.0 * d), (plus.1 - minus.1) / (2.0 * d)][i]
+        [
+            (plus.0 - minus.0) / (2.0 * d),
+            (plus.1 - minus.1) / (2.0 * d),
+        ][i]
     };
     for i in 0..2 {
         // Column 0 is ∂/∂g, column 1 ∂/∂y₀ (the drop height), column 2 ∂/∂v₀ (not checked).

@@ -18,8 +18,8 @@ mod jacobian;
 mod model;
 mod prologue;
 
-use proc_macro2::TokenStream;
-use quote::{format_ident, quote};
+use proc_macro2::{Span, TokenStream};
+use quote::{format_ident, quote, quote_spanned};
 use syn::ItemStruct;
 
 pub(crate) use code::{lets, operand, straight_line};
@@ -103,6 +103,30 @@ pub(crate) fn never_run(
         }
     }
     imp
+}
+
+/// A check that the struct's impl block is marked `#[system]` too: only that attribute
+/// implements `odyn::__private::SystemImpl`, whose `on_unimplemented` message then says, at the
+/// struct's name, that the `#[system] impl` block is missing (rather than only rustc's "no
+/// method named `simulate`" at a use). Not for a generic struct: its impl block may be for one
+/// instance (`impl Chain<3>`), and the check cannot name which.
+pub(crate) fn impl_check(item: &ItemStruct) -> TokenStream {
+    if !item.generics.params.is_empty() {
+        return TokenStream::new();
+    }
+    let ident = &item.ident;
+    let is_model = format_ident!("__odyn_is_model", span = Span::mixed_site());
+    let has_impl = format_ident!("__odyn_has_impl", span = Span::mixed_site());
+    let checked = quote_spanned!(ident.span()=> #ident);
+    quote! {
+        const _: () = {
+            fn #is_model<T: ::odyn::__private::SystemImpl + ?::core::marker::Sized>() {}
+            #[allow(dead_code)]
+            fn #has_impl() {
+                #is_model::<#checked>();
+            }
+        };
+    }
 }
 
 /// The `macro_rules!` that hands the struct to the impl block's expansion. On `Err` (the struct was

@@ -107,8 +107,13 @@ pub(crate) enum Impl {
     /// The runtime trait impls, emitted after the impl block.
     Accepted(TokenStream),
     /// Rejected, its errors recorded; `silenced` names a method whose body must not be emitted
-    /// as written (rustc would report its errors a second time).
-    Rejected { silenced: Option<syn::Ident> },
+    /// as written (rustc would report its errors a second time); `stand_ins` are impls of the
+    /// traits the model would have had beyond `Model` (its `Jacobian`, its `Parameters`), whose
+    /// bodies never run, so calls of their methods draw no follow-on errors.
+    Rejected {
+        silenced: Option<syn::Ident>,
+        stand_ins: TokenStream,
+    },
 }
 
 /// The struct half of `#[system]`: the struct without odyn's attributes, its state type, and the
@@ -151,7 +156,8 @@ pub(crate) fn expand_struct(args_tokens: TokenStream, item: &ItemStruct) -> Toke
     match (errors.finish(), state) {
         (Ok(()), Some(state)) => {
             let forwarder = generate::forwarder(item, &args_tokens, Forward::Accepted);
-            quote!(#stripped #state #forwarder)
+            let check = generate::impl_check(item);
+            quote!(#stripped #state #forwarder #check)
         }
         // Only the arguments, or their fit with the model, were wrong (`rtol = -1.0`): the
         // model still expands, so its uses draw no errors of their own.
@@ -248,9 +254,12 @@ pub(crate) fn expand_impl(args: &Args, item: &ItemStruct, imp: &ItemImpl) -> Tok
             let error = result.err().unwrap_or_else(|| {
                 syn::Error::new_spanned(&imp.self_ty, "`#[system]` rejected this model")
             });
-            let silenced = match outcome {
-                Impl::Rejected { silenced } => silenced,
-                Impl::Accepted(_) => None,
+            let (silenced, stand_ins) = match outcome {
+                Impl::Rejected {
+                    silenced,
+                    stand_ins,
+                } => (silenced, stand_ins),
+                Impl::Accepted(_) => (None, TokenStream::new()),
             };
             let imp = generate::never_run(stripped, |f| Some(&f.sig.ident) == silenced.as_ref());
             let error = error.to_compile_error();
@@ -261,7 +270,7 @@ pub(crate) fn expand_impl(args: &Args, item: &ItemStruct, imp: &ItemImpl) -> Tok
                 quote!(#state #type_generics),
                 &item.generics,
             );
-            quote!(#imp #error #stub)
+            quote!(#imp #error #stub #stand_ins)
         }
     };
     // A near miss was read as the attribute meant: the expansion stands beside its error.

@@ -7,7 +7,8 @@ use super::FitOptions;
 use crate::{Error, Result};
 
 /// r and ∂r/∂q at q.
-pub(super) type Residuals<'a> = dyn FnMut(&DVector<f64>) -> Result<(DVector<f64>, DMatrix<f64>)> + 'a;
+pub(super) type Residuals<'a> =
+    dyn FnMut(&DVector<f64>) -> Result<(DVector<f64>, DMatrix<f64>)> + 'a;
 
 /// The minimiser's result in the search variables.
 pub(super) struct Minimum {

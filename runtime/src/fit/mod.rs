@@ -119,6 +119,11 @@ impl Fit {
 /// Fits the `#[param]` parameters of `model` (its values are the initial guess) to `data`: one
 /// [`Data`] per measured state component, their residuals weighed together.
 ///
+/// The model must be `Clone` (`#[derive(Clone)]` on its struct): each trial of the search is a
+/// copy with its own parameters. Check [`Fit::consistent`] (with weights 1/σ) before trusting
+/// the result: a fit converges to the nearest minimum of the cost, which need not be the best
+/// one.
+///
 /// # Errors
 ///
 /// [`Error::InvalidInput`] for data that cannot be fitted (unequal lengths, times not

@@ -48,6 +48,7 @@ pub use composition::{Composed, Composition, Weights};
 pub use dense_step::DenseStep;
 pub use dop853::Dop853Tableau;
 pub use explicit_rk::{ExplicitRk, Tableau};
+pub use implicit_euler::QuasiNewton;
 pub use kahan_li6::KahanLi6Weights;
 pub use leapfrog::LeapfrogForm;
 pub use linearization::Linearization;

@@ -4,6 +4,7 @@
 
 pub(crate) mod dense;
 pub(crate) mod krylov;
+pub(crate) mod laplacian;
 mod multigrid;
 mod newton;
 mod precond;
@@ -12,7 +13,8 @@ pub(crate) mod spd;
 
 pub use dense::{DenseMatrix, FactorizeError, FaerDense, NewtonMatrix, SolveError};
 pub use krylov::{Krylov, KrylovCounts, LinearSolver, Preconditioner, Solves};
-pub use newton::NewtonOptions;
+pub use laplacian::LinkLaplacian;
+pub use newton::{NewtonOptions, ParticleSolve, QuasiNewtonOptions};
 
 /// A small linear congruential generator for tests (Knuth's MMIX constants), 31 bits a draw:
 /// the tests need variety, not quality.

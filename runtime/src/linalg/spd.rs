@@ -27,6 +27,16 @@ impl SpdSolver {
     ///
     /// Errors: [`Error::InvalidInput`] if the matrix is not positive definite.
     pub(crate) fn new(n: usize, entries: &[(usize, usize, f64)]) -> Result<SpdSolver> {
+        Self::with_columns(n, entries, 1)
+    }
+
+    /// [`SpdSolver::new`], with room to solve `columns` right-hand sides at once
+    /// ([`SpdSolver::solve_columns`]).
+    pub(crate) fn with_columns(
+        n: usize,
+        entries: &[(usize, usize, f64)],
+        columns: usize,
+    ) -> Result<SpdSolver> {
         let mut entries: Vec<(usize, usize, f64)> = entries.to_vec();
         entries.sort_by_key(|&(r, c, _)| (c, r));
         let mut merged: Vec<(usize, usize, f64)> = Vec::with_capacity(entries.len());
@@ -57,7 +67,7 @@ impl SpdSolver {
         .map_err(|_| Error::invalid("matrix", "no symbolic Cholesky factor"))?;
         let need = symbolic
             .factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default())
-            .or(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq));
+            .or(symbolic.solve_in_place_scratch::<f64>(columns.max(1), Par::Seq));
         let mut scratch = MemBuffer::new(need);
         let mut factor = vec![0.0; symbolic.len_val()];
         symbolic
@@ -80,8 +90,14 @@ impl SpdSolver {
 
     /// Overwrites `rhs` with the solution x of A·x = rhs.
     pub(crate) fn solve_in_place(&mut self, rhs: &mut [f64]) {
-        let n = rhs.len();
-        let rhs = MatMut::from_column_major_slice_mut(rhs, n, 1);
+        self.solve_columns(rhs, 1);
+    }
+
+    /// Overwrites the `columns` right-hand sides stored one after the other in `rhs` (column
+    /// major) with their solutions; `columns` at most what the solver was made for.
+    pub(crate) fn solve_columns(&mut self, rhs: &mut [f64], columns: usize) {
+        let n = rhs.len() / columns;
+        let rhs = MatMut::from_column_major_slice_mut(rhs, n, columns);
         LltRef::new(&self.symbolic, &self.factor).solve_in_place_with_conj(
             Conj::No,
             rhs,

@@ -48,6 +48,12 @@ pub trait State: Clone + PartialEq + Debug {
 /// can do beyond f(t, y) shows as two capabilities, each an associated type that is `Self` when
 /// the model has it and [`Unavailable`] when it does not: [`SecondOrder`] (a position/velocity
 /// split, needed by the symplectic methods) and [`Jacobian`] (∂f/∂y, needed by implicit Euler).
+#[diagnostic::on_unimplemented(
+    message = "`{Self}` is not an odyn model",
+    note = "a model is a struct marked `#[system]` and its impl block marked `#[system]`, which \
+            defines `fn acceleration` or `fn derivative` (or a particle or field model's \
+            kernels)"
+)]
 pub trait Model {
     /// The typed state (`<Model>State`).
     type State: State;
@@ -123,6 +129,12 @@ pub trait Model {
 }
 
 /// A model with a position/velocity split, q̈ = a(t, q, q̇).
+#[diagnostic::on_unimplemented(
+    message = "`{Self}` is not a second-order model",
+    note = "the symplectic and Verlet methods need `#[position]` and `#[velocity]` fields and \
+            `fn acceleration`; a first-order model (`#[state]` fields) runs with the other \
+            methods"
+)]
 pub trait SecondOrder: Model {
     /// Whether `fn acceleration` reads a velocity field (determined by the macro from the body).
     const READS_VELOCITY: bool;
@@ -133,6 +145,12 @@ pub trait SecondOrder: Model {
 }
 
 /// A model whose Jacobian ∂f/∂y the macro derived exactly from the body of its force function.
+#[diagnostic::on_unimplemented(
+    message = "`{Self}` has no Jacobian",
+    note = "`#[system]` generates one for every model unless it says `jacobian = false`: \
+            remove that (or use `jacobian = dual` or `jacobian = finite_differences` for code \
+            the macro cannot differentiate), or use a method that does not need one"
+)]
 pub trait Jacobian: Model {
     /// The Jacobian's type: `SMatrix<f64, N, N>` for a state of N ≤ 32 components,
     /// [`crate::FaerDense`] above that, [`crate::particles::ParticleJacobian`] (sparse, sized at

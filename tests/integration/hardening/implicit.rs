@@ -94,7 +94,11 @@ fn bdf_steps_as_long_as_the_solution_allows() {
         .unwrap();
     // c − ½ = ½·e^{−10} at the end.
     let expected = 0.5 + 0.5 * (-10.0f64).exp();
-    assert!((late.last().state.c - expected).abs() < 1e-4, "{:?}", late.last());
+    assert!(
+        (late.last().state.c - expected).abs() < 1e-4,
+        "{:?}",
+        late.last()
+    );
 }
 
 /// A Krylov residual target near 1 once made Rodas5P crawl (and fill memory with every step's

@@ -26,7 +26,7 @@ use syn::{ItemImpl, ItemStruct};
 use crate::args::Args;
 use crate::errors::Errors;
 use crate::kinds::{FrontEnd, Impl, Struct};
-use crate::model::Order;
+use crate::model::{Model, Order};
 use crate::validate::{self, FirstOrder, VelocityRead};
 use crate::{helpers, lower};
 
@@ -139,7 +139,10 @@ impl FrontEnd for Kind {
         imp: &ItemImpl,
         errors: &mut Errors,
     ) -> Impl {
-        let rejected = Impl::Rejected { silenced: None };
+        let rejected = Impl::Rejected {
+            silenced: None,
+            stand_ins: TokenStream::new(),
+        };
         let Some(model) = fields::parse(item, errors) else {
             return rejected;
         };
@@ -210,7 +213,10 @@ impl FrontEnd for Kind {
             _ => TokenStream::new(),
         };
         if !errors.is_empty() {
-            return rejected;
+            return Impl::Rejected {
+                silenced: None,
+                stand_ins: stand_ins(&model, args, params.len(), imp),
+            };
         }
         // A const-generic model's code is not lowered (its loops run to `N`): differences.
         let differences = args.differences.is_some()
@@ -232,4 +238,71 @@ impl FrontEnd for Kind {
         };
         Impl::Accepted(quote!(#generated #jacobian #parameters))
     }
+}
+
+/// For a model whose impl block was rejected: the `Jacobian` (unless `jacobian = false`) and
+/// `Parameters` (with `#[param]`s) it would have had, their bodies never run, so that code
+/// calling `model.jacobian_matrix(..)` or `odyn::fit` on it draws no follow-on error.
+fn stand_ins(model: &Model<'_>, args: &Args, parameters: usize, imp: &ItemImpl) -> TokenStream {
+    let self_ty = &imp.self_ty;
+    let (impl_generics, _, where_clause) = imp.generics.split_for_impl();
+    let state = model.state_type();
+    let never = quote!(::core::unreachable!(
+        "odyn rejected this model at compile time"
+    ));
+    let jacobian = if args.no_jacobian.is_none() {
+        let matrix = if !model.is_generic() && model.len() <= layout::SMALL {
+            let n = model.len_tokens();
+            quote!(::odyn::__private::nalgebra::SMatrix<f64, #n, #n>)
+        } else {
+            quote!(::odyn::FaerDense)
+        };
+        quote! {
+            #[automatically_derived]
+            impl #impl_generics ::odyn::Jacobian for #self_ty #where_clause {
+                type Matrix = #matrix;
+                const NONZEROS: &'static [(usize, usize)] = &[];
+                fn jacobian_matrix(&self, _: &#state) -> #matrix {
+                    #never
+                }
+                fn jacobian(&self, _: f64, _: &#state, _: &mut #matrix) {
+                    #never
+                }
+            }
+        }
+    } else {
+        TokenStream::new()
+    };
+    let parameters = if parameters > 0 {
+        quote! {
+            #[automatically_derived]
+            impl #impl_generics ::odyn::Parameters for #self_ty #where_clause {
+                type Values = [f64; #parameters];
+                const NAMES: &'static [&'static str] = &[];
+                fn parameter_values(&self) -> [f64; #parameters] {
+                    #never
+                }
+                fn set_parameter_values(&mut self, _: [f64; #parameters]) {
+                    #never
+                }
+                fn parameters(&self) -> ::std::vec::Vec<f64> {
+                    #never
+                }
+                fn write_parameters(&mut self, _: &[f64]) {
+                    #never
+                }
+                fn parameter_jacobian(
+                    &self,
+                    _: f64,
+                    _: &#state,
+                    _: &mut ::odyn::__private::nalgebra::DMatrix<f64>,
+                ) {
+                    #never
+                }
+            }
+        }
+    } else {
+        TokenStream::new()
+    };
+    quote!(#jacobian #parameters)
 }

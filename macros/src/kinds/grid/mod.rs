@@ -160,7 +160,10 @@ impl FrontEnd for Kind {
         errors: &mut Errors,
     ) -> Impl {
         let Some(fields) = parse_struct(item, errors) else {
-            return Impl::Rejected { silenced: None };
+            return Impl::Rejected {
+                silenced: None,
+                stand_ins: TokenStream::new(),
+            };
         };
         // Lowered only when nothing was reported, a helper's problem included.
         let helpers = crate::helpers::parse(imp, &fields.rewriter_model(), errors);
@@ -219,6 +222,7 @@ impl FrontEnd for Kind {
             // user's own body: emitted as written, it would be reported twice.
             cell => Impl::Rejected {
                 silenced: cell.filter(|_| misread).map(|c| c.f.sig.ident),
+                stand_ins: TokenStream::new(),
             },
         }
     }

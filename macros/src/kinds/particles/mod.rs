@@ -232,7 +232,10 @@ impl FrontEnd for Kind {
         errors: &mut Errors,
     ) -> Impl {
         let Some(particles) = parse_struct(item, errors) else {
-            return Impl::Rejected { silenced: None };
+            return Impl::Rejected {
+                silenced: None,
+                stand_ins: TokenStream::new(),
+            };
         };
         let before = errors.len();
         let helpers = crate::helpers::parse(imp, &particles.rewriter_model(), errors);
@@ -263,7 +266,10 @@ impl FrontEnd for Kind {
             }
         }
         if !errors.is_empty() {
-            return Impl::Rejected { silenced: None };
+            return Impl::Rejected {
+                silenced: None,
+                stand_ins: TokenStream::new(),
+            };
         }
         let jacobian = (args.no_jacobian.is_none()).then_some(lowered);
         Impl::Accepted(generate::generate(

@@ -184,8 +184,7 @@ impl<'a, S: State> Watch<'a, S> {
         let mut found = std::mem::take(&mut self.found);
         found.clear();
         let located = self.locate_all(dense, t1, f0, at, &mut found);
-        let outcome =
-            located.and_then(|()| self.act(model, &found, dense, t1, y1, at, records));
+        let outcome = located.and_then(|()| self.act(model, &found, dense, t1, y1, at, records));
         self.found = found;
         let outcome = outcome?;
         if let Outcome::Continue = outcome {
@@ -298,7 +297,10 @@ impl<'a, S: State> Watch<'a, S> {
     }
 
     /// Takes the located events instant by instant (see [`Watch::handle`]).
-    #[allow(clippy::too_many_arguments, reason = "the step's parts, each one borrowed")]
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "the step's parts, each one borrowed"
+    )]
     fn act<M: crate::Model<State = S>>(
         &mut self,
         model: &M,

@@ -37,6 +37,10 @@ pub trait NewtonMatrix: Clone + fmt::Debug {
     /// ([`crate::integrators::Bdf`]). Default false.
     const COSTLY_SOLVES: bool = false;
 
+    /// Whether the matrix is a particle model's, whose links may give a
+    /// [`NewtonMatrix::link_laplacian`]. Default false.
+    const LINKS: bool = false;
+
     /// Room for the factors of a matrix like this one.
     fn factors(&self) -> Self::Factors;
 
@@ -65,6 +69,13 @@ pub trait NewtonMatrix: Clone + fmt::Debug {
     /// such a W regular, and a singular or non-finite W would otherwise surface as a step size
     /// that falls to nothing.
     fn non_finite_entry(&self) -> Option<(usize, usize, f64)>;
+
+    /// A scalar link Laplacian whose M + h·C + h²·K bounds this matrix's stiffness, built from
+    /// the Jacobian last written into `self`, for implicit Euler's quasi-Newton solve
+    /// ([`crate::ParticleSolve`]); `None` (the default) for matrices of models without links.
+    fn link_laplacian(&self) -> Option<crate::LinkLaplacian> {
+        None
+    }
 }
 
 /// The first non-finite entry of a dense n×n matrix, by columns.

@@ -86,10 +86,7 @@ impl Rem for Dual {
     #[inline(always)]
     fn rem(self, other: Dual) -> Dual {
         let quotient = (self.re / other.re).trunc();
-        Dual::new(
-            self.re % other.re,
-            self.eps - term(quotient, other.eps),
-        )
+        Dual::new(self.re % other.re, self.eps - term(quotient, other.eps))
     }
 }
 

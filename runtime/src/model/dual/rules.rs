@@ -95,13 +95,17 @@ impl Dual {
     /// sin a.
     #[inline(always)]
     pub fn sin(self) -> Dual {
-        self.chain(Transcendental::sin(self.re), || Transcendental::cos(self.re))
+        self.chain(Transcendental::sin(self.re), || {
+            Transcendental::cos(self.re)
+        })
     }
 
     /// cos a.
     #[inline(always)]
     pub fn cos(self) -> Dual {
-        self.chain(Transcendental::cos(self.re), || -Transcendental::sin(self.re))
+        self.chain(Transcendental::cos(self.re), || {
+            -Transcendental::sin(self.re)
+        })
     }
 
     /// (sin a, cos a).
@@ -144,13 +148,17 @@ impl Dual {
     /// sinh a.
     #[inline(always)]
     pub fn sinh(self) -> Dual {
-        self.chain(Transcendental::sinh(self.re), || Transcendental::cosh(self.re))
+        self.chain(Transcendental::sinh(self.re), || {
+            Transcendental::cosh(self.re)
+        })
     }
 
     /// cosh a.
     #[inline(always)]
     pub fn cosh(self) -> Dual {
-        self.chain(Transcendental::cosh(self.re), || Transcendental::sinh(self.re))
+        self.chain(Transcendental::cosh(self.re), || {
+            Transcendental::sinh(self.re)
+        })
     }
 
     /// tanh a; derivative 1 − tanh²a.
@@ -242,10 +250,7 @@ impl Dual {
         if self.eps == 0.0 && b.eps == 0.0 {
             return Dual::constant(value);
         }
-        Dual::new(
-            value,
-            (term(self.re, self.eps) + term(b.re, b.eps)) / value,
-        )
+        Dual::new(value, (term(self.re, self.eps) + term(b.re, b.eps)) / value)
     }
 
     /// a·b + c; its value fused as `f64::mul_add` computes it.
@@ -336,10 +341,7 @@ impl Dual {
     #[inline(always)]
     pub fn rem_euclid(self, b: Dual) -> Dual {
         let quotient = self.re.div_euclid(b.re);
-        Dual::new(
-            self.re.rem_euclid(b.re),
-            self.eps - term(quotient, b.eps),
-        )
+        Dual::new(self.re.rem_euclid(b.re), self.eps - term(quotient, b.eps))
     }
 
     /// The Euclidean quotient, an integer; derivative zero.
@@ -351,13 +353,19 @@ impl Dual {
     /// a in degrees.
     #[inline(always)]
     pub fn to_degrees(self) -> Dual {
-        Dual::new(self.re.to_degrees(), self.eps * (180.0 / std::f64::consts::PI))
+        Dual::new(
+            self.re.to_degrees(),
+            self.eps * (180.0 / std::f64::consts::PI),
+        )
     }
 
     /// a (in degrees) in radians.
     #[inline(always)]
     pub fn to_radians(self) -> Dual {
-        Dual::new(self.re.to_radians(), self.eps * (std::f64::consts::PI / 180.0))
+        Dual::new(
+            self.re.to_radians(),
+            self.eps * (std::f64::consts::PI / 180.0),
+        )
     }
 
     /// Whether the value is NaN.

@@ -59,7 +59,10 @@ fn the_logistic_quotient_is_finite_where_its_square_overflows() {
     // σ(x) = eˣ/(1 + eˣ), σ′ = σ(1 − σ) ≈ e⁻⁷⁰⁹ at x = 709, far below rounding of σ = 1.
     let e = x(709.0).exp();
     let s = e / (e + 1.0);
-    assert!(s.derivative().is_finite() && s.derivative().abs() < 1e-300, "{s}");
+    assert!(
+        s.derivative().is_finite() && s.derivative().abs() < 1e-300,
+        "{s}"
+    );
 }
 
 #[test]
@@ -67,6 +70,9 @@ fn comparisons_read_the_values_only() {
     assert!(Dual::new(1.0, 5.0) <= Dual::new(1.0, -5.0));
     assert_eq!(Dual::new(1.0, 5.0), Dual::new(1.0, -5.0));
     assert!(Dual::new(f64::NAN, 0.0).is_nan());
-    assert_eq!(x(90.0).to_radians().derivative(), std::f64::consts::PI / 180.0);
+    assert_eq!(
+        x(90.0).to_radians().derivative(),
+        std::f64::consts::PI / 180.0
+    );
     assert_eq!(x(-7.0).rem_euclid(Dual::constant(3.0)).value(), 2.0);
 }

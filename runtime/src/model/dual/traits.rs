@@ -187,9 +187,10 @@ macro_rules! constants {
 impl ComplexField for Dual {
     type RealField = Dual;
 
-    unary!(floor, ceil, round, trunc, fract, abs, recip, sin, cos, tan, asin, acos, atan, sinh,
-        cosh, tanh, asinh, acosh, atanh, log2, log10, ln, ln_1p, sqrt, exp, exp2, exp_m1, cbrt,
-        signum);
+    unary!(
+        floor, ceil, round, trunc, fract, abs, recip, sin, cos, tan, asin, acos, atan, sinh, cosh,
+        tanh, asinh, acosh, atanh, log2, log10, ln, ln_1p, sqrt, exp, exp2, exp_m1, cbrt, signum
+    );
 
     #[inline(always)]
     fn from_real(re: Self) -> Self {

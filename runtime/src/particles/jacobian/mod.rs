@@ -2,6 +2,7 @@
 
 mod assembly;
 mod blocks;
+mod laplacian;
 
 use std::fmt;
 
@@ -119,6 +120,7 @@ impl<const D: usize> ParticleJacobian<D> {
 
 impl<const D: usize> NewtonMatrix for ParticleJacobian<D> {
     const COSTLY_SOLVES: bool = true;
+    const LINKS: bool = true;
 
     fn configure(&mut self, newton: &crate::NewtonOptions, solves: crate::Solves) {
         self.definite = newton.definite;
@@ -161,6 +163,17 @@ impl<const D: usize> NewtonMatrix for ParticleJacobian<D> {
         finite(b)
     }
 
+    /// Only when some link has stiffness: without it the Laplacian is M and the quasi-Newton
+    /// solve would be a gradient method.
+    fn link_laplacian(&self) -> Option<crate::LinkLaplacian> {
+        let laplacian = self.laplacian();
+        laplacian
+            .links
+            .iter()
+            .any(|&(_, k, _)| k > 0.0)
+            .then_some(laplacian)
+    }
+
     /// In the first-order layout (every position, then every velocity): a force block of
     /// particle a with respect to particle b's position or velocity is J's rows of a's velocity,
     /// columns of b's position or velocity.
@@ -173,12 +186,16 @@ impl<const D: usize> NewtonMatrix for ParticleJacobian<D> {
                 .position(|x| !x.is_finite())
                 .map(|k| (n + D * a + k % D, column + k / D, block[k]))
         };
-        let pairs = self.ends.iter().zip(&self.pairs).find_map(|(&[a, b], blocks)| {
-            find(&blocks[0], a, a, false)
-                .or_else(|| find(&blocks[1], a, b, false))
-                .or_else(|| find(&blocks[2], a, a, true))
-                .or_else(|| find(&blocks[3], a, b, true))
-        });
+        let pairs = self
+            .ends
+            .iter()
+            .zip(&self.pairs)
+            .find_map(|(&[a, b], blocks)| {
+                find(&blocks[0], a, a, false)
+                    .or_else(|| find(&blocks[1], a, b, false))
+                    .or_else(|| find(&blocks[2], a, a, true))
+                    .or_else(|| find(&blocks[3], a, b, true))
+            });
         pairs.or_else(|| {
             self.diagonal.iter().enumerate().find_map(|(i, blocks)| {
                 find(&blocks[0], i, i, false).or_else(|| find(&blocks[1], i, i, true))

@@ -1,4 +1,10 @@
-//! Implicit (backward) Euler, solved by Newton's method with the generated Jacobian.
+//! Implicit (backward) Euler, solved by Newton's method with the generated Jacobian, or for
+//! particle models by L-BFGS on a prefactored matrix.
+
+mod lbfgs;
+mod quasi_newton;
+
+pub use quasi_newton::QuasiNewton;
 
 use super::{Integrator, Step};
 use crate::{
@@ -21,6 +27,10 @@ use crate::{
 /// as two half steps, up to [`NewtonOptions::max_halvings`] deep. The recorded grid keeps the
 /// fixed dt.
 ///
+/// Particle models with stiff links can solve the step with [`QuasiNewton`] instead (L-BFGS
+/// whose initial Hessian is a constant link Laplacian, factorized once per step size;
+/// [`crate::ParticleSolve::QuasiNewton`]): it converges to the same step.
+///
 /// - **Order** 1.
 /// - **Energy**: on ẍ = −ω²x the step divides (x, v/ω) by 1 − iωh, so the energy is multiplied by
 ///   exactly 1/(1 + ω²h²) every step: artificial damping, strongest for stiff modes.
@@ -39,6 +49,8 @@ pub struct ImplicitEuler<M: Jacobian> {
     jacobian: M::Matrix,
     /// The factors of I − h·J(yᵏ).
     factors: <M::Matrix as NewtonMatrix>::Factors,
+    /// The quasi-Newton solve, when the options select it for this model.
+    quasi_newton: Option<QuasiNewton>,
 }
 
 impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
@@ -46,12 +58,31 @@ impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
 
     fn prepare(
         model: &M,
-        _: f64,
+        t0: f64,
         y0: &M::State,
         newton: &NewtonOptions,
-        _: &mut Stats,
+        stats: &mut Stats,
     ) -> Result<Self> {
         let mut jacobian = model.jacobian_matrix(y0);
+        let mut quasi_newton = None;
+        if let Some(options) = newton.quasi_newton() {
+            let refused = |why: &str| {
+                Error::invalid(
+                    "NewtonOptions::particle_solve",
+                    format!("ParticleSolve::QuasiNewton needs {why}; use ParticleSolve::Newton"),
+                )
+            };
+            if !<M::Matrix as NewtonMatrix>::LINKS {
+                return Err(refused("a particle model (this model has no links)"));
+            }
+            // The link weights come from J at the start.
+            model.jacobian(t0, y0, &mut jacobian);
+            stats.jacobian_evaluations += 1;
+            let laplacian = jacobian.link_laplacian().ok_or_else(|| {
+                refused("links with stiffness (no pair kernel's derivative at the start pulls its ends together)")
+            })?;
+            quasi_newton = Some(QuasiNewton::new(options, laplacian));
+        }
         jacobian.configure(
             newton,
             if newton.linearized {
@@ -66,6 +97,7 @@ impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
             update: y0.try_clone()?,
             factors: jacobian.factors(),
             jacobian,
+            quasi_newton,
         })
     }
 
@@ -73,6 +105,22 @@ impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
     #[inline]
     fn attempt(&mut self, model: &M, s: Step<'_, M::State>, y: &mut M::State) -> Result<f64> {
         let (t1, h) = (s.t + s.h, s.h);
+        if let Some(solver) = self.quasi_newton.as_mut() {
+            let derivative = |y: &M::State, f: &mut M::State| model.derivative(t1, y, f);
+            let solved = solver.solve(h, s.y, y, &mut self.force, s.stats, derivative);
+            s.stats.linear_solves += u64::from(solver.iterations());
+            return match solved {
+                Ok(()) => Ok(0.0),
+                Err((iters, residual, cause)) => Err(Error::NewtonDidNotConverge {
+                    t: t1,
+                    dt: h,
+                    iters,
+                    residual,
+                    cause,
+                    halvings: 0,
+                }),
+            };
+        }
         y.clone_from(s.y);
         let mut previous_update = f64::INFINITY;
         let fail = |iters, residual, cause| Error::NewtonDidNotConverge {
@@ -176,5 +224,10 @@ impl<M: Jacobian> ImplicitEuler<M> {
     /// factorization counts from it.
     pub fn matrix(&self) -> &M::Matrix {
         &self.jacobian
+    }
+
+    /// The quasi-Newton solve, when the run uses it: its factorization and iteration counts.
+    pub fn quasi_newton(&self) -> Option<&QuasiNewton> {
+        self.quasi_newton.as_ref()
     }
 }

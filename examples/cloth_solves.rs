@@ -1,0 +1,241 @@
+//! How accurate each implicit Euler solve of the stiff cloth is, from checkpoints of a falling
+//! cloth (issue "Stiff cloth in real time", criteria (a)–(c)).
+//!
+//! A reference run of the `cloth` example's sheet (k = 10⁴ N/m, undamped springs, dt = 1/60 s,
+//! the one-step Baraff–Witkin form) is stopped at t = 0.5, 1, 2 and 5 s. From each checkpoint one
+//! step is taken three ways: Newton converged to 10⁻¹⁰ (the implicit Euler step itself), the
+//! Baraff–Witkin step, and the quasi-Newton step (`ParticleSolve::QuasiNewton`). For each it
+//! prints
+//!
+//! - (a) the largest particle distance from the converged step (m);
+//! - (b) the quasi-Newton step's acceleration residual ‖v − vₙ − h·a(x, v)‖∞ / h (m/s²),
+//!   against 10⁻³·g;
+//! - (c) the quasi-Newton step's convergence ratio (g(ṽ) − g(v*)) / (g(v⁰) − g(v*)) of the
+//!   implicit Euler objective g(v) = ½‖v − vₙ‖²_M + E(xₙ + h·v) + ½h·c_drag·‖v‖², and the
+//!   iterations that take it to 10⁻³;
+//!
+//! and the time of each step.
+//!
+//! `cargo run --release --example cloth_solves [-- --sizes 32,64]` (about a minute at 32²; the
+//! converged step from the buckling cloth at 0.5 s takes most of it, and minutes at 64²)
+
+use std::process::ExitCode;
+use std::time::Instant;
+
+use clap::Parser;
+use odyn::integrators::ImplicitEuler;
+use odyn::particles::ParticleState;
+use odyn::prelude::*;
+use odyn::{NewtonOptions, ParticleSolve, QuasiNewtonOptions, Stepper};
+use scenes::{Cloth, Sheet};
+
+/// Accuracy of the cloth's implicit Euler solves from checkpoints.
+#[derive(Parser)]
+#[command(about)]
+struct Cli {
+    /// Particles per side, comma-separated.
+    #[arg(long, value_delimiter = ',', default_value = "32")]
+    sizes: Vec<usize>,
+    /// Checkpoint times (s), comma-separated and increasing.
+    #[arg(long, value_delimiter = ',', default_value = "0.5,1,2,5")]
+    checkpoints: Vec<f64>,
+}
+
+const H: f64 = 1.0 / 60.0;
+
+fn main() -> ExitCode {
+    match run(Cli::parse()) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(error) => {
+            eprintln!("error: {error}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn run(cli: Cli) -> odyn::Result<()> {
+    println!(
+        "size  t(s)   BW→IE (m)  QN→IE (m)  QN accel res (m/s²)  QN ratio  IE ms  BW ms  QN ms  QN iters"
+    );
+    for &n in &cli.sizes {
+        let cloth = Sheet::falling(n).build().0;
+        for point in checkpoints(&cloth, &cli.checkpoints)? {
+            let (t, state) = (point.t, &point.state);
+            // Where Newton cannot take the step whole (a buckling cloth), the quasi-Newton solve
+            // run to convergence gives the same implicit Euler step.
+            let ((converged, ie_ms), by) = match step(&cloth, state, t, newton_converged()) {
+                Ok(converged) => (converged, "N"),
+                Err(_) => (
+                    step(&cloth, state, t, quasi_newton(converged_options()))?,
+                    "Q",
+                ),
+            };
+            let (bw, bw_ms) = step(&cloth, state, t, baraff_witkin())?;
+            let qn = &point.next;
+            let objective = |y: &ParticleState<3>| objective(&cloth, state, y);
+            let g_star = objective(&converged);
+            let ratio = (objective(qn) - g_star) / (objective(&inertial(state)) - g_star);
+            println!(
+                "{n:>4}  {t:>4}  {:>9.2e}  {:>9.2e}  {:>19.2e}  {ratio:>8.1e}  \
+                 {ie_ms:>7.1}{by}  {bw_ms:>5.1}  {:>5.2}  {:>8}",
+                distance(&bw, &converged),
+                distance(qn, &converged),
+                acceleration_residual(&cloth, state, qn, t),
+                point.ms,
+                point.iterations,
+            );
+        }
+    }
+    Ok(())
+}
+
+/// A checkpoint of the reference run: its state, and the quasi-Newton step from it with its
+/// time and iterations.
+struct Checkpoint {
+    t: f64,
+    state: ParticleState<3>,
+    next: ParticleState<3>,
+    ms: f64,
+    iterations: u32,
+}
+
+/// The reference run (the one-step Baraff–Witkin form on the definite matrix) at the checkpoint
+/// times, each with the quasi-Newton step from it (its matrix factorized before the clock
+/// starts, as it is once per run).
+fn checkpoints(cloth: &Cloth, times: &[f64]) -> odyn::Result<Vec<Checkpoint>> {
+    let mut reference = Stepper::<Cloth, ImplicitEuler<Cloth>>::with_newton(
+        cloth,
+        cloth.state(),
+        0.0,
+        H,
+        &baraff_witkin(),
+    )?;
+    let newton = quasi_newton(QuasiNewtonOptions::default());
+    let mut fast =
+        Stepper::<Cloth, ImplicitEuler<Cloth>>::with_newton(cloth, cloth.state(), 0.0, H, &newton)?;
+    fast.step()?;
+    let mut points = Vec::new();
+    for &t in times {
+        let steps = (t / H).round() as u64;
+        while reference.steps() < steps {
+            reference.step()?;
+        }
+        let state = reference.state().clone();
+        fast.state_mut().clone_from(&state);
+        let begin = Instant::now();
+        fast.step()?;
+        let ms = begin.elapsed().as_secs_f64() * 1e3;
+        let iterations = fast
+            .integrator()
+            .quasi_newton()
+            .map_or(0, |s| s.iterations());
+        let next = fast.state().clone();
+        points.push(Checkpoint {
+            t,
+            state,
+            next,
+            ms,
+            iterations,
+        });
+    }
+    Ok(points)
+}
+
+/// The one-step (Baraff–Witkin) form on the definite matrix: one Cholesky a step, and no
+/// energy gained from compressed springs.
+fn baraff_witkin() -> NewtonOptions {
+    NewtonOptions {
+        definite: true,
+        ..NewtonOptions::linearized()
+    }
+}
+
+/// Newton to 10⁻¹⁰ on the direct solver, with no halving: one step of h.
+fn newton_converged() -> NewtonOptions {
+    NewtonOptions {
+        tol: 1e-10,
+        max_iters: 200,
+        max_halvings: 0,
+        particle_solve: ParticleSolve::Newton,
+        ..NewtonOptions::default()
+    }
+}
+
+/// The quasi-Newton solve run until its velocity residual is 10⁻¹² (m/s).
+fn converged_options() -> QuasiNewtonOptions {
+    QuasiNewtonOptions {
+        max_iterations: 100_000,
+        tolerance: 1e-12,
+        history: 20,
+    }
+}
+
+fn quasi_newton(options: QuasiNewtonOptions) -> NewtonOptions {
+    NewtonOptions {
+        particle_solve: ParticleSolve::QuasiNewton(options),
+        ..NewtonOptions::default()
+    }
+}
+
+/// One step from `state` at `t` with `newton`, and its time in ms (set-up excluded).
+fn step(
+    cloth: &Cloth,
+    state: &ParticleState<3>,
+    t: f64,
+    newton: NewtonOptions,
+) -> odyn::Result<(ParticleState<3>, f64)> {
+    let mut stepper =
+        Stepper::<Cloth, ImplicitEuler<Cloth>>::with_newton(cloth, state.clone(), t, H, &newton)?;
+    let start = Instant::now();
+    stepper.step()?;
+    Ok((stepper.state().clone(), start.elapsed().as_secs_f64() * 1e3))
+}
+
+/// The largest distance between corresponding particles (m).
+fn distance(a: &ParticleState<3>, b: &ParticleState<3>) -> f64 {
+    let pairs = a.positions().iter().zip(b.positions());
+    pairs.map(|(p, q)| (p - q).norm()).fold(0.0, f64::max)
+}
+
+/// (xₙ + h·vₙ, vₙ): the quasi-Newton start.
+fn inertial(state: &ParticleState<3>) -> ParticleState<3> {
+    let mut y = state.clone();
+    let (x, v) = y.split_mut();
+    for (x, v) in x.iter_mut().zip(v.iter()) {
+        *x += H * v;
+    }
+    y
+}
+
+/// g(v) = ½Σmᵢ|vᵢ − vₙ,ᵢ|² + E(x) + ½h·c_drag·Σ|vᵢ|² at y = (x, v): the drag is linear, so its
+/// term makes ∇g the residual of the step.
+fn objective(cloth: &Cloth, start: &ParticleState<3>, y: &ParticleState<3>) -> f64 {
+    let mut at = cloth.clone();
+    at.x = y.positions().to_vec();
+    let inertia: f64 = (y.velocities().iter().zip(start.velocities()))
+        .zip(&cloth.mass)
+        .map(|((v, v0), m)| 0.5 * m * (v - v0).norm_squared())
+        .sum();
+    let drag: f64 = y.velocities().iter().map(|v| v.norm_squared()).sum();
+    inertia + at.potential() + 0.5 * H * cloth.drag * drag
+}
+
+/// max |v − vₙ − h·a(x, v)| / h over the free particles (m/s²).
+fn acceleration_residual(
+    cloth: &Cloth,
+    start: &ParticleState<3>,
+    y: &ParticleState<3>,
+    t: f64,
+) -> f64 {
+    let mut f = y.clone();
+    cloth.derivative(t + H, y, &mut f);
+    let accelerations = f.velocities();
+    let terms = y
+        .velocities()
+        .iter()
+        .zip(start.velocities())
+        .zip(accelerations);
+    terms
+        .map(|((v, v0), a)| (v - v0 - H * a).amax() / H)
+        .fold(0.0, f64::max)
+}
