@@ -72,6 +72,19 @@ SECTIONS = [
      ["cargo", "bench", "--bench", "sph"],
      "One step of the dam break at 10 to 80 particles across the column (the argument), after "
      "100 steps of collapse."),
+    ("mpm", "MLS-MPM: the 88-line program's substep by size and threads",
+     ["cargo", "bench", "--bench", "mpm"],
+     "One substep of the 88-line MLS-MPM program's scene (`scenes::hybrid::mpm88`) at 8 192, "
+     "32 768 and 131 072 particles (grids of 128², 256², 512²), after 100 substeps: `Mpm::step` "
+     "on 1 and 2 rayon threads (bit-identical), beside `hand`, the program transliterated as a "
+     "plain serial loop. Taichi's times on the same scene: `scripts/taichi_mpm88.py` (the "
+     "guide's hybrid chapter)."),
+    ("continua", "The continuum methods at a common resolution",
+     ["cargo", "bench", "--bench", "continua"],
+     "One step of SPH, FLIP 0.95, APIC and MPM water on Martin & Moyce's dam break at 3 200 "
+     "particles (40 across the column for SPH, 20 cells across it for the grids), after 50 "
+     "steps of collapse, and of Stable Fluids on the same 100 × 60 grid. Steps differ in "
+     "length: `examples/continua.rs` prints the cost per simulated second."),
     ("stiff_suite", "The Bari stiff test set",
      ["cargo", "run", "--profile", "bench", "--example", "stiff_suite"],
      "Rodas5P and Rosenbrock23 over a sweep of tolerances and implicit Euler over a sweep of "

@@ -39,5 +39,5 @@ else
 fi
 if [ "${1:-}" = "--docs" ]; then
   mkdir -p docs/img/lab
-  cp "$out"/{spring,pendulum,cloth,gray_scott,dam_break}.png docs/img/lab/
+  cp "$out"/{spring,pendulum,cloth,gray_scott,dam_break,mpm}.png docs/img/lab/
 fi

@@ -36,6 +36,7 @@ chapters! {
     Particles: "particles.md",
     Fields: "fields.md",
     ConstraintsFluids: "constraints-fluids.md",
+    Hybrid: "hybrid.md",
 }
 
 #[cfg(test)]

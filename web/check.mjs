@@ -42,7 +42,7 @@ try {
   // The live page, a few seconds in, one screenshot a panel.
   await page.goto(url);
   await page.waitForTimeout(8000);
-  for (const id of ["spring", "pendulum", "gray_scott", "dam_break"]) {
+  for (const id of ["spring", "pendulum", "gray_scott", "dam_break", "mpm"]) {
     await page.locator(`#${id}`).screenshot({ path: `${out}/${id}.png` });
   }
   // Drag the implicit cloth's free corner, hanging at about (1, −1) on screen (web/page.js

@@ -1,9 +1,9 @@
-// The lab page: five panels, each a WebAssembly model from odyn (web/src) drawn on a canvas.
+// The lab page: six panels, each a WebAssembly model from odyn (web/src) drawn on a canvas.
 // Every display frame hands each panel the frame's duration; the panel's fixed-timestep
 // accumulator (odyn::FixedTimestep, in Rust) turns it into whole steps. `?check` runs each
 // panel's fixed check instead and publishes the fingerprints and costs as `window.labCheck`
 // (scripts/browser.sh compares them with the native build's).
-import init, { SpringLab, PendulumLab, ClothLab, GrayScottLab, DamBreakLab } from "./pkg/lab.js";
+import init, { SpringLab, PendulumLab, ClothLab, GrayScottLab, DamBreakLab, MpmLab } from "./pkg/lab.js";
 
 const errors = [];
 window.labErrors = errors;
@@ -308,8 +308,39 @@ function drawDamBreak(panel) {
     `front at ${lab.front().toFixed(3)} m.`;
 }
 
+// (f) Jelly, water and snow by MLS-MPM.
+function mpmPanel() {
+  const panel = new Panel("mpm", new MpmLab(), drawMpm);
+  panel.reset = () => (panel.kinds = panel.lab.materials());
+  panel.control("restart").onclick = () => panel.restart(() => panel.lab.restart());
+  panel.reset();
+  return panel;
+}
+
+function drawMpm(panel) {
+  const { context: c, lab } = panel;
+  const v = view([0, 1, 0, 1], [10, 10, 300, 300]);
+  c.clearRect(0, 0, 640, 320);
+  const wall = 3 / 64;
+  line(c, [[v.x(wall), v.y(1 - wall)], [v.x(wall), v.y(wall)], [v.x(1 - wall), v.y(wall)], [v.x(1 - wall), v.y(1 - wall)]], "#1d2430", 2);
+  const colours = ["#2b6cb0", "#dd6b20", "#8d99ae"];
+  const names = ["water", "jelly", "snow"];
+  const points = lab.particles();
+  for (let k = 0; k < 3; k++) {
+    c.fillStyle = colours[k];
+    for (let i = 0; i < panel.kinds.length; i++) {
+      if (panel.kinds[i] === k) c.fillRect(v.x(points[2 * i]) - 1, v.y(points[2 * i + 1]) - 1, 2.2, 2.2);
+    }
+    label(c, names[k], 330, 30 + 20 * k, colours[k]);
+  }
+  label(c, `energy left ${(100 * lab.energy_left()).toFixed(1)} % of the start's`, 330, 110);
+  panel.root.querySelector(".note").textContent =
+    `${panel.kinds.length} particles on a 64² grid, shown at ${lab.speed()} × real time: water ` +
+    "(weakly compressible), jelly (fixed-corotated) and Stomakhin's snow, one MLS-MPM step for all.";
+}
+
 const panels = [];
-for (const make of [springPanel, pendulumPanel, clothPanel, grayScottPanel, damBreakPanel]) {
+for (const make of [springPanel, pendulumPanel, clothPanel, grayScottPanel, damBreakPanel, mpmPanel]) {
   try {
     panels.push(make());
   } catch (error) {

@@ -8,7 +8,9 @@
 //! Beside the ODE models: [`ensemble`] runs many members of an experiment in parallel,
 //! reproducibly and in shards; [`xpbd`] holds particles by constraints, [`sph`] simulates a
 //! liquid as particles with neighbours found every step, and [`fluids`] a grid fluid (Stable
-//! Fluids). Each module's docs say how it fits beside the `#[system]` models.
+//! Fluids); [`hybrid`] carries the material on particles and solves on a grid (FLIP/APIC
+//! fluids, the material point method). Each module's docs say how it fits beside the
+//! `#[system]` models.
 
 mod analysis;
 mod checks;
@@ -20,6 +22,7 @@ mod fingerprint;
 pub mod fit;
 pub mod fluids;
 pub mod grid;
+pub mod hybrid;
 pub mod integrators;
 mod linalg;
 pub mod math;

@@ -13,7 +13,10 @@
 //!   [`Pollu`], [`Orego`]) with their references.
 //! - [`cloth`] — the Baraff–Witkin [`Cloth`] and the [`Sheet`] that builds it.
 //! - [`fields`] — Gray–Scott reaction–diffusion, [`GrayScott`].
-//! - [`fluids`] — the SPH [`dam_break`].
+//! - [`fluids`] — the [`dam_break`] of Martin & Moyce for SPH and FLIP ([`flip_dam_break`]), and
+//!   their data ([`MARTIN_MOYCE`]).
+//! - [`hybrid`] — MPM's scenes: the 88-line program's ([`hybrid::mpm88`]), jelly, water and
+//!   snow, a ringing block, a spinning disc, a snow column.
 //! - [`analysis`] — the fitted [`slope`] of a convergence study.
 //!
 //! Not published: the scenes serve odyn's own checks and examples; each example that uses one
@@ -24,6 +27,7 @@ pub mod chaos;
 pub mod cloth;
 pub mod fields;
 pub mod fluids;
+pub mod hybrid;
 pub mod orbits;
 pub mod oscillators;
 pub mod pendulums;
@@ -34,7 +38,7 @@ pub use analysis::slope;
 pub use chaos::*;
 pub use cloth::{Cloth, Hang, Sheet};
 pub use fields::*;
-pub use fluids::dam_break;
+pub use fluids::{MARTIN_MOYCE, dam_break, flip_dam_break};
 pub use orbits::*;
 pub use oscillators::*;
 pub use pendulums::*;

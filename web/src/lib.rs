@@ -1,4 +1,4 @@
-//! The browser lab: five of odyn's scenes compiled to WebAssembly, each a panel the page
+//! The browser lab: six of odyn's scenes compiled to WebAssembly, each a panel the page
 //! (`web/index.html`, `web/lab.js`) drives one display frame at a time.
 //!
 //! - [`SpringLab`] — the spring lab: pick the integrator and dt, watch x(t) and the energy
@@ -7,6 +7,7 @@
 //! - [`ClothLab`] — one sheet twice, XPBD and implicit Euler side by side, draggable.
 //! - [`GrayScottLab`] — Gray–Scott reaction–diffusion with the named patterns.
 //! - [`DamBreakLab`] — the SPH dam break.
+//! - [`MpmLab`] — jelly, water and snow by the material point method.
 //!
 //! Each panel advances through odyn's [`odyn::FixedTimestep`] accumulator, so what it computes
 //! depends on the simulated time only, never on the display's refresh rate; each exposes
@@ -21,6 +22,7 @@
 mod cloth;
 mod dam_break;
 mod gray_scott;
+mod mpm;
 mod pendulum;
 mod run;
 mod spring;
@@ -28,6 +30,7 @@ mod spring;
 pub use cloth::ClothLab;
 pub use dam_break::DamBreakLab;
 pub use gray_scott::GrayScottLab;
+pub use mpm::MpmLab;
 pub use pendulum::PendulumLab;
 pub use spring::SpringLab;
 
@@ -56,12 +59,15 @@ pub fn fingerprints() -> Js<Vec<(&'static str, String)>> {
     gray_scott.check()?;
     let mut dam_break = DamBreakLab::new()?;
     dam_break.check()?;
+    let mut mpm = MpmLab::new()?;
+    mpm.check()?;
     Ok(vec![
         ("spring", spring.fingerprint()),
         ("pendulum", pendulum.fingerprint()),
         ("cloth", cloth.fingerprint()),
         ("gray_scott", gray_scott.fingerprint()),
         ("dam_break", dam_break.fingerprint()),
+        ("mpm", mpm.fingerprint()),
     ])
 }
 
@@ -74,7 +80,7 @@ mod tests {
     #[test]
     fn every_check_runs_and_repeats_itself() {
         let first = fingerprints().unwrap();
-        assert_eq!(first.len(), 5);
+        assert_eq!(first.len(), 6);
         assert_eq!(first, fingerprints().unwrap());
     }
 

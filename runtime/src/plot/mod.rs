@@ -8,10 +8,12 @@ mod field;
 pub use field::{Field, FieldStyle, field_animation, field_image};
 mod chart;
 mod energy;
+mod particles;
 mod scene;
 #[cfg(test)]
 mod tests;
 
 pub use chart::{Chart, Series, Style};
 pub use energy::{EnergyPlot, energy, energy_with};
+pub use particles::{Particles, particle_animation, particles};
 pub use scene::{Frame, View, animation, views};
