@@ -98,7 +98,9 @@ where
                 let g_t = (g(t + d, before) - g(t - d, before)) / (2.0 * d);
                 let rate = g_t + g_y.dot(&f_before);
                 let scale = g_t.abs() + g_y.abs().dot(&f_before.abs());
-                if !(rate.abs() > 1e-12 * scale) {
+                // Tangential, or NaN: not a crossing whose time moves smoothly.
+                let crossing = rate.abs().partial_cmp(&(1e-12 * scale));
+                if crossing != Some(std::cmp::Ordering::Greater) {
                     return Err(Error::BadEvent {
                         event: jump.name.to_owned(),
                         t,

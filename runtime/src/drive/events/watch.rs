@@ -171,6 +171,9 @@ impl<'a, S: State> Watch<'a, S> {
     /// leaves the state non-finite or its condition NaN; [`Error::EventsAccumulate`] when a
     /// change event fires again sooner than the tolerance resolves, or the run's events exceed
     /// its `max_events`.
+    // The driver's step in its parts (model, dense step, times, states, records): a struct for
+    // them would be built and taken apart at the one call site.
+    #[allow(clippy::too_many_arguments)]
     pub(crate) fn handle<M: crate::Model<State = S>>(
         &mut self,
         model: &M,

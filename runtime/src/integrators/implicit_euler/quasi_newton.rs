@@ -125,7 +125,7 @@ impl QuasiNewton {
             }
             self.iterations += 1;
             let slope = self.descend();
-            if !(slope < 0.0) {
+            if slope.is_nan() || slope >= 0.0 {
                 return Err((self.iterations, self.measure, NewtonFailure::NotFinite));
             }
             let mut alpha = 1.0;
