@@ -116,6 +116,14 @@ impl Method {
         self.info().needs_jacobian
     }
 
+    /// Whether the method integrates M·y′ = f(t, y) with a mass matrix M ≠ I: a
+    /// differential–algebraic model (`#[algebraic]` fields, or `fn mass`). The Rosenbrock
+    /// methods, whose stages solve with M − γh·J in place of I − γh·J (Hairer & Wanner, *Solving
+    /// ODEs II*, §VI.4).
+    pub const fn takes_mass_matrix(self) -> bool {
+        matches!(self, Method::Rodas5P | Method::Rosenbrock23)
+    }
+
     /// Whether the method needs forces that do not read velocities.
     pub const fn needs_velocity_free_forces(self) -> bool {
         self.info().needs_velocity_free_forces

@@ -11,6 +11,8 @@
 //! - [`solar_system`] — the outer [`SolarSystem`], and [`SolarSystemByAxis`].
 //! - [`stiff`] — [`VanDerPol`] and four problems of the Bari test set ([`Robertson`], [`Hires`],
 //!   [`Pollu`], [`Orego`]) with their references.
+//! - [`dae`] — differential–algebraic problems: [`RobertsonDae`], the test set's [`ChemAkzo`]
+//!   and [`Transamp`], the [`CartesianPendulum`], with their references.
 //! - [`cloth`] — the Baraff–Witkin [`Cloth`] and the [`Sheet`] that builds it.
 //! - [`fields`] — Gray–Scott reaction–diffusion, [`GrayScott`].
 //! - [`fluids`] — the SPH [`dam_break`].
@@ -22,6 +24,7 @@
 pub mod analysis;
 pub mod chaos;
 pub mod cloth;
+pub mod dae;
 pub mod fields;
 pub mod fluids;
 pub mod orbits;
@@ -33,6 +36,7 @@ pub mod stiff;
 pub use analysis::slope;
 pub use chaos::*;
 pub use cloth::{Cloth, Hang, Sheet};
+pub use dae::*;
 pub use fields::*;
 pub use fluids::dam_break;
 pub use orbits::*;
