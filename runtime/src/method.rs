@@ -117,11 +117,15 @@ impl Method {
     }
 
     /// Whether the method integrates M·y′ = f(t, y) with a mass matrix M ≠ I: a
-    /// differential–algebraic model (`#[algebraic]` fields, or `fn mass`). The Rosenbrock
-    /// methods, whose stages solve with M − γh·J in place of I − γh·J (Hairer & Wanner, *Solving
-    /// ODEs II*, §VI.4).
+    /// differential–algebraic model (`#[algebraic]` fields, or `fn mass`): the methods that
+    /// solve a linear system each step, which then has M − c·J in place of I − c·J — the
+    /// Rosenbrock methods (Hairer & Wanner, *Solving ODEs II*, §VI.4), BDF and implicit Euler.
+    /// Explicit methods have no such system to put M in.
     pub const fn takes_mass_matrix(self) -> bool {
-        matches!(self, Method::Rodas5P | Method::Rosenbrock23)
+        matches!(
+            self,
+            Method::Rodas5P | Method::Rosenbrock23 | Method::Bdf | Method::ImplicitEuler
+        )
     }
 
     /// Whether the method needs forces that do not read velocities.

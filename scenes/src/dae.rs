@@ -64,7 +64,11 @@ impl RobertsonDae {
 /// Robertson-DAE y(10¹¹): Radau IIA with 7 stages in 36-digit arithmetic, rtol 10⁻²⁴, on the
 /// ODE form, whose solution is the DAE's (`peers/notes/dae-problems.md` §3,
 /// `scripts/reference_dae.py`); the test set's `rober.f` agrees to 1.9·10⁻¹⁴.
-pub const ROBERTSON_DAE_1E11: [f64; 3] = [2.083340149701294e-08, 8.333360770334784e-14, 0.9999999791665152];
+pub const ROBERTSON_DAE_1E11: [f64; 3] = [
+    2.083340149701294e-08,
+    8.333360770334784e-14,
+    0.9999999791665152,
+];
 
 /// The chemical Akzo Nobel problem (`chemakzo.f`): two reactants and CO₂ supplied through a gas
 /// phase, five differential concentrations and one algebraic, y₆ = K_s·y₁·y₄ (an equilibrium),
@@ -72,17 +76,22 @@ pub const ROBERTSON_DAE_1E11: [f64; 3] = [2.083340149701294e-08, 8.3333607703347
 #[system]
 #[derive(Clone, Copy, Debug)]
 pub struct ChemAkzo {
+    /// Concentration of FLB (mol/L).
     #[state]
     pub y1: f64,
+    /// Concentration of CO₂ (mol/L).
     #[state]
     pub y2: f64,
+    /// Concentration of FLBT (mol/L).
     #[state]
     pub y3: f64,
+    /// Concentration of ZHU (mol/L).
     #[state]
     pub y4: f64,
+    /// Concentration of ZLA (mol/L).
     #[state]
     pub y5: f64,
-    /// The equilibrium concentration.
+    /// Concentration of FLB·ZHU, in equilibrium (mol/L).
     #[algebraic]
     pub y6: f64,
 }
@@ -220,14 +229,16 @@ pub const TRANSAMP_REFERENCE: [f64; 8] = [
 #[system]
 #[derive(Clone, Copy, Debug)]
 pub struct CartesianPendulum {
-    /// Position (m).
+    /// Horizontal position (m).
     #[state]
     pub x: f64,
+    /// Vertical position (m), up.
     #[state]
     pub y: f64,
-    /// Velocity (m/s).
+    /// Horizontal velocity (m/s).
     #[state]
     pub u: f64,
+    /// Vertical velocity (m/s).
     #[state]
     pub v: f64,
     /// The rod force per unit length (N/m), positive in tension.
@@ -239,9 +250,10 @@ pub struct CartesianPendulum {
     pub length: f64,
     /// Gravity (m/s²).
     pub g: f64,
-    /// Baumgarte's velocity gain 2α (1/s); 0 leaves the index-1 form as it is.
+    /// Baumgarte's α (1/s): the residual has 2α·ġ; 0 with `beta` 0 leaves the index-1 form as
+    /// it is.
     pub alpha: f64,
-    /// Baumgarte's position gain β² (1/s²).
+    /// Baumgarte's β (1/s): the residual has β²·g.
     pub beta: f64,
 }
 
@@ -298,6 +310,22 @@ pub const PENDULUM_10: [f64; 5] = [
     -7.186730081416545,
 ];
 
+/// The Cartesian pendulum's exact state (x, y, u, v, λ) at t = 1, from the same source as
+/// [`PENDULUM_10`].
+pub const PENDULUM_1: [f64; 5] = [
+    -0.8397213098423866,
+    -0.543017607262036,
+    -2.788618437697836,
+    4.312313810524887,
+    31.69944591875256,
+];
+
 /// The consistent start of [`CartesianPendulum::released`] (x, y, u, v, λ), λ₀ = m·g·cos θ₀/L
 /// (`scripts/reference_dae.py`).
-pub const PENDULUM_Y0: [f64; 5] = [0.5984721441039565, 0.8011436155469337, 0.0, 0.0, -7.85921886851542];
+pub const PENDULUM_Y0: [f64; 5] = [
+    0.5984721441039565,
+    0.8011436155469337,
+    0.0,
+    0.0,
+    -7.85921886851542,
+];

@@ -24,8 +24,8 @@ pub(crate) struct Start<'n> {
 /// Why a method that does not take a mass matrix refuses a model that has one.
 const fn mass_matrix_reason() -> &'static str {
     "it is differential–algebraic (`#[algebraic]` fields or `fn mass`: M·y′ = f with M ≠ I), \
-     which only Rodas5P and Rosenbrock23 integrate (their stages solve with M − γh·J); \
-     explicit methods have no matrix to put M in"
+     which only Rodas5P, Rosenbrock23, Bdf and ImplicitEuler integrate (each solves with \
+     M − c·J); explicit methods have no matrix to put M in"
 }
 
 /// A run's time, state and record (see [`super::Driver`]).

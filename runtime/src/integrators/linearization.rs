@@ -30,11 +30,7 @@ impl<M: Jacobian> Linearization<M> {
         let jacobian = model.jacobian_matrix(y0);
         let mut dfdt = crate::State::try_clone(y0)?;
         crate::State::as_mut_slice(&mut dfdt).fill(0.0);
-        let mass = if M::MASS_MATRIX {
-            Some(model.mass(y0)?)
-        } else {
-            None
-        };
+        let mass = crate::model::mass_of(model, y0)?;
         Ok(Linearization {
             factors: jacobian.factors(),
             jacobian,

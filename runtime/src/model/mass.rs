@@ -115,3 +115,33 @@ impl Mass {
         }
     }
 }
+
+/// The mass matrix of `model` for states like `y0`, checked, if the model has one
+/// ([`crate::Model::MASS_MATRIX`]): what every method that takes it builds once per run.
+///
+/// Errors: [`Error::BadModel`] from [`crate::Model::mass`], or naming a row where M is zero and
+/// f, by the Jacobian's structural pattern ([`crate::Jacobian::NONZEROS`]), reads no component:
+/// the equation 0 = f(t) there determines nothing, and every M − c·J is singular.
+pub(crate) fn mass_of<M: crate::Jacobian>(model: &M, y0: &M::State) -> Result<Option<Mass>> {
+    if !M::MASS_MATRIX {
+        return Ok(None);
+    }
+    let mass = model.mass(y0)?;
+    if !M::NONZEROS.is_empty() {
+        let empty = (0..mass.dim()).find(|&row| {
+            mass.entries.iter().all(|e| e.0 != row) && M::NONZEROS.iter().all(|e| e.0 != row)
+        });
+        if let Some(row) = empty {
+            return Err(Error::BadModel {
+                model: M::NAME,
+                what: format!("equation `{}`", y0.component_name(row)),
+                reason: "has a zero row of the mass matrix and reads no component of the state: \
+                         0 = f(t) there determines nothing, and M − c·J is singular at every \
+                         step; give the row a rate (a non-zero M entry) or make it an algebraic \
+                         equation that reads its component"
+                    .into(),
+            });
+        }
+    }
+    Ok(Some(mass))
+}

@@ -14,6 +14,7 @@ mod unavailable;
 
 pub use consistent::consistent;
 pub use mass::Mass;
+pub(crate) use mass::mass_of;
 pub use parameters::Parameters;
 pub use unavailable::Unavailable;
 

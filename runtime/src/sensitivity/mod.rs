@@ -224,7 +224,7 @@ where
                 model: M::NAME,
                 what: "its mass matrix".into(),
                 reason: "(`#[algebraic]` fields or `fn mass`) is not supported by forward \
-                         sensitivities yet; the model itself runs with Rodas5P or Rosenbrock23"
+                         sensitivities yet; the model itself runs with Rodas5P, Rosenbrock23, Bdf or ImplicitEuler"
                     .into(),
             });
         }

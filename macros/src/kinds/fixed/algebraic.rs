@@ -74,7 +74,7 @@ pub(super) fn args_accepted(item: &ItemStruct, args: &Args, errors: &mut Errors)
             no_jacobian,
             format_args!(
                 "`jacobian = false` leaves `#[algebraic]` `{first}` without the Jacobian its \
-                 consistent initial value and the DAE methods (Rodas5P, Rosenbrock23) solve \
+                 consistent initial value and the DAE methods (Rodas5P, Rosenbrock23, Bdf, ImplicitEuler) solve \
                  with; remove it (or use `jacobian = dual`)"
             ),
         );

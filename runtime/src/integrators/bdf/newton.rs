@@ -117,12 +117,26 @@ impl<M: Jacobian> Bdf<M> {
             // The residual c·f − ψ − d, solved in place into the update Δ.
             residual = 0.0;
             let update = self.update.as_mut_slice();
-            for ((u, q), d) in update
-                .iter_mut()
-                .zip(self.psi.as_slice())
-                .zip(self.correction.as_slice())
-            {
-                *u = c * *u - q - d;
+            match &self.mass {
+                // c·f − M(ψ + d)
+                Some(mass) if M::MASS_MATRIX => {
+                    for u in update.iter_mut() {
+                        *u *= c;
+                    }
+                    mass.apply_add(-1.0, self.psi.as_slice(), update);
+                    mass.apply_add(-1.0, self.correction.as_slice(), update);
+                }
+                _ => {
+                    for ((u, q), d) in update
+                        .iter_mut()
+                        .zip(self.psi.as_slice())
+                        .zip(self.correction.as_slice())
+                    {
+                        *u = c * *u - q - d;
+                    }
+                }
+            }
+            for u in update.iter() {
                 residual = if u.abs() > residual || u.is_nan() {
                     u.abs()
                 } else {
