@@ -156,3 +156,5 @@ mod mass_without_return {
 
     fn main() {}
 }
+
+fn main() {}
