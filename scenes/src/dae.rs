@@ -160,8 +160,9 @@ pub struct Transamp {
 impl Transamp {
     /// The test set's consistent start: (0, 3, 3, 6, 3, 3, 6, 0) V.
     pub fn start() -> Self {
-        let ub = 6.0;
-        let half = ub / (9000.0 / 9000.0 + 1.0);
+        // U_b/(R₂/R₁ + 1) and U_b/(R₆/R₅ + 1), all four resistors 9 kΩ.
+        let (ub, r1, r2) = (6.0, 9000.0, 9000.0);
+        let half = ub / (r2 / r1 + 1.0);
         Transamp {
             u: [0.0, half, half, ub, half, half, ub, 0.0],
         }

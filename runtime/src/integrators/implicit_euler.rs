@@ -2,8 +2,7 @@
 
 use super::{Integrator, Step};
 use crate::{
-    Error, Jacobian, Mass, Method, NewtonFailure, NewtonMatrix, NewtonOptions, Result, State,
-    Stats,
+    Error, Jacobian, Mass, Method, NewtonFailure, NewtonMatrix, NewtonOptions, Result, State, Stats,
 };
 
 /// Implicit (backward) Euler: yₙ₊₁ = yₙ + h·f(tₙ₊₁, yₙ₊₁).
@@ -157,8 +156,7 @@ impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
                 }
                 _ => self.jacobian.factorize(h, &mut self.factors),
             };
-            let solved =
-                factored.is_ok() && self.jacobian.solve(&mut self.factors, rhs).is_ok();
+            let solved = factored.is_ok() && self.jacobian.solve(&mut self.factors, rhs).is_ok();
             if !solved {
                 // J at yₙ itself (the first iterate) that is not finite: no smaller step helps.
                 if iter == 1 {

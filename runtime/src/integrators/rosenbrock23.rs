@@ -78,12 +78,7 @@ impl RosenbrockTableau for Rosenbrock23Tableau {
         }
         linear.solve(k1.as_mut_slice(), t, h, s.stats)?;
         // F₁ = f(t + h/2, y + h/2·k₁); k₂ = W⁻¹(F₁ − k₁) + k₁
-        set_axpy(
-            probe.as_mut_slice(),
-            y.as_slice(),
-            0.5 * h,
-            k1.as_slice(),
-        );
+        set_axpy(probe.as_mut_slice(), y.as_slice(), 0.5 * h, k1.as_slice());
         model.derivative(t + 0.5 * h, probe, f1);
         if M::MASS_MATRIX {
             k2.clone_from(f1);

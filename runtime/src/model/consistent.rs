@@ -70,12 +70,7 @@ pub fn consistent<M: Jacobian>(
             }
         }
         if let Some(bad) = block.iter().position(|v| !v.is_finite()) {
-            return Err(inconsistent(
-                y,
-                &g,
-                bad / k,
-                "∂g/∂z is not finite there",
-            ));
+            return Err(inconsistent(y, &g, bad / k, "∂g/∂z is not finite there"));
         }
         let lu = block.clone().lu();
         let u = lu.u();
@@ -148,13 +143,7 @@ pub fn consistent<M: Jacobian>(
 }
 
 /// gᵢ = f(t, y) at the algebraic components.
-fn residual<M: Jacobian>(
-    model: &M,
-    t: f64,
-    y: &M::State,
-    f: &mut M::State,
-    g: &mut DVector<f64>,
-) {
+fn residual<M: Jacobian>(model: &M, t: f64, y: &M::State, f: &mut M::State, g: &mut DVector<f64>) {
     model.derivative(t, y, f);
     for (a, &i) in M::ALGEBRAIC.iter().enumerate() {
         g[a] = f.as_slice()[i];

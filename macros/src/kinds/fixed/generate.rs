@@ -208,7 +208,8 @@ pub(crate) fn model_impls(
         }
     });
     let state_init = quote!(#state_ident { #(#fields: self.#fields),* });
-    let differential_algebraic = super::algebraic::model_items(model, functions.mass.as_ref(), &state);
+    let differential_algebraic =
+        super::algebraic::model_items(model, functions.mass.as_ref(), &state);
     // The runtime calls the rewritten copies; mark the originals used so they draw no warning.
     let originals = std::iter::once(force)
         .chain(&functions.energy)

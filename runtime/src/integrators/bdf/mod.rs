@@ -12,13 +12,11 @@ use coefficients::{
 };
 use newton::Convergence;
 
-use crate::math::Transcendental;
 use super::DenseStep;
 use super::linearization::finite_jacobian;
 use super::{Integrator, Step, copies};
-use crate::{
-    Error, Jacobian, Method, NewtonMatrix, NewtonOptions, Result, State, Stats,
-};
+use crate::math::Transcendental;
+use crate::{Error, Jacobian, Method, NewtonMatrix, NewtonOptions, Result, State, Stats};
 
 /// The variable-order, variable-step numerical differentiation formulas (NDFs) of Shampine &
 /// Reichelt, as SciPy's `scipy.integrate.BDF` implements them: the solution is carried as the
@@ -296,7 +294,8 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
         let norm = |e: &dyn Fn(usize) -> f64| tolerances.norm_of(e, y, y);
         let error = norm(&|i| ERROR_CONST[k] * d[i]);
         if error > 1.0 {
-            let factor = MIN_FACTOR.max(safety * Transcendental::powf(error, -1.0 / (k + 1) as f64));
+            let factor =
+                MIN_FACTOR.max(safety * Transcendental::powf(error, -1.0 / (k + 1) as f64));
             self.next = Some(h * factor);
             self.rejected = true;
             return Ok(error);

@@ -97,7 +97,9 @@ impl<M: Jacobian> Bdf<M> {
         y.clone_from(&self.predict);
         self.correction.as_mut_slice().fill(0.0);
         let max_iters = match test {
-            Convergence::SciPy { max_iters, .. } | Convergence::Cvode { max_iters, .. } => max_iters,
+            Convergence::SciPy { max_iters, .. } | Convergence::Cvode { max_iters, .. } => {
+                max_iters
+            }
         };
         let mut previous: Option<f64> = None;
         // CVODE's R.
@@ -199,16 +201,16 @@ impl<M: Jacobian> Bdf<M> {
             }
             let converged = settled
                 || match test {
-                Convergence::SciPy { tol, .. } => {
-                    norm == 0.0 || rate.is_some_and(|rate| rate / (1.0 - rate) * norm < tol)
-                }
-                Convergence::Cvode { tol, .. } => {
-                    if let Some(rate) = rate {
-                        rate_bound = (CVODE_CRDOWN * rate_bound).max(rate);
+                    Convergence::SciPy { tol, .. } => {
+                        norm == 0.0 || rate.is_some_and(|rate| rate / (1.0 - rate) * norm < tol)
                     }
-                    norm * rate_bound.min(1.0) <= tol
-                }
-            };
+                    Convergence::Cvode { tol, .. } => {
+                        if let Some(rate) = rate {
+                            rate_bound = (CVODE_CRDOWN * rate_bound).max(rate);
+                        }
+                        norm * rate_bound.min(1.0) <= tol
+                    }
+                };
             if converged {
                 return Ok(iter + 1);
             }

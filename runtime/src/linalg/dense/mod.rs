@@ -3,7 +3,6 @@
 
 use std::fmt;
 
-
 /// A dense square Jacobian: what the stability explorer reads entry by entry.
 pub trait DenseMatrix: Clone + fmt::Debug {
     /// Entry (row, column).
