@@ -27,6 +27,7 @@ chapters! {
     Jacobians: "jacobians.md",
     Stiff: "stiff.md",
     LinearSolvers: "linear-solvers.md",
+    Dae: "dae.md",
     Fitting: "fitting.md",
     Stability: "stability.md",
     Scenes: "scenes.md",

@@ -13,13 +13,16 @@ pub(crate) enum Role {
     Position,
     Velocity,
     State,
+    /// A component whose row of `derivative` is an algebraic equation 0 = g(t, y, z).
+    Algebraic,
 }
 
 impl Role {
-    pub(crate) const ATTRIBUTES: [(&'static str, Role); 3] = [
+    pub(crate) const ATTRIBUTES: [(&'static str, Role); 4] = [
         ("position", Role::Position),
         ("velocity", Role::Velocity),
         ("state", Role::State),
+        ("algebraic", Role::Algebraic),
     ];
 
     pub(crate) fn attribute(self) -> &'static str {

@@ -9,11 +9,18 @@ use syn::{
 
 use crate::errors::Errors;
 
-/// odyn's attributes on a model's fields: fixed-size (`state`, `position`, `velocity`), grid
-/// (`field`), particles (`mass`, `pinned`, and `position`/`velocity` of `Vec` type). In this order
-/// in the messages that list them.
-pub(crate) const FIELD_ATTRIBUTES: [&str; 7] = [
-    "state", "position", "velocity", "field", "mass", "pinned", "param",
+/// odyn's attributes on a model's fields: fixed-size (`state`, `position`, `velocity`,
+/// `algebraic`), grid (`field`), particles (`mass`, `pinned`, and `position`/`velocity` of `Vec`
+/// type). In this order in the messages that list them (`algebraic` last: it came last).
+pub(crate) const FIELD_ATTRIBUTES: [&str; 8] = [
+    "state",
+    "position",
+    "velocity",
+    "field",
+    "mass",
+    "pinned",
+    "param",
+    "algebraic",
 ];
 
 /// Rust's own attributes that may go on a struct, its fields, or a method.

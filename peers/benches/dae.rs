@@ -1,6 +1,6 @@
-//! The DAE peers of issue 50 at equal final error: SUNDIALS IDA (dense and KLU) and diffsol with
-//! its mass matrix, on three index-1 problems in mass-matrix form M·y′ = f(t, y). odyn's DAE
-//! methods join as further `Solver` variants once they exist.
+//! odyn's DAE methods against its peers of issue 50 at equal final error: SUNDIALS IDA (dense
+//! and KLU) and diffsol with its mass matrix, on three index-1 problems in mass-matrix form
+//! M·y′ = f(t, y).
 //!
 //! `cargo bench --manifest-path peers/Cargo.toml --bench dae`
 //!
@@ -46,6 +46,11 @@
 //!   within one step raised from 50 and 40 to 1000: with the defaults diffsol gives up on the
 //!   amplifier at every tolerance, with these it completes 20 of the 37.
 //!
+//! - `odyn_rodas5p`, `odyn_bdf`: odyn's Rodas5P and BDF in mass-matrix form on the problems as
+//!   `scenes/src/dae.rs` writes them (`#[algebraic]` fields, the amplifier's `fn mass`; the
+//!   generated Jacobian), from the same starts, with atol = rtol·`atol_scale` as the peers; only
+//!   on the published problems (odyn runs the amplifier as published, so not `transamp_se`).
+//!
 //! Every variant builds its problem and solver from scratch and returns only its final state;
 //! each keeps its own defaults for the controller, first step and Newton settings.
 
@@ -81,10 +86,12 @@ enum Solver {
     DiffsolBdfPatient,
     DiffsolEsdirk34,
     DiffsolTrBdf2,
+    OdynRodas5P,
+    OdynBdf,
 }
 
 impl Solver {
-    const ALL: [Solver; 7] = [
+    const ALL: [Solver; 9] = [
         Solver::IdaDense,
         Solver::IdaKlu,
         Solver::IdaDenseNoAlg,
@@ -92,6 +99,8 @@ impl Solver {
         Solver::DiffsolBdfPatient,
         Solver::DiffsolEsdirk34,
         Solver::DiffsolTrBdf2,
+        Solver::OdynRodas5P,
+        Solver::OdynBdf,
     ];
 
     /// The divan bench name.
@@ -104,6 +113,8 @@ impl Solver {
             Solver::DiffsolBdfPatient => "diffsol_bdf_patient",
             Solver::DiffsolEsdirk34 => "diffsol_esdirk34",
             Solver::DiffsolTrBdf2 => "diffsol_tr_bdf2",
+            Solver::OdynRodas5P => "odyn_rodas5p",
+            Solver::OdynBdf => "odyn_bdf",
         }
     }
 }
@@ -168,6 +179,8 @@ fn solve(dae: &Dae, solver: Solver, rtol: f64) -> Option<Run> {
         Solver::IdaDense => ida_run(dae, ida::Linear::Dense, false, rtol, atol),
         Solver::IdaKlu => ida_run(dae, ida::Linear::Klu, false, rtol, atol),
         Solver::IdaDenseNoAlg => ida_run(dae, ida::Linear::Dense, true, rtol, atol),
+        Solver::OdynRodas5P => odyn_run(dae, odyn::Method::Rodas5P, rtol, atol),
+        Solver::OdynBdf => odyn_run(dae, odyn::Method::Bdf, rtol, atol),
         _ => diffsol_run(dae, solver, rtol, atol),
     }
 }
@@ -179,6 +192,51 @@ fn ida_equations(dae: &Dae) -> ida::Equations<'_> {
         f: &dae.f,
         jacobian: &dae.jacobian,
         mass: dae.mass,
+    }
+}
+
+/// odyn on the `scenes` model of `dae` (`None` for `transamp_se`, which odyn does not need).
+fn odyn_run(dae: &Dae, method: odyn::Method, rtol: f64, atol: f64) -> Option<Run> {
+    fn run<M: odyn::Model>(
+        model: &M,
+        method: odyn::Method,
+        rtol: f64,
+        atol: f64,
+        t_end: f64,
+    ) -> Option<Run> {
+        let trajectory = odyn::Simulation::new(model)
+            .integrator(method)
+            .tolerances(rtol, atol)
+            .duration(t_end)
+            .record_every(u64::MAX)
+            .run()
+            .map_err(|e| {
+                if std::env::var_os("PEERS_SWEEP").is_some() {
+                    eprintln!("    odyn: {e}");
+                }
+            })
+            .ok()?;
+        let s = trajectory.stats;
+        Some(Run {
+            y: odyn::State::as_slice(&trajectory.last().state).to_vec(),
+            steps: s.steps,
+            rejected: s.rejected,
+            evaluations: s.evaluations,
+            jacobians: s.jacobian_evaluations,
+            factorizations: s.factorizations,
+        })
+    }
+    match dae.name {
+        "chemakzo" => run(&scenes::ChemAkzo::start(), method, rtol, atol, dae.t_end),
+        "transamp" => run(&scenes::Transamp::start(), method, rtol, atol, dae.t_end),
+        "roberdae" => run(
+            &scenes::RobertsonDae::classic(),
+            method,
+            rtol,
+            atol,
+            dae.t_end,
+        ),
+        _ => None,
     }
 }
 
@@ -324,7 +382,9 @@ fn calibrate(dae: &'static Dae, chosen: &mut HashMap<(&'static str, usize, Solve
                     solver.name()
                 );
             }
-            applies
+            // odyn solves the published amplifier; the semi-explicit one is for diffsol.
+            let odyn = matches!(solver, Solver::OdynRodas5P | Solver::OdynBdf);
+            applies && !(odyn && dae.name == "transamp_se")
         })
         .map(|&solver| {
             let sweep = tolerances()
@@ -467,6 +527,16 @@ macro_rules! group {
             #[divan::bench]
             fn diffsol_tr_bdf2() -> Vec<f64> {
                 timed(&$dae, Solver::DiffsolTrBdf2, $t)
+            }
+
+            #[divan::bench]
+            fn odyn_rodas5p() -> Vec<f64> {
+                timed(&$dae, Solver::OdynRodas5P, $t)
+            }
+
+            #[divan::bench]
+            fn odyn_bdf() -> Vec<f64> {
+                timed(&$dae, Solver::OdynBdf, $t)
             }
         }
     };

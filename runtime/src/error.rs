@@ -90,6 +90,27 @@ pub enum Error {
         /// What the method needs that the model lacks.
         reason: &'static str,
     },
+    /// The algebraic equations of a differential–algebraic model cannot be satisfied at the
+    /// start, or after an event's change, by moving its algebraic components
+    /// ([`crate::consistent`]).
+    #[error(
+        "inconsistent initial values at t = {t:?}: the algebraic equation of `{residual}` has \
+         residual {value:e}, and Newton on the algebraic component `{component}` cannot make it \
+         zero: {reason}; give initial values that satisfy the algebraic equations, or write \
+         each constraint so it depends on its algebraic component (index 1)"
+    )]
+    InconsistentStart {
+        /// Time of the start or the event.
+        t: f64,
+        /// The algebraic equation (named by its component) with the largest residual.
+        residual: String,
+        /// |residual| there.
+        value: f64,
+        /// The algebraic component Newton could not move to satisfy it.
+        component: String,
+        /// Why.
+        reason: &'static str,
+    },
     /// The state became non-finite or left the divergence limit.
     #[error(
         "{method} diverged at step {step} (t = {t:?}): component `{component}` = {value:e} \

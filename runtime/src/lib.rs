@@ -59,7 +59,7 @@ pub use linalg::{
 };
 pub use method::{Method, MethodInfo};
 pub use model::dual::Dual;
-pub use model::{Jacobian, Model, Parameters, SecondOrder, State, Unavailable};
+pub use model::{Jacobian, Mass, Model, Parameters, SecondOrder, State, Unavailable, consistent};
 pub use nalgebra;
 /// The `rand` crate, for ensemble members' generators ([`ensemble::MemberRng`] implements its
 /// `Rng`).

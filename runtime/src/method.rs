@@ -116,6 +116,18 @@ impl Method {
         self.info().needs_jacobian
     }
 
+    /// Whether the method integrates M·y′ = f(t, y) with a mass matrix M ≠ I: a
+    /// differential–algebraic model (`#[algebraic]` fields, or `fn mass`): the methods that
+    /// solve a linear system each step, which then has M − c·J in place of I − c·J — the
+    /// Rosenbrock methods (Hairer & Wanner, *Solving ODEs II*, §VI.4), BDF and implicit Euler.
+    /// Explicit methods have no such system to put M in.
+    pub const fn takes_mass_matrix(self) -> bool {
+        matches!(
+            self,
+            Method::Rodas5P | Method::Rosenbrock23 | Method::Bdf | Method::ImplicitEuler
+        )
+    }
+
     /// Whether the method needs forces that do not read velocities.
     pub const fn needs_velocity_free_forces(self) -> bool {
         self.info().needs_velocity_free_forces

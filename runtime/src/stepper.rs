@@ -79,6 +79,7 @@ impl<'m, M: Model, I: Integrator<M>> Stepper<'m, M, I> {
             limit,
             event_options: (0.0, 0),
             dense_degree: I::DENSE_DEGREE,
+            method: I::METHOD,
         };
         let driver = crate::stack::with_room::<M::State, _>(move || {
             let track = Track::new(model, *state, start, Vec::new(), quiet)?;

@@ -11,6 +11,8 @@
 //! - [`solar_system`] — the outer [`SolarSystem`], and [`SolarSystemByAxis`].
 //! - [`stiff`] — [`VanDerPol`] and four problems of the Bari test set ([`Robertson`], [`Hires`],
 //!   [`Pollu`], [`Orego`]) with their references.
+//! - [`dae`] — differential–algebraic problems: [`RobertsonDae`], the test set's [`ChemAkzo`]
+//!   and [`Transamp`], the [`CartesianPendulum`], with their references.
 //! - [`cloth`] — the Baraff–Witkin [`Cloth`] and the [`Sheet`] that builds it.
 //! - [`fields`] — Gray–Scott reaction–diffusion, [`GrayScott`].
 //! - [`fluids`] — the [`dam_break`] of Martin & Moyce for SPH and FLIP ([`flip_dam_break`]), and
@@ -25,6 +27,7 @@
 pub mod analysis;
 pub mod chaos;
 pub mod cloth;
+pub mod dae;
 pub mod fields;
 pub mod fluids;
 pub mod hybrid;
@@ -37,6 +40,7 @@ pub mod stiff;
 pub use analysis::slope;
 pub use chaos::*;
 pub use cloth::{Cloth, Hang, Sheet};
+pub use dae::*;
 pub use fields::*;
 pub use fluids::{MARTIN_MOYCE, dam_break, flip_dam_break};
 pub use orbits::*;

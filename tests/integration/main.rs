@@ -19,6 +19,7 @@ mod compositions;
 mod const_generic;
 mod control_flow;
 mod convergence;
+mod dae;
 mod differences;
 mod dual;
 mod dual_rules;

@@ -17,6 +17,15 @@ pub(crate) struct Start<'n> {
     pub(crate) event_options: (f64, u64),
     /// The degree of the method's own interpolant (3 for the Hermite one).
     pub(crate) dense_degree: usize,
+    /// The method: a model with a mass matrix runs only with one that takes it.
+    pub(crate) method: Method,
+}
+
+/// Why a method that does not take a mass matrix refuses a model that has one.
+const fn mass_matrix_reason() -> &'static str {
+    "it is differential–algebraic (`#[algebraic]` fields or `fn mass`: M·y′ = f with M ≠ I), \
+     which only Rodas5P, Rosenbrock23, Bdf and ImplicitEuler integrate (each solves with \
+     M − c·J); explicit methods have no matrix to put M in"
 }
 
 /// A run's time, state and record (see [`super::Driver`]).
@@ -58,7 +67,7 @@ impl<'a, 'm, M: Model> Track<'a, 'm, M> {
     /// records the initial sample.
     pub(crate) fn new(
         model: &'m M,
-        y0: M::State,
+        mut y0: M::State,
         start: Start<'_>,
         events: Vec<Event<'a, M::State>>,
         recording: Recording<'a>,
@@ -69,7 +78,15 @@ impl<'a, 'm, M: Model> Track<'a, 'm, M> {
             limit,
             event_options: (event_tolerance, max_events),
             dense_degree,
+            method,
         } = start;
+        if M::MASS_MATRIX && !method.takes_mass_matrix() {
+            return Err(Error::Unsupported {
+                method,
+                model: M::NAME,
+                reason: mass_matrix_reason(),
+            });
+        }
         if let Some((index, value)) = first_outside(&y0, limit)
             && value.is_finite()
         {
@@ -85,6 +102,9 @@ impl<'a, 'm, M: Model> Track<'a, 'm, M> {
             event.check()?;
         }
         check_start(model, &y0, newton)?;
+        // A differential–algebraic model's algebraic components are made consistent before the
+        // first step (and the sample records them so).
+        model.consistent(t0, &mut y0, newton)?;
         let quiet = recording.every == 0;
         let mut record = Record {
             samples: Vec::new(),

@@ -1,7 +1,8 @@
 //! What the linearly implicit methods share: J = ∂f/∂y and ∂f/∂t at the start of a step, and
-//! the factorization of W = I − c·J, each made once and reused as long as it stays valid.
+//! the factorization of W = I − c·J (M − c·J for a model with a mass matrix M), each made once
+//! and reused as long as it stays valid.
 
-use crate::{Error, Jacobian, NewtonMatrix, Result, Stats};
+use crate::{Error, Jacobian, Mass, NewtonMatrix, Result, Stats};
 
 /// J, ∂f/∂t and the factors of W for the current step.
 ///
@@ -18,22 +19,35 @@ pub struct Linearization<M: Jacobian> {
     current: bool,
     /// The c of the current factorization, if it is valid.
     factored: Option<f64>,
+    /// M, for a model with a mass matrix ([`crate::Model::MASS_MATRIX`]); W = M − c·J then.
+    pub(super) mass: Option<Mass>,
 }
 
 impl<M: Jacobian> Linearization<M> {
     /// Errors: [`Error::InvalidInput`] when ∂f/∂t's state cannot be allocated
-    /// ([`crate::State::try_clone`]).
+    /// ([`crate::State::try_clone`]); [`Error::BadModel`] from [`crate::Model::mass`].
     pub(super) fn new(model: &M, y0: &M::State) -> Result<Self> {
         let jacobian = model.jacobian_matrix(y0);
         let mut dfdt = crate::State::try_clone(y0)?;
         crate::State::as_mut_slice(&mut dfdt).fill(0.0);
+        let mass = crate::model::mass_of(model, y0)?;
         Ok(Linearization {
             factors: jacobian.factors(),
             jacobian,
             dfdt,
             current: false,
             factored: None,
+            mass,
         })
+    }
+
+    /// `b += scale·M·x` (`b += scale·x` for an ODE).
+    #[inline(always)]
+    pub(super) fn mass_add(&self, b: &mut [f64], scale: f64, x: &[f64]) {
+        match &self.mass {
+            Some(mass) if M::MASS_MATRIX => mass.apply_add(scale, x, b),
+            _ => super::axpy(b, scale, x),
+        }
     }
 
     /// Evaluates J and ∂f/∂t at (t, y) unless they are already the current state's.
@@ -61,7 +75,7 @@ impl<M: Jacobian> Linearization<M> {
         Ok(())
     }
 
-    /// Factorizes W = I − c·J unless it already is, for this c.
+    /// Factorizes W = I − c·J (M − c·J) unless it already is, for this c.
     ///
     /// Errors: [`Error::SingularMatrix`] (retriable: the driver tries a smaller step).
     pub(super) fn factorize(&mut self, c: f64, t: f64, h: f64, stats: &mut Stats) -> Result<()> {
@@ -70,9 +84,14 @@ impl<M: Jacobian> Linearization<M> {
         }
         self.factored = None;
         stats.factorizations += 1;
-        self.jacobian
-            .factorize(c, &mut self.factors)
-            .map_err(|_| Error::SingularMatrix { t, dt: h })?;
+        let factored = match &self.mass {
+            Some(mass) if M::MASS_MATRIX => {
+                self.jacobian
+                    .factorize_mass(c, mass.entries(), &mut self.factors)
+            }
+            _ => self.jacobian.factorize(c, &mut self.factors),
+        };
+        factored.map_err(|_| Error::SingularMatrix { t, dt: h })?;
         self.factored = Some(c);
         Ok(())
     }
@@ -122,6 +141,7 @@ impl<M: Jacobian> Clone for Linearization<M> {
             dfdt: self.dfdt.clone(),
             current: self.current,
             factored: self.factored,
+            mass: self.mass.clone(),
         }
     }
 }

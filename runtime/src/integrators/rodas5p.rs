@@ -17,8 +17,17 @@ use crate::{Controller, Jacobian, Method, Result, State};
 /// ```
 ///
 /// Stiffly accurate (the last stages are the solution itself), so it keeps its order on stiff
-/// problems and differential-algebraic limits where other Rosenbrock methods lose it. The dense
-/// output (1 − θ)yₙ + θ(yₙ₊₁ + (1 − θ)(K₁ + θ(K₂ + θK₃))), Kᵣ = Σⱼ Hᵣⱼuⱼ, is of order 4 and free.
+/// problems and differential-algebraic limits where other Rosenbrock methods lose it.
+///
+/// **Differential–algebraic models**, M·y′ = f(t, y) with M constant and possibly singular
+/// (`#[algebraic]` fields, `fn mass`): W = M − γh·J and the coupling term is M·Σⱼ (Cᵢⱼ/h) uⱼ
+/// (Hairer & Wanner, *Solving ODEs II*, §VI.4). The coefficients are those Steinebach
+/// derived for index-1 DAEs: like Rodas5's they satisfy the DAE order conditions to order 5
+/// (4 for the embedded estimate), and in addition the Prothero–Robinson conditions, so the
+/// order holds on stiff and algebraic components alike. A solve with a singular M is no
+/// different: W is regular wherever ∂g/∂z is (index 1).
+///
+/// The dense output (1 − θ)yₙ + θ(yₙ₊₁ + (1 − θ)(K₁ + θ(K₂ + θK₃))), Kᵣ = Σⱼ Hᵣⱼuⱼ, is of order 4 and free.
 /// One Jacobian, one ∂f/∂t (only when the model reads the time), one factorization, eight
 /// solves and eight evaluations of f a step (seven when a rejected step is retried: f(tₙ, yₙ),
 /// J and T are kept, W is refactorized for the new h). Coefficients: `tableaux/rodas5p.rs`,
@@ -77,9 +86,21 @@ impl RosenbrockTableau for Rodas5PTableau {
                 s.stats.evaluations += 1;
             }
             let b = rhs.as_mut_slice();
-            for (coupling, uj) in COUPLING[i].iter().zip(done.iter()) {
-                if *coupling != 0.0 {
-                    axpy(b, coupling / h, uj.as_slice());
+            if M::MASS_MATRIX {
+                // M·Σⱼ (Cᵢⱼ/h) uⱼ, summed in uᵢ's slot, which the solve below fills.
+                let sum = rest[0].as_mut_slice();
+                sum.fill(0.0);
+                for (coupling, uj) in COUPLING[i].iter().zip(done.iter()) {
+                    if *coupling != 0.0 {
+                        axpy(sum, coupling / h, uj.as_slice());
+                    }
+                }
+                linear.mass_add(b, 1.0, sum);
+            } else {
+                for (coupling, uj) in COUPLING[i].iter().zip(done.iter()) {
+                    if *coupling != 0.0 {
+                        axpy(b, coupling / h, uj.as_slice());
+                    }
                 }
             }
             if M::TIME_DEPENDENT && D[i] != 0.0 {

@@ -4,12 +4,17 @@
 //! also [`SecondOrder`], q̈ = a(t, q, q̇): its state lays out every position, then every velocity,
 //! so the split methods see the two halves of [`State::as_slice`].
 
+mod consistent;
 pub mod differences;
 pub mod dual;
 pub mod flat;
+mod mass;
 mod parameters;
 mod unavailable;
 
+pub use consistent::consistent;
+pub use mass::Mass;
+pub(crate) use mass::mass_of;
 pub use parameters::Parameters;
 pub use unavailable::Unavailable;
 
@@ -77,8 +82,37 @@ pub trait Model {
     #[doc(hidden)]
     const AVAILABLE: bool = true;
 
+    /// The components whose rows of f are algebraic equations 0 = g(t, y, z) rather than rates
+    /// (the `#[algebraic]` fields), in the state's layout; empty for an ODE. Their rows and
+    /// columns of the mass matrix are zero.
+    const ALGEBRAIC: &'static [usize] = &[];
+    /// Whether the model is M·y′ = f(t, y) with M ≠ I (algebraic components, or a `fn mass`):
+    /// only the methods that take a mass matrix ([`Method::takes_mass_matrix`]) integrate it.
+    const MASS_MATRIX: bool = false;
+
     /// The state held in the model's own fields: the usual initial state.
     fn state(&self) -> Self::State;
+
+    /// The mass matrix M of M·y′ = f(t, y), for states like `state`: the identity with zeros at
+    /// [`Model::ALGEBRAIC`] unless the model defines `fn mass`. Built once per run, only for a
+    /// model with [`Model::MASS_MATRIX`].
+    ///
+    /// Errors: [`crate::Error::BadModel`] for a `fn mass` of the wrong size, with a non-finite
+    /// entry, or with an entry in an algebraic component's row or column.
+    fn mass(&self, state: &Self::State) -> Result<Mass> {
+        Mass::identity(Self::NAME, state.as_slice().len(), Self::ALGEBRAIC)
+    }
+
+    /// Makes the algebraic components of `y` consistent with the differential ones at `t`
+    /// ([`consistent`]); the drivers call it before the first step and after every event that
+    /// changes the state. Nothing to do for an ODE.
+    ///
+    /// Errors: [`crate::Error::InconsistentStart`].
+    #[doc(hidden)]
+    fn consistent(&self, t: f64, y: &mut Self::State, newton: &crate::NewtonOptions) -> Result<()> {
+        let _ = (t, y, newton);
+        Ok(())
+    }
 
     /// Writes f(t, y) into `dydt`.
     fn derivative(&self, t: f64, y: &Self::State, dydt: &mut Self::State);

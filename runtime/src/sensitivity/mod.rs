@@ -216,6 +216,21 @@ where
         None
     }
 
+    /// Refuses a differential–algebraic model: its sensitivities solve M·s′ = J·s + ∂f/∂p, with
+    /// consistent algebraic sensitivities, which this augmented system does not form yet.
+    fn check(&self, _: &SensitivityState) -> crate::Result<()> {
+        if M::MASS_MATRIX {
+            return Err(crate::Error::BadModel {
+                model: M::NAME,
+                what: "its mass matrix".into(),
+                reason: "(`#[algebraic]` fields or `fn mass`) is not supported by forward \
+                         sensitivities yet; the model itself runs with Rodas5P, Rosenbrock23, Bdf or ImplicitEuler"
+                    .into(),
+            });
+        }
+        Ok(())
+    }
+
     /// The sensitivities' jump at the change ([`events`](self) module docs).
     fn complete_change(
         &self,

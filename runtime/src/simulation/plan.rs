@@ -124,6 +124,7 @@ impl<'s, M: Model> Plan<'s, '_, M> {
         self,
         model: &'n N,
         dense_degree: usize,
+        method: Method,
     ) -> Result<(Track<'s, 'n, N>, Span)> {
         let o = &self.simulation.options;
         let recording = Recording {
@@ -138,6 +139,7 @@ impl<'s, M: Model> Plan<'s, '_, M> {
             limit: self.limit,
             event_options: (o.event_tolerance, o.max_events),
             dense_degree,
+            method,
         };
         let events = self.simulation.events.clone();
         let track = Track::new(model, self.initial, start, events, recording)?;
@@ -154,7 +156,7 @@ impl<'s, M: Model> Plan<'s, '_, M> {
     {
         let simulation = self.simulation;
         let o = &simulation.options;
-        let (track, span) = self.start(model, I::DENSE_DEGREE)?;
+        let (track, span) = self.start(model, I::DENSE_DEGREE, I::METHOD)?;
         let mut driver = Driver::<N, I>::on(track, &o.newton)?;
         let outcome = match &span {
             Span::Fixed { dt, steps } => driver.run_fixed(*dt, 0, *steps),

@@ -49,8 +49,11 @@ pub(crate) fn parse<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Option<Mod
     let (positions, velocities, states) = (
         count(Role::Position),
         count(Role::Velocity),
-        count(Role::State),
+        count(Role::State) + count(Role::Algebraic),
     );
+    if !super::algebraic::fields_accepted(&declared, positions + velocities, &params, errors) {
+        return None;
+    }
     if declared.is_empty() {
         if errors.is_empty() {
             errors.at_span(
@@ -65,7 +68,9 @@ pub(crate) fn parse<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Option<Mod
         return None;
     }
     if states > 0 && positions + velocities > 0 {
-        let (first_state, _) = declared.iter().find(|(f, _)| f.role == Role::State)?;
+        let (first_state, _) = declared
+            .iter()
+            .find(|(f, _)| matches!(f.role, Role::State | Role::Algebraic))?;
         errors.at(
             first_state.ident,
             "`#[state]` cannot be mixed with `#[position]`/`#[velocity]`; a model is either \

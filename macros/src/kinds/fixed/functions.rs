@@ -17,6 +17,9 @@ pub(crate) struct Functions {
     pub(crate) force: Option<Function>,
     /// `fn energy`, when defined.
     pub(crate) energy: Option<Function>,
+    /// `fn mass` of a first-order model, when defined: its constant mass matrix, emitted as
+    /// written.
+    pub(crate) mass: Option<ImplItemFn>,
 }
 
 /// One user function, ready to be re-emitted with the state as arguments.
@@ -55,6 +58,7 @@ pub(crate) fn parse(
     let mut functions = Functions {
         force: None,
         energy: None,
+        mass: None,
     };
     for member in &item.items {
         let ImplItem::Fn(f) = member else { continue };
@@ -62,6 +66,10 @@ pub(crate) fn parse(
             functions.force = read(f, model, helpers, true, errors);
         } else if f.sig.ident == "energy" {
             functions.energy = read(f, model, helpers, false, errors);
+        } else if model.order == Order::First && f.sig.ident == "mass" {
+            functions.mass = super::algebraic::read_mass(f, model, helpers, errors);
+        } else if model.order == Order::First && f.sig.ident == "residual" {
+            super::algebraic::refuse_residual(f, errors);
         } else if f.sig.ident == force_name_of_other(model.order) {
             errors.at(
                 &f.sig.ident,

@@ -27,6 +27,7 @@ pub(crate) fn state(model: &Model<'_>) -> TokenStream {
                 Role::Position => "Position",
                 Role::Velocity => "Velocity",
                 Role::State => "State variable",
+                Role::Algebraic => "Algebraic variable (its row of `derivative` is a residual)",
             },
             ident
         );
@@ -38,6 +39,9 @@ pub(crate) fn state(model: &Model<'_>) -> TokenStream {
         .flat_map(|f| f.shape.component_names(&f.ident.to_string()));
     let layout = match model.order {
         Order::Second => "every position, then every velocity",
+        Order::First if model.with_role(Role::Algebraic).next().is_some() => {
+            "the `#[state]` and `#[algebraic]` fields in declaration order"
+        }
         Order::First => "the `#[state]` fields in declaration order",
     };
     if model.is_generic() {
@@ -204,6 +208,8 @@ pub(crate) fn model_impls(
         }
     });
     let state_init = quote!(#state_ident { #(#fields: self.#fields),* });
+    let differential_algebraic =
+        super::algebraic::model_items(model, functions.mass.as_ref(), &state);
     // The runtime calls the rewritten copies; mark the originals used so they draw no warning.
     let originals = std::iter::once(force)
         .chain(&functions.energy)
@@ -222,6 +228,7 @@ pub(crate) fn model_impls(
             fn energy(&self, state: &#state) -> ::core::option::Option<f64> {
                 #energy
             }
+            #differential_algebraic
         },
         second_order: model.order == Order::Second,
         jacobian: has_jacobian,

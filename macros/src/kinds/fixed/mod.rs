@@ -8,6 +8,7 @@
 //! [`tangent`]'s coloured forward mode for big models) and [`generate`] the state type and the
 //! runtime trait impls.
 
+mod algebraic;
 mod dual;
 mod fields;
 mod functions;
@@ -105,6 +106,7 @@ impl FrontEnd for Kind {
         parameters::parse(item, errors);
         let refused_parameters = errors.len() > before;
         let model = fields::parse(item, errors)?;
+        algebraic::args_accepted(item, args, errors);
         if refused_parameters {
             return None;
         }

@@ -352,6 +352,9 @@ impl<'a, S: State> Watch<'a, S> {
                             change: &**change,
                         };
                         model.complete_change(t, &before, at, jump)?;
+                        // The change moved the state off the algebraic equations, perhaps: the
+                        // algebraic components follow the differential ones there.
+                        model.consistent(t, at, &crate::NewtonOptions::default())?;
                         changed = true;
                     }
                 }

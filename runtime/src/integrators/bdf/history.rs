@@ -91,6 +91,18 @@ impl<M: Jacobian> Bdf<M> {
         d0.clone_from(y);
         model.derivative(t, y, d1);
         stats.evaluations += 1;
+        if let Some(mass) = &self.mass {
+            // f is y′ only in rows where M is the identity's; elsewhere (algebraic rows, a
+            // circuit's coupled capacitances) the start predicts no change.
+            let entries = mass.entries();
+            for (i, d) in d1.as_mut_slice().iter_mut().enumerate() {
+                let mut row = entries.iter().filter(|e| e.0 == i);
+                let unit = matches!((row.next(), row.next()), (Some(&(_, j, m)), None) if j == i && m == 1.0);
+                if !unit {
+                    *d = 0.0;
+                }
+            }
+        }
         for dj in rest {
             dj.as_mut_slice().fill(0.0);
         }

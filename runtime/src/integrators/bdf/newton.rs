@@ -97,7 +97,9 @@ impl<M: Jacobian> Bdf<M> {
         y.clone_from(&self.predict);
         self.correction.as_mut_slice().fill(0.0);
         let max_iters = match test {
-            Convergence::SciPy { max_iters, .. } | Convergence::Cvode { max_iters, .. } => max_iters,
+            Convergence::SciPy { max_iters, .. } | Convergence::Cvode { max_iters, .. } => {
+                max_iters
+            }
         };
         let mut previous: Option<f64> = None;
         // CVODE's R.
@@ -117,12 +119,26 @@ impl<M: Jacobian> Bdf<M> {
             // The residual c·f − ψ − d, solved in place into the update Δ.
             residual = 0.0;
             let update = self.update.as_mut_slice();
-            for ((u, q), d) in update
-                .iter_mut()
-                .zip(self.psi.as_slice())
-                .zip(self.correction.as_slice())
-            {
-                *u = c * *u - q - d;
+            match &self.mass {
+                // c·f − M(ψ + d)
+                Some(mass) if M::MASS_MATRIX => {
+                    for u in update.iter_mut() {
+                        *u *= c;
+                    }
+                    mass.apply_add(-1.0, self.psi.as_slice(), update);
+                    mass.apply_add(-1.0, self.correction.as_slice(), update);
+                }
+                _ => {
+                    for ((u, q), d) in update
+                        .iter_mut()
+                        .zip(self.psi.as_slice())
+                        .zip(self.correction.as_slice())
+                    {
+                        *u = c * *u - q - d;
+                    }
+                }
+            }
+            for u in update.iter() {
                 residual = if u.abs() > residual || u.is_nan() {
                     u.abs()
                 } else {
@@ -185,16 +201,16 @@ impl<M: Jacobian> Bdf<M> {
             }
             let converged = settled
                 || match test {
-                Convergence::SciPy { tol, .. } => {
-                    norm == 0.0 || rate.is_some_and(|rate| rate / (1.0 - rate) * norm < tol)
-                }
-                Convergence::Cvode { tol, .. } => {
-                    if let Some(rate) = rate {
-                        rate_bound = (CVODE_CRDOWN * rate_bound).max(rate);
+                    Convergence::SciPy { tol, .. } => {
+                        norm == 0.0 || rate.is_some_and(|rate| rate / (1.0 - rate) * norm < tol)
                     }
-                    norm * rate_bound.min(1.0) <= tol
-                }
-            };
+                    Convergence::Cvode { tol, .. } => {
+                        if let Some(rate) = rate {
+                            rate_bound = (CVODE_CRDOWN * rate_bound).max(rate);
+                        }
+                        norm * rate_bound.min(1.0) <= tol
+                    }
+                };
             if converged {
                 return Ok(iter + 1);
             }

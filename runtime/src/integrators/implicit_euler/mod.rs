@@ -8,7 +8,7 @@ pub use quasi_newton::QuasiNewton;
 
 use super::{Integrator, Step};
 use crate::{
-    Error, Jacobian, Method, NewtonFailure, NewtonMatrix, NewtonOptions, Result, State, Stats,
+    Error, Jacobian, Mass, Method, NewtonFailure, NewtonMatrix, NewtonOptions, Result, State, Stats,
 };
 
 /// Implicit (backward) Euler: yₙ₊₁ = yₙ + h·f(tₙ₊₁, yₙ₊₁).
@@ -37,6 +37,10 @@ use crate::{
 /// - **Stability**: A- and L-stable, |1/(1 − hλ)| < 1 for every Re λ < 0 and → 0 as hλ → −∞, so
 ///   any dt is stable on a stiff spring.
 ///
+/// With a mass matrix (a differential–algebraic model, M·y′ = f) the step solves
+/// M(yₙ₊₁ − yₙ) = h·f(tₙ₊₁, yₙ₊₁), Newton with M − h·J, and its dense output is the straight
+/// line between the steps (the cubic Hermite interpolant would take f for y′).
+///
 /// Reference: E. Hairer, G. Wanner, *Solving Ordinary Differential Equations II*, 2nd ed.,
 /// Springer 1996, §IV.3 (stability) and §IV.8 (Newton iterations).
 pub struct ImplicitEuler<M: Jacobian> {
@@ -51,6 +55,9 @@ pub struct ImplicitEuler<M: Jacobian> {
     factors: <M::Matrix as NewtonMatrix>::Factors,
     /// The quasi-Newton solve, when the options select it for this model.
     quasi_newton: Option<QuasiNewton>,
+    /// M, for a model with a mass matrix: M(yₙ₊₁ − yₙ) = h·f(tₙ₊₁, yₙ₊₁) then, Newton with
+    /// M − h·J.
+    mass: Option<Mass>,
 }
 
 impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
@@ -91,6 +98,7 @@ impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
                 crate::Solves::Newton
             },
         );
+        let mass = crate::model::mass_of(model, y0)?;
         Ok(ImplicitEuler {
             newton: *newton,
             force: y0.try_clone()?,
@@ -98,10 +106,38 @@ impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
             factors: jacobian.factors(),
             jacobian,
             quasi_newton,
+            mass,
         })
     }
 
-    /// Newton's method for y = yₙ + h·f(tₙ₊₁, y), from y⁰ = yₙ.
+    /// For a model with a mass matrix, the straight line from yₙ to yₙ₊₁ (order 1, as the
+    /// method): the driver's cubic Hermite interpolant takes f for y′, which M·y′ = f is not.
+    fn dense(
+        &mut self,
+        _: &M,
+        s: Step<'_, M::State>,
+        y_new: &M::State,
+        dense: &mut super::DenseStep<M::State>,
+    ) -> bool {
+        if !M::MASS_MATRIX {
+            return false;
+        }
+        let [c0, c1] = dense.fill(s.t, s.h, 1) else {
+            unreachable!("fill returns degree + 1 coefficients")
+        };
+        c0.clone_from(s.y);
+        for ((o, a), b) in c1
+            .as_mut_slice()
+            .iter_mut()
+            .zip(s.y.as_slice())
+            .zip(y_new.as_slice())
+        {
+            *o = b - a;
+        }
+        true
+    }
+
+    /// Newton's method for y = yₙ + h·f(tₙ₊₁, y), from y⁰ = yₙ (or the quasi-Newton solve).
     #[inline]
     fn attempt(&mut self, model: &M, s: Step<'_, M::State>, y: &mut M::State) -> Result<f64> {
         let (t1, h) = (s.t + s.h, s.h);
@@ -140,8 +176,20 @@ impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
                     .iter()
                     .zip(self.force.as_slice())
                     .zip(y.as_slice());
-            for (bi, ((y0, f), yk)) in rhs.iter_mut().zip(terms) {
-                *bi = y0 + h * f - yk;
+            match &self.mass {
+                // h·f − M(yₖ − yₙ)
+                Some(mass) if M::MASS_MATRIX => {
+                    for (bi, f) in rhs.iter_mut().zip(self.force.as_slice()) {
+                        *bi = h * f;
+                    }
+                    mass.apply_add(-1.0, y.as_slice(), rhs);
+                    mass.apply_add(1.0, s.y.as_slice(), rhs);
+                }
+                _ => {
+                    for (bi, ((y0, f), yk)) in rhs.iter_mut().zip(terms) {
+                        *bi = y0 + h * f - yk;
+                    }
+                }
             }
             model.jacobian(t1, y, &mut self.jacobian);
             s.stats.jacobian_evaluations += 1;
@@ -149,15 +197,22 @@ impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
             s.stats.linear_solves += 1;
             // A non-finite residual makes a non-finite update, which `solve` reports; the
             // residual itself is measured only for the error, off the hot path.
-            let solved = self.jacobian.factorize(h, &mut self.factors).is_ok()
-                && self.jacobian.solve(&mut self.factors, rhs).is_ok();
+            let factored = match &self.mass {
+                Some(mass) if M::MASS_MATRIX => {
+                    self.jacobian
+                        .factorize_mass(h, mass.entries(), &mut self.factors)
+                }
+                _ => self.jacobian.factorize(h, &mut self.factors),
+            };
+            let solved = factored.is_ok() && self.jacobian.solve(&mut self.factors, rhs).is_ok();
             if !solved {
                 // J at yₙ itself (the first iterate) that is not finite: no smaller step helps.
                 if iter == 1 {
                     super::linearization::finite_jacobian(&self.jacobian, t1, y)?;
                 }
-                let residual = residual_of(model, t1, h, s.y, y, &mut self.force);
-                let cause = if residual.is_finite() && rhs.iter().all(|x| x.is_finite()) {
+                let finite_rhs = rhs.iter().all(|x| x.is_finite());
+                let residual = self.residual(model, t1, h, s.y, y);
+                let cause = if residual.is_finite() && finite_rhs {
                     NewtonFailure::Singular
                 } else {
                     NewtonFailure::NotFinite
@@ -180,7 +235,7 @@ impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
                 for (yi, di) in y.as_mut_slice().iter_mut().zip(rhs.iter()) {
                     *yi -= di;
                 }
-                let residual = residual_of(model, t1, h, s.y, y, &mut self.force);
+                let residual = self.residual(model, t1, h, s.y, y);
                 return Err(fail(iter, residual, NewtonFailure::Diverging));
             }
             previous_update = update;
@@ -188,7 +243,7 @@ impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
                 return Ok(0.0);
             }
         }
-        let residual = residual_of(model, t1, h, s.y, y, &mut self.force);
+        let residual = self.residual(model, t1, h, s.y, y);
         Err(fail(
             self.newton.max_iters,
             residual,
@@ -198,28 +253,44 @@ impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
 }
 
 /// max |G(y)| = max |yₙ + h·f(t, y) − y|, for a failure's report (`scratch` takes f).
+/// The largest |gᵢ| of the implicit equations g = yₙ + h·f(t, y) − y, NaN-propagating (a NaN
+/// residual must not read as small); with a mass matrix, g = h·f(t, y) − M(y − yₙ).
 fn residual_of<M: Jacobian>(
     model: &M,
-    t: f64,
-    h: f64,
+    (t, h): (f64, f64),
+    mass: Option<&Mass>,
     start: &M::State,
     y: &M::State,
     scratch: &mut M::State,
 ) -> f64 {
     model.derivative(t, y, scratch);
-    let terms = start
-        .as_slice()
-        .iter()
-        .zip(scratch.as_slice())
-        .zip(y.as_slice());
-    terms.fold(0.0, |m: f64, ((y0, f), yk)| {
-        let g = (y0 + h * f - yk).abs();
-        // NaN-propagating: a NaN residual must not read as small.
+    let g = scratch.as_mut_slice();
+    match mass {
+        Some(mass) => {
+            for f in g.iter_mut() {
+                *f *= h;
+            }
+            mass.apply_add(-1.0, y.as_slice(), g);
+            mass.apply_add(1.0, start.as_slice(), g);
+        }
+        None => {
+            for ((f, y0), yk) in g.iter_mut().zip(start.as_slice()).zip(y.as_slice()) {
+                *f = y0 + h * *f - yk;
+            }
+        }
+    }
+    g.iter().fold(0.0, |m: f64, g| {
+        let g = g.abs();
         if g > m || g.is_nan() { g } else { m }
     })
 }
 
 impl<M: Jacobian> ImplicitEuler<M> {
+    /// [`residual_of`] with this method's mass matrix and scratch state.
+    fn residual(&mut self, model: &M, t: f64, h: f64, start: &M::State, y: &M::State) -> f64 {
+        residual_of(model, (t, h), self.mass.as_ref(), start, y, &mut self.force)
+    }
+
     /// The Newton matrix, holding the last Jacobian or its factors: particle models read their
     /// factorization counts from it.
     pub fn matrix(&self) -> &M::Matrix {

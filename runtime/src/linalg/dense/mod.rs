@@ -3,10 +3,6 @@
 
 use std::fmt;
 
-use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
-use faer::linalg::lu::partial_pivoting::{factor, solve};
-use faer::{Mat, MatMut, Par};
-
 /// A dense square Jacobian: what the stability explorer reads entry by entry.
 pub trait DenseMatrix: Clone + fmt::Debug {
     /// Entry (row, column).
@@ -49,6 +45,31 @@ pub trait NewtonMatrix: Clone + fmt::Debug {
     ///
     /// Errors: [`FactorizeError::Singular`] when W is singular.
     fn factorize(&mut self, c: f64, factors: &mut Self::Factors) -> Result<(), FactorizeError>;
+
+    /// Forms W = M − c·J, M the constant mass matrix of a differential–algebraic model given by
+    /// its non-zero entries (row, column, value) ([`crate::Mass::entries`]), and factorizes it
+    /// into `factors`, as [`NewtonMatrix::factorize`] does W = I − c·J.
+    ///
+    /// Dense matrices implement it; the default (particle and field Jacobians, whose models have
+    /// no mass matrix) reports the matrix singular.
+    ///
+    /// Errors: [`FactorizeError::Singular`] when W is singular.
+    fn factorize_mass(
+        &mut self,
+        c: f64,
+        mass: &[(usize, usize, f64)],
+        factors: &mut Self::Factors,
+    ) -> Result<(), FactorizeError> {
+        let _ = (c, mass, factors);
+        Err(FactorizeError::Singular)
+    }
+
+    /// Entry (row, column) of J as last written, for a dense matrix; `None` for sparse ones. The
+    /// consistent initialization of a differential–algebraic model reads its algebraic block.
+    fn dense_entry(&self, row: usize, column: usize) -> Option<f64> {
+        let _ = (row, column);
+        None
+    }
 
     /// Solves W·x = b in place with the last factorization.
     ///
@@ -181,6 +202,32 @@ fn adjugate<const N: usize>(
     Some((adj, det))
 }
 
+/// Factorizes a small dense W into `factors`: its adjugate and determinant up to 3×3, an LU
+/// above. (A macro: nalgebra's LU of a generic `Const<N>` needs bounds only each size meets.)
+macro_rules! small_factorize {
+    ($w:expr, $factors:expr) => {{
+        let w = $w;
+        let regular = match adjugate(&w) {
+            Some((adj, det)) => {
+                *$factors = SmallFactors::Adjugate(adj, det);
+                // A non-finite adjugate makes a non-finite solution, which `solve` reports.
+                det != 0.0 && det.is_finite()
+            }
+            None => {
+                let lu = w.lu();
+                let regular = lu.is_invertible();
+                *$factors = SmallFactors::Lu(lu);
+                regular
+            }
+        };
+        if regular {
+            Ok(())
+        } else {
+            Err(FactorizeError::Singular)
+        }
+    }};
+}
+
 /// `DenseMatrix` and `NewtonMatrix` for `SMatrix<f64, N, N>`: nalgebra's fixed-size LU needs each
 /// size spelled out.
 macro_rules! dense_matrix {
@@ -213,25 +260,26 @@ macro_rules! dense_matrix {
                 factors: &mut Self::Factors,
             ) -> Result<(), FactorizeError> {
                 let w = nalgebra::SMatrix::<f64, $n, $n>::identity() - *self * c;
-                let regular = match adjugate(&w) {
-                    Some((adj, det)) => {
-                        *factors = SmallFactors::Adjugate(adj, det);
-                        // A non-finite adjugate makes a non-finite solution, which `solve`
-                        // reports.
-                        det != 0.0 && det.is_finite()
-                    }
-                    None => {
-                        let lu = w.lu();
-                        let regular = lu.is_invertible();
-                        *factors = SmallFactors::Lu(lu);
-                        regular
-                    }
-                };
-                if regular {
-                    Ok(())
-                } else {
-                    Err(FactorizeError::Singular)
+                small_factorize!(w, factors)
+            }
+
+            #[inline]
+            fn factorize_mass(
+                &mut self,
+                c: f64,
+                mass: &[(usize, usize, f64)],
+                factors: &mut Self::Factors,
+            ) -> Result<(), FactorizeError> {
+                let mut w = *self * -c;
+                for &(i, j, m) in mass {
+                    w[(i, j)] += m;
                 }
+                small_factorize!(w, factors)
+            }
+
+            #[inline]
+            fn dense_entry(&self, row: usize, column: usize) -> Option<f64> {
+                Some(self[(row, column)])
             }
 
             #[inline]
@@ -289,137 +337,9 @@ impl NewtonMatrix for nalgebra::SMatrix<f64, 0, 0> {
     }
 }
 
-/// An n×n matrix on the heap, sized at run time and solved with faer's partial-pivoting LU: the
-/// Jacobian of models with more than 32 state components, and of const-generic models (whose
-/// size the macro does not know). Every buffer is allocated by [`FaerDense::zeros`] and
-/// [`NewtonMatrix::factors`]; factorizations and solves allocate nothing.
-#[derive(Clone, Debug)]
-pub struct FaerDense {
-    matrix: Mat<f64>,
-}
+mod faer;
 
-/// The LU factors of a [`FaerDense`] W, with its permutation and scratch space.
-pub struct FaerLu {
-    lu: Mat<f64>,
-    perm: Vec<usize>,
-    perm_inv: Vec<usize>,
-    scratch: MemBuffer,
-}
-
-impl FaerDense {
-    /// The n×n zero matrix.
-    pub fn zeros(n: usize) -> Self {
-        FaerDense {
-            matrix: Mat::zeros(n, n),
-        }
-    }
-
-    /// Sets every entry to zero.
-    pub fn fill_zero(&mut self) {
-        self.matrix.fill(0.0);
-    }
-
-    /// Sets entry (row, column).
-    pub fn set(&mut self, row: usize, column: usize, value: f64) {
-        self.matrix[(row, column)] = value;
-    }
-}
-
-impl FaerLu {
-    /// Room for the factors of an n×n matrix.
-    fn new(n: usize) -> Self {
-        FaerLu {
-            lu: Mat::zeros(n, n),
-            perm: vec![0; n],
-            perm_inv: vec![0; n],
-            scratch: MemBuffer::new(Self::scratch_size(n)),
-        }
-    }
-
-    fn scratch_size(n: usize) -> StackReq {
-        let par = Par::Seq;
-        factor::lu_in_place_scratch::<usize, f64>(n, n, par, Default::default())
-            .or(solve::solve_in_place_scratch::<usize, f64>(n, 1, par))
-    }
-}
-
-impl Clone for FaerLu {
-    fn clone(&self) -> Self {
-        FaerLu {
-            lu: self.lu.clone(),
-            perm: self.perm.clone(),
-            perm_inv: self.perm_inv.clone(),
-            scratch: MemBuffer::new(Self::scratch_size(self.lu.nrows())),
-        }
-    }
-}
-
-impl fmt::Debug for FaerLu {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.debug_struct("FaerLu").finish_non_exhaustive()
-    }
-}
-
-impl DenseMatrix for FaerDense {
-    fn entry(&self, row: usize, column: usize) -> f64 {
-        self.matrix[(row, column)]
-    }
-
-    fn dim(&self) -> usize {
-        self.matrix.nrows()
-    }
-}
-
-impl NewtonMatrix for FaerDense {
-    type Factors = FaerLu;
-
-    fn factors(&self) -> FaerLu {
-        FaerLu::new(self.dim())
-    }
-
-    fn factorize(&mut self, c: f64, f: &mut FaerLu) -> Result<(), FactorizeError> {
-        let n = self.dim();
-        for column in 0..n {
-            for row in 0..n {
-                let identity = if row == column { 1.0 } else { 0.0 };
-                f.lu[(row, column)] = identity - c * self.matrix[(row, column)];
-            }
-        }
-        factor::lu_in_place(
-            f.lu.as_mut(),
-            &mut f.perm,
-            &mut f.perm_inv,
-            Par::Seq,
-            MemStack::new(&mut f.scratch),
-            Default::default(),
-        );
-        // A zero pivot leaves U singular: the solve would produce infinities.
-        if (0..n).all(|i| f.lu[(i, i)] != 0.0 && f.lu[(i, i)].is_finite()) {
-            Ok(())
-        } else {
-            Err(FactorizeError::Singular)
-        }
-    }
-
-    fn solve(&mut self, f: &mut FaerLu, b: &mut [f64]) -> Result<(), SolveError> {
-        let n = self.dim();
-        if b.len() != n {
-            return Err(SolveError::WrongLength {
-                expected: n,
-                found: b.len(),
-            });
-        }
-        let perm = faer::perm::PermRef::new_checked(&f.perm, &f.perm_inv, n);
-        let rhs = MatMut::from_column_major_slice_mut(b, n, 1);
-        let lu = f.lu.as_ref();
-        solve::solve_in_place(lu, lu, perm, rhs, Par::Seq, MemStack::new(&mut f.scratch));
-        finite(b)
-    }
-
-    fn non_finite_entry(&self) -> Option<(usize, usize, f64)> {
-        first_non_finite(self.dim(), |row, column| self.matrix[(row, column)])
-    }
-}
+pub use faer::FaerDense;
 
 #[cfg(test)]
 mod tests;
