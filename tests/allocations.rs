@@ -1,7 +1,7 @@
 //! Stepping a fixed-size model allocates nothing per step, adaptive runs and events included:
 //! a run ten times longer makes exactly as many allocations (counted by a global allocator).
 //! One test in its own binary, so no other test's allocations are counted. The particle path's
-//! sparse LU is held to the same rule.
+//! sparse LU and differential–algebraic models are held to the same rule.
 
 mod common;
 
@@ -20,6 +20,7 @@ fn allocations_do_not_grow_with_the_steps() {
     a_longer_run_allocates_no_more();
     difference_and_dual_jacobians_allocate_no_more();
     the_particle_lu_path_allocates_per_run_not_per_step();
+    a_dae_allocates_per_run_not_per_step();
 }
 
 fn a_longer_run_allocates_no_more() {
@@ -48,6 +49,25 @@ fn a_longer_run_allocates_no_more() {
         let what = format!("{method} (fixed: {fixed})");
         allocates_no_more(&what, 6.0, |duration| {
             allocations(model.simulate().event(watch()), method, duration, fixed)
+        });
+    }
+}
+
+/// A differential–algebraic model (the Cartesian pendulum, `#[algebraic]` λ) under the methods
+/// that take its mass matrix: M and the consistent start are made once per run, the stages and
+/// Newton iterations with M − c·J allocate nothing.
+fn a_dae_allocates_per_run_not_per_step() {
+    let pendulum = scenes::CartesianPendulum::released(10.0, 10.0);
+    for (method, fixed) in [
+        (Method::Rodas5P, false),
+        (Method::Rosenbrock23, false),
+        (Method::Bdf, false),
+        (Method::Rodas5P, true),
+        (Method::ImplicitEuler, true),
+    ] {
+        let what = format!("DAE, {method} (fixed: {fixed})");
+        allocates_no_more(&what, 0.5, |duration| {
+            allocations(pendulum.simulate(), method, duration, fixed)
         });
     }
 }

@@ -179,8 +179,8 @@ fn solve(dae: &Dae, solver: Solver, rtol: f64) -> Option<Run> {
         Solver::IdaDense => ida_run(dae, ida::Linear::Dense, false, rtol, atol),
         Solver::IdaKlu => ida_run(dae, ida::Linear::Klu, false, rtol, atol),
         Solver::IdaDenseNoAlg => ida_run(dae, ida::Linear::Dense, true, rtol, atol),
-        Solver::OdynRodas5P => odyn_run(dae, odyn::Method::Rodas5P, rtol, atol),
-        Solver::OdynBdf => odyn_run(dae, odyn::Method::Bdf, rtol, atol),
+        Solver::OdynRodas5P => daes::odyn::solve(dae, odyn::Method::Rodas5P, rtol, atol),
+        Solver::OdynBdf => daes::odyn::solve(dae, odyn::Method::Bdf, rtol, atol),
         _ => diffsol_run(dae, solver, rtol, atol),
     }
 }
@@ -192,51 +192,6 @@ fn ida_equations(dae: &Dae) -> ida::Equations<'_> {
         f: &dae.f,
         jacobian: &dae.jacobian,
         mass: dae.mass,
-    }
-}
-
-/// odyn on the `scenes` model of `dae` (`None` for `transamp_se`, which odyn does not need).
-fn odyn_run(dae: &Dae, method: odyn::Method, rtol: f64, atol: f64) -> Option<Run> {
-    fn run<M: odyn::Model>(
-        model: &M,
-        method: odyn::Method,
-        rtol: f64,
-        atol: f64,
-        t_end: f64,
-    ) -> Option<Run> {
-        let trajectory = odyn::Simulation::new(model)
-            .integrator(method)
-            .tolerances(rtol, atol)
-            .duration(t_end)
-            .record_every(u64::MAX)
-            .run()
-            .map_err(|e| {
-                if std::env::var_os("PEERS_SWEEP").is_some() {
-                    eprintln!("    odyn: {e}");
-                }
-            })
-            .ok()?;
-        let s = trajectory.stats;
-        Some(Run {
-            y: odyn::State::as_slice(&trajectory.last().state).to_vec(),
-            steps: s.steps,
-            rejected: s.rejected,
-            evaluations: s.evaluations,
-            jacobians: s.jacobian_evaluations,
-            factorizations: s.factorizations,
-        })
-    }
-    match dae.name {
-        "chemakzo" => run(&scenes::ChemAkzo::start(), method, rtol, atol, dae.t_end),
-        "transamp" => run(&scenes::Transamp::start(), method, rtol, atol, dae.t_end),
-        "roberdae" => run(
-            &scenes::RobertsonDae::classic(),
-            method,
-            rtol,
-            atol,
-            dae.t_end,
-        ),
-        _ => None,
     }
 }
 

@@ -88,6 +88,13 @@ impl Mass {
         Ok(Mass { dim: n, entries })
     }
 
+    /// The n×n matrix with the non-zero `entries` (row, column, value), each index below n: a
+    /// block-diagonal mass matrix built from another's entries (forward sensitivities).
+    pub fn from_entries(n: usize, entries: Vec<(usize, usize, f64)>) -> Self {
+        debug_assert!(entries.iter().all(|&(i, j, _)| i < n && j < n));
+        Mass { dim: n, entries }
+    }
+
     /// The number of rows (= columns).
     pub fn dim(&self) -> usize {
         self.dim

@@ -8,7 +8,8 @@
 //!         ⎣ H_c 0   ⋯  J ⎦
 //!
 //! block lower-triangular with J on the diagonal: W = I − γh·∂F/∂z is solved with one
-//! factorization of the model's own I − γh·J ([`AugmentedJacobian`]), in exact arithmetic — the
+//! factorization of the model's own I − γh·J ([`AugmentedJacobian`]; M − γh·J for a model with
+//! a mass matrix, whose sensitivities solve M·sⱼ′ = J·sⱼ + ∂f/∂pⱼ), in exact arithmetic — the
 //! structure CVODES's simultaneous corrector rests on. The Hⱼ hold second derivatives of f, which the macro does not
 //! generate: they are central differences of the exact J and ∂f/∂p along each component of y,
 //! step δₖ = ε^⅓·max(|yₖ|, 1), so accurate to ~ε^⅔ ≈ 4e-11 relative on smooth f and exact
@@ -78,6 +79,22 @@ impl<J: NewtonMatrix + DenseMatrix> NewtonMatrix for AugmentedJacobian<J> {
     fn factorize(&mut self, c: f64, f: &mut Self::Factors) -> Result<(), FactorizeError> {
         f.c = c;
         self.jacobian.factorize(c, &mut f.factors)
+    }
+
+    /// W = M̂ − c·∂F/∂z for the block-diagonal M̂ = diag(M, …, M) of a differential–algebraic
+    /// model ([`Sensitive::mass`](crate::Model::mass) lists M's entries once per block, the
+    /// model's own first): the model's M − c·J is factorized, and the solve's block forward
+    /// substitution is unchanged (the blocks below the diagonal are −c·Hⱼ either way).
+    fn factorize_mass(
+        &mut self,
+        c: f64,
+        mass: &[(usize, usize, f64)],
+        f: &mut Self::Factors,
+    ) -> Result<(), FactorizeError> {
+        f.c = c;
+        let blocks = self.dim() / self.jacobian.dim().max(1);
+        let own = &mass[..mass.len() / blocks.max(1)];
+        self.jacobian.factorize_mass(c, own, &mut f.factors)
     }
 
     fn solve(&mut self, f: &mut Self::Factors, b: &mut [f64]) -> Result<(), SolveError> {

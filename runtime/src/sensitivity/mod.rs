@@ -12,7 +12,13 @@
 //! block lower-triangular with J on its diagonal). Its error control includes the
 //! sensitivities, as CVODES does by default (`errconS`); [`crate::fit`] holds ∂y/∂pⱼ to
 //! atol/|pⱼ|, CVODES's scaling.
+//!
+//! A differential–algebraic model (M·y′ = f) has M·sⱼ′ = ∂f/∂y·sⱼ + ∂f/∂pⱼ: the augmented
+//! system is a DAE with the mass matrix diag(M, …, M), run by the methods that take one, and
+//! its algebraic sensitivities are made consistent (`algebraic.rs`) wherever the algebraic
+//! components are (IDAS's `IDACalcIC` does the same for its sensitivities).
 
+mod algebraic;
 mod events;
 mod jacobian;
 mod state;
@@ -164,6 +170,57 @@ where
     const DEFAULT_DT: Option<f64> = M::DEFAULT_DT;
     const DEFAULT_RTOL: Option<f64> = M::DEFAULT_RTOL;
     const DEFAULT_ATOL: Option<f64> = M::DEFAULT_ATOL;
+    /// A differential–algebraic model's sensitivities solve M·sⱼ′ = J·sⱼ + ∂f/∂pⱼ: the
+    /// augmented system has the mass matrix diag(M, …, M) ([`Sensitive::mass`](Model::mass)).
+    const MASS_MATRIX: bool = M::MASS_MATRIX;
+
+    /// diag(M, …, M): the model's M once for the state and once per sensitivity column, the
+    /// state's block first (what [`AugmentedJacobian`]'s factorization reads).
+    fn mass(&self, state: &SensitivityState) -> crate::Result<crate::Mass> {
+        let y = self.model.state();
+        let own = self.model.mass(&y)?;
+        let n = y.as_slice().len();
+        let blocks = state.as_slice().len() / n.max(1);
+        let entries = (0..blocks)
+            .flat_map(|b| {
+                own.entries()
+                    .iter()
+                    .map(move |&(i, j, m)| (b * n + i, b * n + j, m))
+            })
+            .collect();
+        Ok(crate::Mass::from_entries(blocks * n, entries))
+    }
+
+    /// The model's algebraic components made consistent ([`crate::consistent`]), then their
+    /// sensitivities: the algebraic equations differentiated, ∂g/∂y·s + ∂g/∂z·s_z + ∂g/∂pⱼ = 0,
+    /// solved for s_z in every column.
+    fn consistent(
+        &self,
+        t: f64,
+        z: &mut SensitivityState,
+        newton: &crate::NewtonOptions,
+    ) -> crate::Result<()> {
+        if M::ALGEBRAIC.is_empty() {
+            return Ok(());
+        }
+        let scratch = &mut *self.scratch.borrow_mut();
+        let n = scratch.y.as_slice().len();
+        scratch.y.as_mut_slice().copy_from_slice(&z.as_slice()[..n]);
+        self.model.consistent(t, &mut scratch.y, newton)?;
+        z.as_mut_slice()[..n].copy_from_slice(scratch.y.as_slice());
+        self.model.jacobian(t, &scratch.y, &mut scratch.jacobian);
+        self.model
+            .parameter_jacobian(t, &scratch.y, &mut scratch.dfdp);
+        self.count(0, 1, 1);
+        algebraic::consistent_sensitivities::<M>(
+            &scratch.jacobian,
+            &scratch.dfdp,
+            z.as_mut_slice(),
+            n,
+            t,
+            &scratch.y,
+        )
+    }
 
     /// The model's state, the parameters' sensitivities zero and ∂y/∂y₀ the identity.
     fn state(&self) -> SensitivityState {
@@ -214,21 +271,6 @@ where
 
     fn energy(&self, _: &SensitivityState) -> Option<f64> {
         None
-    }
-
-    /// Refuses a differential–algebraic model: its sensitivities solve M·s′ = J·s + ∂f/∂p, with
-    /// consistent algebraic sensitivities, which this augmented system does not form yet.
-    fn check(&self, _: &SensitivityState) -> crate::Result<()> {
-        if M::MASS_MATRIX {
-            return Err(crate::Error::BadModel {
-                model: M::NAME,
-                what: "its mass matrix".into(),
-                reason: "(`#[algebraic]` fields or `fn mass`) is not supported by forward \
-                         sensitivities yet; the model itself runs with Rodas5P, Rosenbrock23, Bdf or ImplicitEuler"
-                    .into(),
-            });
-        }
-        Ok(())
     }
 
     /// The sensitivities' jump at the change ([`events`](self) module docs).

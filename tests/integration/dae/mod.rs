@@ -5,6 +5,7 @@
 //! angle-form solution; the orders of convergence. Consistent starts, refusals and hostile
 //! input: [`starts`].
 
+mod features;
 mod starts;
 
 use odyn::prelude::*;
