@@ -303,3 +303,42 @@ fn an_undamped_cloth_never_gains_energy() {
         last = now;
     }
 }
+
+/// Hostile starts and steps: a non-finite velocity is a typed error, never a panic; a step of
+/// 10⁶ s or 10⁻¹² s either lands on a finite state or fails typed.
+#[test]
+fn hostile_starts_and_steps_are_typed() {
+    let (cloth, state) = falling_cloth();
+    for bad in [f64::NAN, f64::INFINITY, -f64::INFINITY] {
+        let mut start = state.clone();
+        start.velocities_mut()[5].y = bad;
+        let run = Stepper::<Cloth, ImplicitEuler<Cloth>>::with_newton(
+            &cloth,
+            start,
+            0.0,
+            H,
+            &quasi_newton(8, 1e-6),
+        )
+        .and_then(|mut stepper| stepper.step());
+        assert!(run.is_err(), "a {bad} velocity stepped");
+    }
+    for dt in [1e6, 1e-12] {
+        let stepper = Stepper::<Cloth, ImplicitEuler<Cloth>>::with_newton(
+            &cloth,
+            state.clone(),
+            0.0,
+            dt,
+            &quasi_newton(8, 1e-6),
+        );
+        if let Ok(mut stepper) = stepper {
+            if stepper.step().is_ok() {
+                let finite = stepper
+                    .state()
+                    .positions()
+                    .iter()
+                    .all(|p| p.iter().all(|c| c.is_finite()));
+                assert!(finite, "dt = {dt} left a non-finite state");
+            }
+        }
+    }
+}

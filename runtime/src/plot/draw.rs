@@ -140,6 +140,29 @@ pub(crate) fn encode_png(rgb: &[u8], (w, h): (u32, u32)) -> std::result::Result<
     Ok(bytes)
 }
 
+/// What every animation checks before drawing a frame: a `.gif` path, at least one frame
+/// (`frames`, named `field` in the error), a size of 16–16384 pixels; then the bundled font.
+///
+/// Errors: [`Error::InvalidInput`]; [`Error::Io`] from registering the font.
+pub(crate) fn prepare_animation(
+    path: &Path,
+    frames: usize,
+    field: &str,
+    size: (u32, u32),
+) -> Result<()> {
+    if path.extension().and_then(|e| e.to_str()) != Some("gif") {
+        return Err(Error::invalid(
+            "animation path",
+            format!("`{}` must end in .gif", path.display()),
+        ));
+    }
+    if frames == 0 {
+        return Err(Error::invalid(field, "nothing to animate"));
+    }
+    check_size(size)?;
+    register_bundled_font(path)
+}
+
 /// Encodes RGB frames (each `size` pixels, from `frames`) as a looping GIF, `delay_ms` a frame,
 /// and writes it atomically to `path`. A frame that cannot be rendered stops the encoding with
 /// its error.

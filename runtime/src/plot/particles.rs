@@ -58,17 +58,7 @@ pub fn particle_animation(
     delay_ms: u32,
 ) -> Result<()> {
     let path = path.as_ref();
-    if path.extension().and_then(|e| e.to_str()) != Some("gif") {
-        return Err(Error::invalid(
-            "animation path",
-            format!("`{}` must end in .gif", path.display()),
-        ));
-    }
-    if pictures.is_empty() {
-        return Err(Error::invalid("pictures", "nothing to animate"));
-    }
-    draw::check_size(size)?;
-    draw::register_bundled_font(path)?;
+    draw::prepare_animation(path, pictures.len(), "pictures", size)?;
     let rendered = pictures.iter().enumerate().map(|(k, picture)| {
         let axes =
             check(picture).map_err(|e| Error::invalid(format!("pictures[{k}]"), e.to_string()))?;

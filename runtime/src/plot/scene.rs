@@ -73,17 +73,7 @@ pub fn animation(
     delay_ms: u32,
 ) -> Result<()> {
     let path = path.as_ref();
-    if path.extension().and_then(|e| e.to_str()) != Some("gif") {
-        return Err(Error::invalid(
-            "animation path",
-            format!("`{}` must end in .gif", path.display()),
-        ));
-    }
-    if frames.is_empty() {
-        return Err(Error::invalid("frames", "nothing to animate"));
-    }
-    draw::check_size(size)?;
-    draw::register_bundled_font(path)?;
+    draw::prepare_animation(path, frames.len(), "frames", size)?;
     let rendered = frames.iter().enumerate().map(|(k, frame)| {
         let regions = regions(&frame.views)
             .map_err(|e| Error::invalid(format!("frames[{k}]"), e.to_string()))?;

@@ -21,9 +21,7 @@ use crate::{LinkLaplacian, NewtonFailure, QuasiNewtonOptions, State, Stats};
 /// the return to the full one). Each iteration costs one force evaluation and one substitution
 /// with D right-hand sides.
 ///
-/// - **Start**: vₙ (x⁰ = xₙ + h·vₙ, the inertial position of Liu et al. 2013). (Starting
-///   from the last step's mean acceleration was tried and made the falling cloth's run gain
-///   energy at 8 iterations.)
+/// - **Start**: vₙ (x⁰ = xₙ + h·vₙ, the inertial position of Liu et al. 2013).
 /// - **Line search**: backtracking from α = 1 on the trapezoid estimate of g's change along the
 ///   step, ½α(r(v)·p + r(v + αp)·p), by Armijo's condition with c = 10⁻⁴; it needs no energy
 ///   (the kernels need not have one) and no evaluation beyond the one the next iteration uses.
@@ -141,8 +139,7 @@ impl QuasiNewton {
                 }
                 alpha *= 0.5;
                 if alpha < 1e-3 {
-                    // Back to the last iterate: the caller discards y, but its report reads it.
-                    self.place(h, x0, y, 0.0);
+                    // The caller discards y; the report carries the last iterate's residual.
                     return Err((self.iterations, self.measure, NewtonFailure::NotFinite));
                 }
             }
