@@ -330,15 +330,15 @@ fn hostile_starts_and_steps_are_typed() {
             dt,
             &quasi_newton(8, 1e-6),
         );
-        if let Ok(mut stepper) = stepper {
-            if stepper.step().is_ok() {
-                let finite = stepper
-                    .state()
-                    .positions()
-                    .iter()
-                    .all(|p| p.iter().all(|c| c.is_finite()));
-                assert!(finite, "dt = {dt} left a non-finite state");
-            }
+        if let Ok(mut stepper) = stepper
+            && stepper.step().is_ok()
+        {
+            let finite = stepper
+                .state()
+                .positions()
+                .iter()
+                .all(|p| p.iter().all(|c| c.is_finite()));
+            assert!(finite, "dt = {dt} left a non-finite state");
         }
     }
 }
