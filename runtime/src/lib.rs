@@ -26,7 +26,7 @@ pub mod hybrid;
 pub mod integrators;
 mod linalg;
 pub mod math;
-mod method;
+pub mod method;
 mod model;
 pub mod output;
 pub mod particles;
@@ -57,7 +57,7 @@ pub use linalg::{
     NewtonMatrix, NewtonOptions, ParticleSolve, Preconditioner, QuasiNewtonOptions, SolveError,
     Solves,
 };
-pub use method::{Method, MethodInfo};
+pub use method::{Method, MethodInfo, MethodType};
 pub use model::dual::Dual;
 pub use model::{Jacobian, Mass, Model, Parameters, SecondOrder, State, Unavailable, consistent};
 pub use nalgebra;

@@ -1,4 +1,13 @@
-//! [`Method`]: the run-time choice of integrator, with what each one needs and promises.
+//! The methods: [`Method`], the run-time choice of integrator, with what each one needs and
+//! promises; and one zero-sized type per method ([`Rk4`], [`Rodas5P`], …, [`MethodType`]), the
+//! compile-time choice, for [`Simulation::run_with`](crate::Simulation::run_with).
+//!
+//! A program that runs a model with `.run()` dispatches on the [`Method`] at run time, so it
+//! compiles every method the model can take — sixteen loops. One that runs it with
+//! `.run_with::<method::Rk4>()` compiles one. For example,
+//!
+//! `spring.simulate().duration(1.0).run_with::<method::VelocityVerlet>()` (the guide's chapter
+//! on choosing a method runs it).
 
 use std::fmt;
 use std::str::FromStr;
@@ -27,6 +36,18 @@ macro_rules! define_methods {
         pub enum Method {
             $($(#[$doc])* $variant,)*
         }
+
+        $(
+            $(#[$doc])*
+            ///
+            /// The compile-time choice of this method: see [`MethodType`].
+            #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+            pub struct $variant;
+
+            impl MethodType for $variant {
+                const METHOD: Method = Method::$variant;
+            }
+        )*
 
         impl Method {
             /// Every method, in the order of the comparison table.
@@ -61,6 +82,32 @@ macro_rules! define_methods {
 }
 
 odyn_methods::for_each_method!(define_methods);
+
+/// A method chosen at compile time: one zero-sized type per [`Method`] in this module, named
+/// like its variant ([`Rk4`] for [`Method::Rk4`]).
+///
+/// [`Simulation::run_with::<T>()`](crate::Simulation::run_with) runs a model with `T` and
+/// compiles only `T`'s loop for it; [`Simulation::run`] reads the [`Method`] at run time and so
+/// compiles every method the model can take. Choose the typed form in programs that run a model
+/// with methods known when they are written; keep [`Method`] for command lines, configuration
+/// files and comparisons over many methods. Sealed: the methods are the table's.
+pub trait MethodType: sealed::Sealed + Copy + Default + fmt::Debug + Send + Sync + 'static {
+    /// The method's variant of the run-time enum.
+    const METHOD: Method;
+}
+
+pub(crate) mod sealed {
+    use crate::{Error, Model, Result, Simulation, Trajectory};
+
+    /// Only the table's methods are [`super::MethodType`]s; each drives its integrator type
+    /// (implemented by the run's dispatch, `simulation::plan`).
+    pub trait Sealed {
+        /// Runs `simulation` with this method on the current stack.
+        fn run<M: Model>(
+            simulation: &Simulation<'_, M>,
+        ) -> Result<(Trajectory<M::State>, Option<Error>)>;
+    }
+}
 
 /// What a [`Method`] is and needs: one row of the table every part of odyn reads (the runner,
 /// the stability explorer, work-precision studies; the `#[system]` attribute reads the same

@@ -38,5 +38,6 @@ mod rosenbrock;
 mod runner;
 mod sph;
 mod stability;
+mod typed;
 mod work_precision;
 mod xpbd;

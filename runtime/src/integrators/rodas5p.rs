@@ -25,7 +25,7 @@ use crate::{Controller, Jacobian, Method, Result, State};
 /// derived for index-1 DAEs: like Rodas5's they satisfy the DAE order conditions to order 5
 /// (4 for the embedded estimate), and they were chosen with the Prothero–Robinson model in view,
 /// for an order that holds on stiff and algebraic components alike (measured: 4.96 on the
-/// Cartesian pendulum, its algebraic λ included, `tests/integration/dae/`). A solve with a singular M is no
+/// Cartesian pendulum, its algebraic λ included, `tests/models/dae/`). A solve with a singular M is no
 /// different: W is regular wherever ∂g/∂z is (index 1).
 ///
 /// The dense output (1 − θ)yₙ + θ(yₙ₊₁ + (1 − θ)(K₁ + θ(K₂ + θK₃))), Kᵣ = Σⱼ Hᵣⱼuⱼ, is of order 4 and free.

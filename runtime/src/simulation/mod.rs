@@ -9,6 +9,7 @@ mod plan;
 pub use options::{Length, RunOptions};
 
 use crate::drive::{AdaptiveOptions, Progress};
+use crate::method::MethodType;
 use crate::{Error, Event, Method, Model, NewtonOptions, Result, Stepping, Tolerances, Trajectory};
 
 /// A progress callback (see [`Simulation::progress`]).
@@ -195,5 +196,39 @@ impl<'m, M: Model> Simulation<'m, M> {
     /// it, if any. Input and capability errors are still `Err`: nothing ran.
     pub fn run_partial(&self) -> Result<(Trajectory<M::State>, Option<Error>)> {
         crate::stack::with_room::<M::State, _>(|| self.run_here())
+    }
+
+    /// Runs with the method `T` and returns the trajectory: what `.integrator(T::METHOD).run()`
+    /// does, but a program that runs the model only this way compiles only `T`'s loop for it
+    /// (see [`MethodType`]). `T` replaces the options' method for this run; an adaptive `T` that
+    /// is not the attribute's own steps to tolerances rather than the attribute's `dt`, as with
+    /// [`Simulation::integrator`].
+    ///
+    /// `Decay { y: 1.0 }.simulate().duration(1.0).run_with::<method::Tsit5>()` runs Tsit5 alone
+    /// (an example runs in the guide's chapter on choosing a method).
+    ///
+    /// Errors: as [`Simulation::run`].
+    pub fn run_with<T: MethodType>(&self) -> Result<Trajectory<M::State>> {
+        let (trajectory, failure) = self.run_partial_with::<T>()?;
+        match failure {
+            None => Ok(trajectory),
+            Some(error) => Err(error),
+        }
+    }
+
+    /// [`Simulation::run_partial`] with the method `T`, compiled alone (see
+    /// [`Simulation::run_with`]).
+    pub fn run_partial_with<T: MethodType>(&self) -> Result<(Trajectory<M::State>, Option<Error>)> {
+        crate::stack::with_room::<M::State, _>(|| T::run(self))
+    }
+
+    /// How a run with `method` steps: the options' stepping, less the attribute's `dt` when the
+    /// method is adaptive and was not the options' own (as [`Simulation::integrator`] drops it).
+    fn stepping_for(&self, method: Method) -> Option<&Stepping> {
+        if method != self.options.method && method.is_adaptive() && self.attribute_dt {
+            None
+        } else {
+            self.options.stepping.as_ref()
+        }
     }
 }

@@ -100,18 +100,20 @@ pub(super) enum Span {
 }
 
 impl RunOptions {
-    /// Checks every option for a run from `initial`: the one place each is validated.
+    /// Checks every option for a run with `method` stepping by `stepping` (the options' own,
+    /// unless a typed run changed the method) from `initial`: the one place each is validated.
     /// `unsupported` makes the error for a method that cannot do what the options ask.
     // Not generic (the state as a slice, the error maker as an object): one copy for every
     // model a program runs.
     pub(super) fn check(
         &self,
+        method: Method,
+        stepping: Option<&Stepping>,
         initial: &[f64],
         unsupported: &dyn Fn(&'static str) -> Error,
     ) -> Result<Checked> {
         let o = self;
-        let method = o.method;
-        let stepping = match (&o.stepping, method.is_adaptive()) {
+        let stepping = match (stepping, method.is_adaptive()) {
             (Some(Stepping::Fixed(dt)), _) => {
                 check_dt(*dt)?;
                 Stepping::Fixed(*dt)

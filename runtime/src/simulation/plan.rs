@@ -5,34 +5,52 @@ use super::Simulation;
 use super::options::Span;
 use crate::drive::{Driver, Recording, Start, Track};
 use crate::integrators::Integrator;
+use crate::method::{self, sealed::Sealed};
 use crate::{Error, Method, Model, Result, SecondOrder, State, Stepping, Trajectory};
 
-/// The run's dispatch from the one table of methods: each [`Method`] drives its integrator
-/// type (same name, in [`crate::integrators`]) on the model, its second-order split or its
-/// Jacobian, as the row's `needs` says. Exhaustive by construction.
+/// The run's dispatch from the one table of methods: each method's type in [`crate::method`]
+/// drives its integrator type (same name, in [`crate::integrators`]) on the model, its
+/// second-order split or its Jacobian, as the row's `needs` says; the run-time [`Method`]
+/// matches to the type. Exhaustive by construction.
 macro_rules! dispatch {
     (
-        [$run:ident $plan:ident $method:ident]
+        []
         $(
             $(#[$doc:meta])* $variant:ident $module:ident $name:literal $label:literal
             $order:literal $adaptive:literal $needs:ident $stability:ident;
         )*
     ) => {
-        match $method {
-            $(Method::$variant => dispatch!(@drive $needs $run $plan $variant),)*
+        $(
+            impl Sealed for method::$variant {
+                fn run<M: Model>(
+                    run: &Simulation<'_, M>,
+                ) -> Result<(Trajectory<M::State>, Option<Error>)> {
+                    let plan = run.plan(Method::$variant)?;
+                    dispatch!(@drive $needs run plan $variant)
+                }
+            }
+        )*
+
+        impl<M: Model> Simulation<'_, M> {
+            /// [`Simulation::run_partial`] on the current stack, with the method of the options.
+            pub(super) fn run_here(&self) -> Result<(Trajectory<M::State>, Option<Error>)> {
+                match self.options.method {
+                    $(Method::$variant => <method::$variant as Sealed>::run(self),)*
+                }
+            }
         }
     };
     (@drive Nothing $run:ident $plan:ident $variant:ident) => {
         $plan.drive::<M, crate::integrators::$variant<_>>($run.model)
     };
     (@drive Split $run:ident $plan:ident $variant:ident) => {
-        dispatch!(@capable SecondOrder $run $plan $variant $run.split()?)
+        dispatch!(@capable SecondOrder $run $plan $variant $run.split(Method::$variant)?)
     };
     (@drive VelocityFree $run:ident $plan:ident $variant:ident) => {
-        dispatch!(@capable SecondOrder $run $plan $variant $run.split()?)
+        dispatch!(@capable SecondOrder $run $plan $variant $run.split(Method::$variant)?)
     };
     (@drive Jacobian $run:ident $plan:ident $variant:ident) => {
-        dispatch!(@capable Jacobian $run $plan $variant $run.jacobian()?)
+        dispatch!(@capable Jacobian $run $plan $variant $run.jacobian(Method::$variant)?)
     };
     // `model` is the capability, which `split`/`jacobian` return only when the model has it:
     // for `Unavailable` (no values) they return the error, so the `else` is never taken; the
@@ -42,30 +60,26 @@ macro_rules! dispatch {
         if const { <M::$capability as Model>::AVAILABLE } {
             $plan.drive::<_, crate::integrators::$variant<_>>(model)
         } else {
-            Err($run.unsupported("it lacks the capability the method needs"))
+            Err($run.unsupported(Method::$variant, "it lacks the capability the method needs"))
         }
     }};
 }
 
-impl<'m, M: Model> Simulation<'m, M> {
-    /// [`Simulation::run_partial`] on the current stack.
-    pub(super) fn run_here(&self) -> Result<(Trajectory<M::State>, Option<Error>)> {
-        let plan = self.plan()?;
-        let method = self.options.method;
-        let run = self;
-        odyn_methods::for_each_method!(dispatch, run, plan, method)
-    }
+odyn_methods::for_each_method!(dispatch);
 
+impl<'m, M: Model> Simulation<'m, M> {
     /// The model as a second-order one, checked against what the method needs.
-    fn split(&self) -> Result<&'m M::SecondOrder> {
+    fn split(&self, method: Method) -> Result<&'m M::SecondOrder> {
         let Some(split) = self.model.as_second_order() else {
             return Err(self.unsupported(
+                method,
                 "it is first-order (`#[state]` fields) and the method needs \
                  `#[position]`/`#[velocity]` fields",
             ));
         };
-        if self.options.method.needs_velocity_free_forces() && M::SecondOrder::READS_VELOCITY {
+        if method.needs_velocity_free_forces() && M::SecondOrder::READS_VELOCITY {
             return Err(self.unsupported(
+                method,
                 "its force reads a velocity (in `acceleration`, or a kernel's velocity arguments), \
                  and the method evaluates forces at positions only (position Verlet, the leapfrog \
                  compositions); use velocity Verlet or leapfrog",
@@ -75,29 +89,35 @@ impl<'m, M: Model> Simulation<'m, M> {
     }
 
     /// The model with its Jacobian.
-    fn jacobian(&self) -> Result<&'m M::Jacobian> {
+    fn jacobian(&self, method: Method) -> Result<&'m M::Jacobian> {
         self.model.as_jacobian().ok_or_else(|| {
-            self.unsupported("it has no Jacobian (its `#[system]` says `jacobian = false`)")
+            self.unsupported(
+                method,
+                "it has no Jacobian (its `#[system]` says `jacobian = false`)",
+            )
         })
     }
 
-    fn unsupported(&self, reason: &'static str) -> Error {
+    fn unsupported(&self, method: Method, reason: &'static str) -> Error {
         Error::Unsupported {
-            method: self.options.method,
+            method,
             model: M::NAME,
             reason,
         }
     }
 
-    /// The run, its options checked against its initial state.
-    fn plan(&self) -> Result<Plan<'_, 'm, M>> {
+    /// The run with `method`, its options checked against its initial state.
+    fn plan(&self, method: Method) -> Result<Plan<'_, 'm, M>> {
         let initial = match &self.initial {
             Some(initial) => initial.try_clone()?,
             None => self.model.state(),
         };
-        let checked = self
-            .options
-            .check(initial.as_slice(), &|reason| self.unsupported(reason))?;
+        let checked = self.options.check(
+            method,
+            self.stepping_for(method),
+            initial.as_slice(),
+            &|reason| self.unsupported(method, reason),
+        )?;
         Ok(Plan {
             initial,
             span: checked.span,
@@ -173,7 +193,7 @@ impl<'s, M: Model> Plan<'s, '_, M> {
                         I::START_ORDER,
                     )
                 } else {
-                    Err(simulation.unsupported("it cannot step to tolerances"))
+                    Err(simulation.unsupported(I::METHOD, "it cannot step to tolerances"))
                 }
             }
         };
