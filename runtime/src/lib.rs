@@ -57,14 +57,14 @@ pub use linalg::{
     NewtonMatrix, NewtonOptions, ParticleSolve, Preconditioner, QuasiNewtonOptions, SolveError,
     Solves,
 };
-pub use method::{Method, MethodInfo, MethodType};
+pub use method::{Method, MethodInfo};
 pub use model::dual::Dual;
 pub use model::{Jacobian, Mass, Model, Parameters, SecondOrder, State, Unavailable, consistent};
 pub use nalgebra;
 /// The `rand` crate, for ensemble members' generators ([`ensemble::MemberRng`] implements its
 /// `Rng`).
 pub use rand;
-pub use simulation::{Length, RunOptions, Simulation};
+pub use simulation::{Length, MethodType, RunOptions, Simulation};
 pub use stepper::Stepper;
 pub use stepping::Stepping;
 pub use trajectory::{Sample, Trajectory};

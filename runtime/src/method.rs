@@ -1,5 +1,6 @@
 //! The methods: [`Method`], the run-time choice of integrator, with what each one needs and
-//! promises; and one zero-sized type per method ([`Rk4`], [`Rodas5P`], …, [`MethodType`]), the
+//! promises; and one zero-sized type per method ([`Rk4`], [`Rodas5P`], …, each a
+//! [`MethodType`](crate::MethodType)), the
 //! compile-time choice, for [`Simulation::run_with`](crate::Simulation::run_with).
 //!
 //! A program that runs a model with `.run()` dispatches on the [`Method`] at run time, so it
@@ -40,13 +41,9 @@ macro_rules! define_methods {
         $(
             $(#[$doc])*
             ///
-            /// The compile-time choice of this method: see [`MethodType`].
+            /// The compile-time choice of this method: see [`MethodType`](crate::MethodType).
             #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
             pub struct $variant;
-
-            impl MethodType for $variant {
-                const METHOD: Method = Method::$variant;
-            }
         )*
 
         impl Method {
@@ -82,32 +79,6 @@ macro_rules! define_methods {
 }
 
 odyn_methods::for_each_method!(define_methods);
-
-/// A method chosen at compile time: one zero-sized type per [`Method`] in this module, named
-/// like its variant ([`Rk4`] for [`Method::Rk4`]).
-///
-/// [`Simulation::run_with::<T>()`](crate::Simulation::run_with) runs a model with `T` and
-/// compiles only `T`'s loop for it; [`Simulation::run`] reads the [`Method`] at run time and so
-/// compiles every method the model can take. Choose the typed form in programs that run a model
-/// with methods known when they are written; keep [`Method`] for command lines, configuration
-/// files and comparisons over many methods. Sealed: the methods are the table's.
-pub trait MethodType: sealed::Sealed + Copy + Default + fmt::Debug + Send + Sync + 'static {
-    /// The method's variant of the run-time enum.
-    const METHOD: Method;
-}
-
-pub(crate) mod sealed {
-    use crate::{Error, Model, Result, Simulation, Trajectory};
-
-    /// Only the table's methods are [`super::MethodType`]s; each drives its integrator type
-    /// (implemented by the run's dispatch, `simulation::plan`).
-    pub trait Sealed {
-        /// Runs `simulation` with this method on the current stack.
-        fn run<M: Model>(
-            simulation: &Simulation<'_, M>,
-        ) -> Result<(Trajectory<M::State>, Option<Error>)>;
-    }
-}
 
 /// What a [`Method`] is and needs: one row of the table every part of odyn reads (the runner,
 /// the stability explorer, work-precision studies; the `#[system]` attribute reads the same

@@ -5,11 +5,12 @@
 
 mod options;
 mod plan;
+mod typed;
 
 pub use options::{Length, RunOptions};
+pub use typed::MethodType;
 
 use crate::drive::{AdaptiveOptions, Progress};
-use crate::method::MethodType;
 use crate::{Error, Event, Method, Model, NewtonOptions, Result, Stepping, Tolerances, Trajectory};
 
 /// A progress callback (see [`Simulation::progress`]).

@@ -3,9 +3,10 @@
 
 use super::Simulation;
 use super::options::Span;
+use super::typed::{MethodType, Sealed};
 use crate::drive::{Driver, Recording, Start, Track};
 use crate::integrators::Integrator;
-use crate::method::{self, sealed::Sealed};
+use crate::method;
 use crate::{Error, Method, Model, Result, SecondOrder, State, Stepping, Trajectory};
 
 /// The run's dispatch from the one table of methods: each method's type in [`crate::method`]
@@ -21,6 +22,10 @@ macro_rules! dispatch {
         )*
     ) => {
         $(
+            impl MethodType for method::$variant {
+                const METHOD: Method = Method::$variant;
+            }
+
             impl Sealed for method::$variant {
                 fn run<M: Model>(
                     run: &Simulation<'_, M>,
