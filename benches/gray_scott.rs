@@ -31,7 +31,7 @@ use scenes::GrayScott;
 
 use odyn::{
     Integrator, Jacobian, Krylov, LinearSolver, Method, Model, NewtonOptions, Preconditioner,
-    State, Stats, Stepper,
+    Simulate, State, Stats, Stepper,
 };
 
 fn main() {

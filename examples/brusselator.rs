@@ -27,7 +27,8 @@ use odyn::grid::{Boundary, Grid, GridState, Stencil};
 use odyn::output::{number, write_table};
 use odyn::plot::{Field, FieldStyle, field_image};
 use odyn::{
-    Krylov, LinearSolver, Method, Model, NewtonOptions, Preconditioner, State, Trajectory, system,
+    Krylov, LinearSolver, Method, NewtonOptions, Preconditioner, Simulate, State, Trajectory,
+    system,
 };
 
 /// The Brusselator: concentrations u and v on a periodic grid.

@@ -29,7 +29,7 @@ use odyn::output::{number, write_table};
 use odyn::plot::{Field, FieldStyle, field_animation, field_image};
 use odyn::rand::{Rng, SeedableRng};
 use odyn::stability::gershgorin_limit;
-use odyn::{Method, Model, NewtonOptions};
+use odyn::{Method, Model, NewtonOptions, Simulate};
 
 // The model, written once for the examples, tests and benches (`scenes/src/fields.rs`): two
 // #[field] grids u, v and one #[cell] method: u′ = D_u∇²u − uv² + F(1 − u), v′ = D_v∇²v + uv² − (F

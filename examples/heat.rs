@@ -25,7 +25,7 @@ use odyn::grid::{Boundary, Grid, GridState, Stencil};
 use odyn::output::{number, write_table};
 use odyn::plot::{Chart, Field, FieldStyle, Series, field_image};
 use odyn::stability::{StabilityProbe, gershgorin_limit, measured_limit};
-use odyn::{Method, Model, Trajectory, system};
+use odyn::{Method, Model, Simulate, Trajectory, system};
 
 /// u_t = D∇²u on a grid of nodes dx apart.
 #[system(integrator = ImplicitEuler)]

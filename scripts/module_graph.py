@@ -23,7 +23,9 @@ IDENT = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
 def strip_comments(text):
     """The code without `//` comments and string literals (doc links name paths too)."""
-    text = re.sub(r'"(?:\\.|[^"\\])*"', '""', text)
+    text = re.sub(r"'(?:\\.|[^'\\])'", "' '", text)  # char literals, '"' among them
+    text = re.sub(r'r(#*)".*?"\1', '""', text, flags=re.S)  # raw strings
+    text = re.sub(r'"(?:\\.|[^"\\])*"', '""', text, flags=re.S)
     return "\n".join(line.split("//", 1)[0] for line in text.splitlines())
 
 

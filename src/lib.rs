@@ -132,7 +132,7 @@ pub mod prelude {
     pub use crate::particles::ParticleSystem;
     pub use crate::{
         Direction, Error, Event, Jacobian, Method, Model, NewtonOptions, Result, SecondOrder,
-        Simulation, State, Stepping, Tolerances, Trajectory, method, system,
+        Simulate, Simulation, State, Stepping, Tolerances, Trajectory, method, system,
     };
 }
 

@@ -2,7 +2,7 @@
 //! [`Trajectory`](crate::Trajectory) and a work-precision [`Measurement`](crate::work_precision::Measurement)
 //! share.
 
-use crate::drive::Tolerances;
+use crate::control::Tolerances;
 
 /// How the steps are sized.
 #[derive(Clone, Debug, PartialEq)]

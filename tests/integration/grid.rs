@@ -15,7 +15,7 @@ use std::f64::consts::PI;
 use odyn::grid::{Boundary, Grid, GridState, Stencil};
 use odyn::integrators::Rk4;
 use odyn::stability::{StabilityProbe, gershgorin_limit, measured_limit};
-use odyn::{Error, Jacobian, Method, Model, State, Stepper, system};
+use odyn::{Error, Jacobian, Method, Model, Simulate, State, Stepper, system};
 
 /// u_t = D∇²u.
 #[system(integrator = ImplicitEuler, dt = 1e-3)]

@@ -2,7 +2,7 @@
 //! for bit, as the run-time choice (`.integrator(Method::X).run()`), the same refusals, and the
 //! same switch from the attribute's `dt` to tolerances for an adaptive method.
 
-use odyn::{Error, Method, MethodType, Model, Trajectory, method};
+use odyn::{Error, Method, MethodType, Model, Simulate, Trajectory, method};
 
 use crate::common::{Charged, NoJacobian, Pendulum};
 

@@ -15,24 +15,20 @@
 //!   counting everything in [`Stats`].
 
 mod adaptive;
-mod controller;
-mod dense;
 mod events;
 mod fixed;
 mod record;
-mod stats;
 mod step;
-mod tolerances;
 mod track;
 
+pub use crate::control::{AdaptiveOptions, Atol, Controller, Tolerances};
 pub use crate::integrators::DenseStep;
-pub use controller::{AdaptiveOptions, Controller};
-pub use dense::DenseOutput;
-pub use events::{Action, Direction, Event, EventRecord, Jump, StateChange};
-pub use stats::Stats;
-pub use tolerances::{Atol, Tolerances};
+pub use crate::model::Jump;
+pub use crate::stats::Stats;
+pub use crate::trajectory::{DenseOutput, EventRecord};
+pub use events::{Action, Direction, Event, StateChange};
 
-use controller::{ControllerState, initial_step};
+use crate::control::{ControllerState, initial_step};
 pub(crate) use track::{Start, Track};
 
 use crate::integrators::{Integrator, Step};

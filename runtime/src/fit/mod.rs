@@ -19,10 +19,11 @@
 mod check;
 mod marquardt;
 
+use crate::Simulate;
 use nalgebra::{DMatrix, DVector};
 
 use crate::sensitivity::{Sensitive, SensitivityState};
-use crate::{DenseMatrix, Error, Jacobian, Method, Model, Parameters, Result, Sample};
+use crate::{DenseMatrix, Error, Jacobian, Method, Parameters, Result, Sample};
 
 /// Measured samples of one state component: `(t, value)` pairs, with optional weights
 /// (1/σ of each measurement; all 1 when empty). A fit takes one per measured component.

@@ -8,11 +8,13 @@ mod consistent;
 pub mod differences;
 pub mod dual;
 pub mod flat;
+mod jump;
 mod mass;
 mod parameters;
 mod unavailable;
 
 pub use consistent::consistent;
+pub use jump::Jump;
 pub use mass::Mass;
 pub(crate) use mass::mass_of;
 pub use parameters::Parameters;
@@ -21,7 +23,7 @@ pub use unavailable::Unavailable;
 use std::fmt::Debug;
 
 use crate::linalg::NewtonMatrix;
-use crate::{Method, Result, Simulation};
+use crate::{Method, Result};
 
 /// A model's state: a list of `f64` components with names.
 pub trait State: Clone + PartialEq + Debug {
@@ -147,18 +149,10 @@ pub trait Model {
         t: f64,
         before: &Self::State,
         after: &mut Self::State,
-        jump: crate::drive::Jump<'_, Self::State>,
+        jump: Jump<'_, Self::State>,
     ) -> Result<()> {
         let _ = (t, before, after, jump);
         Ok(())
-    }
-
-    /// Starts configuring a run from the model's own state, method and dt.
-    fn simulate(&self) -> Simulation<'_, Self>
-    where
-        Self: Sized,
-    {
-        Simulation::new(self)
     }
 }
 

@@ -23,7 +23,20 @@ impl std::fmt::Debug for ProgressFn<'_> {
     }
 }
 
-/// A run being configured: created by [`Model::simulate`], finished by [`Simulation::run`].
+/// `model.simulate()`: starts configuring a run of any [`Model`] from its own state, method and
+/// dt. Every model has it; the trait is in `odyn::prelude` (and at the crate root) so the call
+/// needs it in scope. It lives beside [`Simulation`] rather than on [`Model`] so that the model
+/// traits do not depend on the runner.
+pub trait Simulate: Model + Sized {
+    /// Starts configuring a run from the model's own state, method and dt.
+    fn simulate(&self) -> Simulation<'_, Self> {
+        Simulation::new(self)
+    }
+}
+
+impl<M: Model> Simulate for M {}
+
+/// A run being configured: created by [`Simulate::simulate`], finished by [`Simulation::run`].
 #[derive(Clone, Debug)]
 pub struct Simulation<'m, M: Model> {
     model: &'m M,

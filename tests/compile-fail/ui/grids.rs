@@ -281,7 +281,7 @@ mod unknown_neighbour {
 
     // The model still type-checks where it is used: no follow-on errors.
     fn run(model: &Brusselator) {
-        let _ = odyn::Model::simulate(model);
+        let _ = odyn::Simulate::simulate(model);
     }
 
     fn main() {

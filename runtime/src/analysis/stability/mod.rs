@@ -6,6 +6,7 @@
 //! and `f64::INFINITY` means every dt is (implicit Euler on a dissipative or conservative linear
 //! model).
 
+use crate::Simulate;
 use crate::{Error, Method, Model, Result, State};
 mod predicted;
 

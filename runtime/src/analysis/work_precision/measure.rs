@@ -1,6 +1,7 @@
 //! [`measure`]: the study checked, the reference computed, every method run once per stepping
 //! and timed.
 
+use crate::Simulate;
 use std::time::Instant;
 
 use super::*;

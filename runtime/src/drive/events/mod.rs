@@ -1,6 +1,8 @@
 //! Events: a condition g(t, state) that stops the run or changes the state where it crosses
 //! zero, located on the dense output; and time events that land the run exactly on given times.
 
+use crate::model::Jump;
+use crate::trajectory::EventRecord;
 use std::fmt;
 use std::sync::Arc;
 
@@ -234,33 +236,6 @@ impl<'a, S> Event<'a, S> {
         }
         Ok(())
     }
-}
-
-/// A change event as [`crate::Model::complete_change`] sees it: the event's condition (none for
-/// a time event, whose time does not move with the state) and its change.
-pub struct Jump<'e, S> {
-    /// The event's name, for errors.
-    pub name: &'e str,
-    /// g(t, y), whose zero the event is.
-    #[allow(clippy::type_complexity)]
-    pub condition: Option<&'e (dyn Fn(f64, &S) -> f64 + Send + Sync)>,
-    /// The change applied to the state.
-    pub change: &'e (dyn Fn(f64, &mut S) + Send + Sync),
-}
-
-/// One event that happened, as a trajectory records it.
-#[derive(Clone, Debug, PartialEq)]
-pub struct EventRecord<S> {
-    /// When.
-    pub t: f64,
-    /// Which event: its index in the run's event list.
-    pub event: usize,
-    /// Its name.
-    pub name: String,
-    /// The state at the event, before its action.
-    pub before: S,
-    /// The state after its action (equal to `before` unless the action changed it).
-    pub after: S,
 }
 
 /// `g`, the value of `event`'s condition at `t`, if it is not NaN (infinities have a sign).

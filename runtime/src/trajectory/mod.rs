@@ -1,10 +1,11 @@
 //! [`Trajectory`]: what a run recorded — samples, events, statistics, and the dense output that
 //! gives the solution at any time.
 
-use std::path::Path;
+mod dense;
 
-use crate::drive::{DenseOutput, EventRecord};
-use crate::{Error, Method, Result, State, Stats, Stepping, output};
+pub use dense::DenseOutput;
+
+use crate::{Error, Method, Result, State, Stats, Stepping};
 
 /// One recorded state.
 #[derive(Clone, Debug, PartialEq)]
@@ -191,12 +192,19 @@ impl<S: State> Trajectory<S> {
             }
         }))
     }
+}
 
-    /// Writes the samples as CSV (`method,step,t,<components>,energy`), atomically.
-    ///
-    /// Errors: [`Error::InvalidInput`] when `samples` is empty; [`Error::Io`] when the file
-    /// cannot be written.
-    pub fn write_csv(&self, path: impl AsRef<Path>) -> Result<()> {
-        output::write_csv(path, &[self])
-    }
+/// One event that happened, as a trajectory records it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EventRecord<S> {
+    /// When.
+    pub t: f64,
+    /// Which event: its index in the run's event list.
+    pub event: usize,
+    /// Its name.
+    pub name: String,
+    /// The state at the event, before its action.
+    pub before: S,
+    /// The state after its action (equal to `before` unless the action changed it).
+    pub after: S,
 }
