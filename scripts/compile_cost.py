@@ -54,6 +54,17 @@ times swing by up to 2.5x with the load; CPU seconds (user + system of the build
 The Jacobian and the derivative at a fixed state are the same bit for bit before and after, in
 release, for all three models.
 
+  methods as types (issue 52; commit 3dd4fb8, another engineer's build running beside it)
+            case  profile  wall s   CPU s  peak MiB  result
+        chosen:1      dev    12.2     7.3       475  ok
+        chosen:1  release     6.1     4.0       242  ok
+         typed:1      dev     7.2     3.3       453  ok
+         typed:1  release     1.5     1.5       221  ok
+        chosen:4      dev    24.1    19.5       486  ok
+        chosen:4  release    12.9    10.6       279  ok
+         typed:4      dev     8.3     6.5       459  ok
+         typed:4  release     7.1     3.6       231  ok
+
 Usage: python3 scripts/compile_cost.py [--cases stencil:1024,stencil:4096,terms:3000]
                                         [--profiles dev,release] [--odyn PATH] [--scratch DIR]
 """
