@@ -155,6 +155,41 @@ fn run_krylov(bencher: divan::Bencher, n: usize) {
     ten_steps(bencher, n, LinearSolver::Krylov(Krylov::default()));
 }
 
+/// A `simulate()` run of the linearized step (the default `Auto` solver): zero steps, the
+/// set-up alone (the Jacobian's pattern and storage, the solver's policy), and one and five
+/// steps, side by side — a zero-step run should cost less than one step.
+fn plain_run(bencher: divan::Bencher, n: usize, steps: u64) {
+    let model = model(n);
+    bencher.bench_local(|| {
+        model
+            .simulate()
+            .integrator(Method::ImplicitEuler)
+            .newton(NewtonOptions::linearized())
+            .dt(H)
+            .steps(steps)
+            .run()
+            .unwrap()
+    });
+}
+
+/// The set-up of a plain run: zero steps.
+#[divan::bench(args = SIZES, sample_count = 5)]
+fn run_zero_steps(bencher: divan::Bencher, n: usize) {
+    plain_run(bencher, n, 0);
+}
+
+/// A plain run of one step.
+#[divan::bench(args = SIZES, sample_count = 5)]
+fn run_one_step(bencher: divan::Bencher, n: usize) {
+    plain_run(bencher, n, 1);
+}
+
+/// A plain run of five steps.
+#[divan::bench(args = SIZES, sample_count = 3)]
+fn run_five_steps(bencher: divan::Bencher, n: usize) {
+    plain_run(bencher, n, 5);
+}
+
 /// The cell kernel's derivative blocks, placed into J.
 #[divan::bench(args = SIZES, sample_count = 10)]
 fn jacobian(bencher: divan::Bencher, n: usize) {

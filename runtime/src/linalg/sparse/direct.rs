@@ -7,7 +7,10 @@ use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::sparse::SparseColMatRef;
 use faer::sparse::linalg::SupernodalThreshold;
-use faer::sparse::linalg::cholesky::{LltRef, SymbolicCholesky};
+use faer::sparse::linalg::cholesky::{
+    CholeskySymbolicParams, LltRef, SymbolicCholesky, SymmetricOrdering,
+    factorize_symbolic_cholesky,
+};
 use faer::sparse::linalg::lu::{LuRef, LuSymbolicParams, NumericLu, factorize_symbolic_lu};
 use faer::{Conj, MatMut, Par, Side};
 
@@ -27,7 +30,29 @@ impl SparseSolver {
             .or(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq))
     }
 
-    /// Factorizes the values: Cholesky when symmetric and positive definite, else LU (its
+    /// The symbolic Cholesky analysis (AMD ordering), made the first time it is needed with room
+    /// for the factor's values and the scratch, counted in `symbolic_cholesky`.
+    fn symbolic_cholesky(&mut self) -> Arc<SymbolicCholesky<usize>> {
+        if let Some(symbolic) = &self.cholesky {
+            return Arc::clone(symbolic);
+        }
+        let symbolic = Arc::new(
+            factorize_symbolic_cholesky(
+                self.pattern.as_ref(),
+                Side::Lower,
+                SymmetricOrdering::Amd,
+                CholeskySymbolicParams::default(),
+            )
+            .expect("a symmetric pattern of checked size always has a symbolic Cholesky factor"),
+        );
+        self.cholesky_values = vec![0.0; symbolic.len_val()];
+        self.cholesky = Some(Arc::clone(&symbolic));
+        self.scratch = MemBuffer::new(self.scratch_size());
+        self.counts.symbolic_cholesky += 1;
+        symbolic
+    }
+
+    /// Factorizes the values: Cholesky when symmetric and positive definite, else LU (each
     /// symbolic analysis made the first time; see [`SKIP_CHOLESKY_AFTER_FAILURE`]).
     ///
     /// Errors: [`FactorizeError::Singular`].
@@ -36,8 +61,9 @@ impl SparseSolver {
         if self.skip_cholesky > 0 {
             self.skip_cholesky -= 1;
         } else if self.is_symmetric() {
+            let symbolic = self.symbolic_cholesky();
             let matrix = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
-            let factored = self.cholesky.factorize_numeric_llt(
+            let factored = symbolic.factorize_numeric_llt(
                 &mut self.cholesky_values,
                 matrix,
                 Side::Lower,
@@ -71,12 +97,8 @@ impl SparseSolver {
             };
             let symbolic = factorize_symbolic_lu(self.pattern.as_ref(), params)
                 .map_err(|_| FactorizeError::Singular)?;
-            let need = symbolic
-                .factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default())
-                .or(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq))
-                .or(Self::cholesky_scratch(&self.cholesky));
-            self.scratch = MemBuffer::new(need);
             self.lu = Some((Arc::new(symbolic), NumericLu::new()));
+            self.scratch = MemBuffer::new(self.scratch_size());
             self.counts.symbolic_lu += 1;
         }
         let Some((symbolic, numeric)) = &mut self.lu else {
@@ -101,10 +123,13 @@ impl SparseSolver {
         let n = self.rhs.len();
         let rhs = MatMut::from_column_major_slice_mut(&mut self.rhs, n, 1);
         let stack = MemStack::new(&mut self.scratch);
-        match (&self.factored, &self.lu) {
-            (Some(Factored::Cholesky), _) => LltRef::new(&self.cholesky, &self.cholesky_values)
-                .solve_in_place_with_conj(Conj::No, rhs, Par::Seq, stack),
-            (Some(Factored::Lu), Some((symbolic, numeric))) => LuRef::new_unchecked(
+        match (&self.factored, &self.cholesky, &self.lu) {
+            (Some(Factored::Cholesky), Some(cholesky), _) => LltRef::new(
+                cholesky,
+                &self.cholesky_values,
+            )
+            .solve_in_place_with_conj(Conj::No, rhs, Par::Seq, stack),
+            (Some(Factored::Lu), _, Some((symbolic, numeric))) => LuRef::new_unchecked(
                 symbolic, numeric,
             )
             .solve_in_place_with_conj(Conj::No, rhs, Par::Seq, stack),
@@ -112,8 +137,12 @@ impl SparseSolver {
         }
     }
 
+    /// The scratch the analyses made so far need.
     pub(super) fn scratch_size(&self) -> StackReq {
-        let cholesky = Self::cholesky_scratch(&self.cholesky);
+        let cholesky = self
+            .cholesky
+            .as_deref()
+            .map_or(StackReq::EMPTY, Self::cholesky_scratch);
         match &self.lu {
             None => cholesky,
             Some((lu, _)) => cholesky

@@ -41,7 +41,12 @@ impl SparseSolver {
                 )
             };
         }
-        let outcome = match (krylov.options.preconditioner, self.factored, &self.lu) {
+        let outcome = match (
+            krylov.options.preconditioner,
+            self.factored,
+            &self.lu,
+            &self.cholesky,
+        ) {
             (Preconditioner::BlockJacobi, ..) => solve!(self.jacobi.as_precond(n)),
             (Preconditioner::Ilu0, ..) => match &self.ilu {
                 Some(ilu) => solve!(Ilu0Ref(ilu)),
@@ -55,11 +60,10 @@ impl SparseSolver {
                 Some(multigrid) => solve!(MultigridRef(multigrid)),
                 None => Err(NoConvergence),
             },
-            (_, Some(Factored::Cholesky), _) => solve!(Factors::Cholesky(LltRef::new(
-                &self.cholesky,
-                &self.cholesky_values
-            ))),
-            (_, Some(Factored::Lu), Some((symbolic, numeric))) => {
+            (_, Some(Factored::Cholesky), _, Some(cholesky)) => solve!(Factors::Cholesky(
+                LltRef::new(cholesky, &self.cholesky_values)
+            )),
+            (_, Some(Factored::Lu), Some((symbolic, numeric)), _) => {
                 solve!(Factors::Lu(LuRef::new_unchecked(symbolic, numeric)))
             }
             _ => Err(NoConvergence),

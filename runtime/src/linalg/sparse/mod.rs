@@ -10,13 +10,10 @@
 
 use std::sync::Arc;
 
-use faer::Side;
-use faer::dyn_stack::MemBuffer;
-use faer::sparse::linalg::cholesky::{
-    CholeskySymbolicParams, SymbolicCholesky, SymmetricOrdering, factorize_symbolic_cholesky,
-};
+use faer::dyn_stack::{MemBuffer, StackReq};
+use faer::sparse::linalg::cholesky::SymbolicCholesky;
 use faer::sparse::linalg::lu::{NumericLu, SymbolicLu};
-use faer::sparse::{Pair, SparseColMatRef, SymbolicSparseColMat};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 
 use super::dense::FactorizeError;
 use super::krylov::{KrylovCounts, KrylovSolver, LinearSolver, Preconditioner, Solves, Structure};
@@ -25,6 +22,7 @@ use super::precond::{BlockJacobi, Fourier, Ilu0};
 
 mod direct;
 mod iterative;
+mod pattern;
 mod products;
 mod rows;
 mod stencil;
@@ -66,7 +64,11 @@ pub(crate) struct SparseSolver {
     transpose: Vec<usize>,
     /// The right-hand side [`SparseSolver::substitute`] solves in place.
     pub(crate) rhs: Vec<f64>,
-    cholesky: Arc<SymbolicCholesky<usize>>,
+    /// The symbolic Cholesky analysis, made the first time a direct factorization needs it
+    /// ([`SparseSolver::symbolic_cholesky`]): a run that stays on a Krylov solve never pays for
+    /// it (a 256² Gray–Scott pattern's AMD ordering and analysis took longer than a step).
+    cholesky: Option<Arc<SymbolicCholesky<usize>>>,
+    /// The Cholesky factor's values (empty until the first Cholesky factorization).
     cholesky_values: Vec<f64>,
     lu: Option<SparseLu>,
     scratch: MemBuffer,
@@ -111,13 +113,7 @@ impl SparseSolver {
     ///
     /// The caller guarantees every index is below `n` (checked topology or grid).
     pub(crate) fn new(n: usize, entries: &[(usize, usize)]) -> Self {
-        let pairs: Vec<Pair<usize, usize>> = entries
-            .iter()
-            .flat_map(|&(r, c)| [Pair::new(r, c), Pair::new(c, r)])
-            .chain((0..n).map(|i| Pair::new(i, i)))
-            .collect();
-        let (pattern, _) = SymbolicSparseColMat::try_new_from_indices(n, n, &pairs)
-            .expect("indices are in range: the caller checked them");
+        let pattern = pattern::symmetric(n, entries);
         let mut solver_transpose = vec![0; pattern.compute_nnz()];
         for col in 0..n {
             let start = pattern.col_ptr()[col];
@@ -125,28 +121,17 @@ impl SparseSolver {
                 solver_transpose[start + k] = slot_in(&pattern, col, row);
             }
         }
-        let cholesky = factorize_symbolic_cholesky(
-            pattern.as_ref(),
-            Side::Lower,
-            SymmetricOrdering::Amd,
-            CholeskySymbolicParams::default(),
-        )
-        .expect("a symmetric pattern of checked size always has a symbolic Cholesky factor");
-        let scratch = MemBuffer::new(Self::cholesky_scratch(&cholesky));
         let jacobi = BlockJacobi::new(1, (0..n).collect(), &pattern);
         SparseSolver {
             values: vec![0.0; pattern.compute_nnz()],
-            cholesky_values: vec![0.0; cholesky.len_val()],
-            cholesky: Arc::new(cholesky),
+            cholesky_values: Vec::new(),
+            cholesky: None,
             pattern,
             transpose: solver_transpose,
             rhs: vec![0.0; n],
             lu: None,
-            scratch,
-            counts: Factorizations {
-                symbolic_cholesky: 1,
-                ..Factorizations::default()
-            },
+            scratch: MemBuffer::new(StackReq::EMPTY),
+            counts: Factorizations::default(),
             factored: None,
             skip_cholesky: 0,
             krylov: None,
@@ -351,7 +336,7 @@ impl Clone for SparseSolver {
             values: self.values.clone(),
             transpose: self.transpose.clone(),
             rhs: self.rhs.clone(),
-            cholesky: Arc::clone(&self.cholesky),
+            cholesky: self.cholesky.clone(),
             cholesky_values: self.cholesky_values.clone(),
             lu: self.lu.clone(),
             scratch: MemBuffer::new(self.scratch_size()),
