@@ -2,7 +2,7 @@
 //! methods of every field model, and the stencils of its coefficient grids. Reached through
 //! `odyn::__private::grid`; not a stable API.
 
-use super::stencil::{boundaries, each_cell_into, for_each_cell, geometry, place, stencil_at};
+use super::stencil::{boundaries, coefficient_at, each_cell_into, for_each_cell, geometry, place};
 use super::{Grid, GridJacobian, GridState, GridSystem, Place, Stencil};
 use crate::{Error, Model, Result};
 
@@ -11,7 +11,7 @@ use crate::{Error, Model, Result};
 /// `Model::check` has made sure the grid has the fields' size.
 #[inline(always)]
 pub fn coefficient(grid: &Grid, at: Place) -> Stencil {
-    stencil_at(&grid.values, grid.nx, grid.ny, grid.boundary, at.i, at.j)
+    coefficient_at(&grid.values, grid.nx, grid.ny, grid.boundary, at.i, at.j)
 }
 
 /// [`Model::check`] of a coefficient grid: the size of the state's grids.
