@@ -15,7 +15,8 @@ use std::collections::HashMap;
 use syn::{Expr, ExprIf, ExprMatch, Stmt};
 
 use super::conditions::Condition;
-use super::scope::{Scopes, changes_outer, let_names, pattern_names};
+use super::names::{let_names, pattern_names};
+use super::scope::{Scopes, changes_outer};
 use super::statements::{Context, Ending};
 use super::{Branch, BranchKind, Lowering, Prologue, Value};
 

@@ -6,7 +6,7 @@ use proc_macro2::TokenStream;
 use quote::ToTokens;
 use syn::{BinOp, Expr, ExprBinary, ExprField, Lit, Member, UnOp};
 
-use super::scope::path_name;
+use super::names::path_name;
 use super::{Lowering, MAX_DEPTH, Prologue, Value};
 use crate::ir::{ExprId, Graph};
 use crate::model::Shape;

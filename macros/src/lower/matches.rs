@@ -17,7 +17,7 @@ use quote::{ToTokens, format_ident};
 use syn::{Expr, ExprMatch, Pat, RangeLimits, Stmt};
 
 use super::Lowering;
-use super::scope::any_ident;
+use super::names::any_ident;
 
 /// A `match` on the state as statements: the scrutinee and the arms' names bound, then the
 /// `if` chain.

@@ -11,6 +11,8 @@
 //!
 //! - this file: the entry points, the values a sub-expression lowers to, the error message;
 //! - [`scope`]: locals, `let` patterns, and which expressions read the state or the time;
+//! - [`names`]: what code names and may change, read from its syntax alone (assignment
+//!   targets, the names a pattern binds, `return`s);
 //! - [`statements`]: statements: `let`, assignments, state-free statements;
 //! - [`branches`]: branches on parameters (`if`, `match`) and early `return`s from them;
 //! - [`conditions`]: the conditions of an `if` on the state, as comparisons in the graph;
@@ -34,6 +36,7 @@ mod loops;
 mod matches;
 mod merge;
 mod methods;
+mod names;
 mod scope;
 mod state;
 mod statements;

@@ -13,7 +13,8 @@ use std::collections::HashMap;
 use quote::ToTokens;
 use syn::{Block, Expr, Local, Stmt};
 
-use super::scope::{Binding, assigned, returns};
+use super::names::returns;
+use super::scope::{Binding, assigned};
 use super::{Lowering, Prologue, Value};
 
 /// Where a list of statements sits.
@@ -222,7 +223,7 @@ impl Lowering<'_> {
             }
         }
         path.reverse();
-        let Some(name) = super::scope::path_name(base) else {
+        let Some(name) = super::names::path_name(base) else {
             return Err(self.error(target, "assigning to something other than a local"));
         };
         let Some(old) = self.lookup(&name).cloned() else {
