@@ -1,7 +1,13 @@
 //! The one error type of the runtime: every failure a user can cause is a variant here.
 
+mod advice;
+
+pub use self::advice::{NewtonFailure, Rejection};
+pub(crate) use self::advice::{bytes_text, count_text};
+
 use std::path::PathBuf;
 
+use self::advice::step_advice;
 use crate::Method;
 
 /// Result alias used throughout odyn.
@@ -308,90 +314,6 @@ pub enum Error {
     },
 }
 
-/// Why an adaptive run's last attempt at a step was rejected (see [`Error::StepSizeTooSmall`]).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[non_exhaustive]
-pub enum Rejection {
-    /// Its error estimate exceeded the tolerances.
-    ErrorTest,
-    /// The matrix I − γh·J of its linear solves was singular.
-    SingularMatrix,
-    /// Its Newton iteration failed (BDF, implicit Euler).
-    Newton,
-    /// None yet: the step size proposed was already too small.
-    None,
-}
-
-/// What a step size that fell to nothing says about the problem.
-fn step_advice(method: Method, rejection: Rejection, dt_min: bool, large_t: bool) -> String {
-    if dt_min {
-        return "lower `dt_min`, or see why the method needs steps that small there".to_owned();
-    }
-    let mut advice = match (method.needs_jacobian(), rejection) {
-        (false, _) => "the problem is probably stiff here (use an implicit method: Rodas5P or \
-                       Bdf), or its solution blows up or jumps at t"
-            .to_owned(),
-        (true, Rejection::SingularMatrix) => "the matrix I − γh·J was singular at every step \
-             size tried: ∂f/∂y has an eigenvalue that keeps pace with 1/(γh) — check the \
-             Jacobian at this state"
-            .to_owned(),
-        (true, Rejection::Newton) => "Newton's method failed at every step size tried: f is \
-             not smooth here (a switch such as `abs`, `signum`, `min`/`max` or an `if` on the \
-             state), or the solution blows up at t"
-            .to_owned(),
-        (true, _) => "the error estimate stays above the tolerances however short the step: f \
-             switches abruptly here (`abs`, `signum`, `min`/`max` or an `if` on the state, \
-             which no step resolves: stop the run there with an event and restart from it), or \
-             the solution blows up at t"
-            .to_owned(),
-    };
-    if large_t {
-        advice.push_str(
-            "; or t is so large there that its floats are coarse: start the run nearer 0",
-        );
-    }
-    advice
-}
-
-/// Why an attempt at an implicit step's Newton iteration failed.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[non_exhaustive]
-pub enum NewtonFailure {
-    /// It ran out of iterations (`NewtonOptions::max_iters`) while still converging.
-    Iterations,
-    /// Its updates stopped shrinking: the step is too large for the nonlinearity there.
-    Diverging,
-    /// The Newton matrix I − h·J was singular.
-    Singular,
-    /// The model's derivative or Jacobian returned NaN or infinity at an iterate.
-    NotFinite,
-}
-
-impl NewtonFailure {
-    /// What failed and the option that addresses it.
-    fn explain(self, iters: u32, halvings: u32) -> String {
-        match self {
-            NewtonFailure::Iterations => format!(
-                "it was still converging when its {iters} iterations ran out; raise \
-                 `NewtonOptions::max_iters`"
-            ),
-            NewtonFailure::Diverging | NewtonFailure::Singular => format!(
-                "{}; reduce dt, or raise `NewtonOptions::max_halvings` (now {halvings}) so the \
-                 step can be split further",
-                if self == NewtonFailure::Singular {
-                    "the Newton matrix I − h·J was singular"
-                } else {
-                    "its updates stopped shrinking, the step is too large for the nonlinearity \
-                     here"
-                }
-            ),
-            NewtonFailure::NotFinite => "the model's derivative or Jacobian returned NaN or \
-                infinity at an iterate; check its parameters and state"
-                .to_owned(),
-        }
-    }
-}
-
 impl Error {
     /// Whether a driver may retry the step with a smaller size: a failed implicit solve.
     pub(crate) fn is_retriable(&self) -> bool {
@@ -442,46 +364,5 @@ impl Error {
                 bytes_text(bytes)
             ),
         )
-    }
-}
-
-/// `bytes` in SI units with two significant digits or more: `512 B`, `4.3 GB`, `79 TB`.
-pub(crate) fn bytes_text(bytes: u128) -> String {
-    const UNITS: [&str; 9] = ["B", "kB", "MB", "GB", "TB", "PB", "EB", "ZB", "YB"];
-    let mut value = bytes as f64;
-    let mut unit = 0;
-    while value >= 999.5 && unit + 1 < UNITS.len() {
-        value /= 1000.0;
-        unit += 1;
-    }
-    if unit == 0 || value >= 9.95 {
-        format!("{value:.0} {}", UNITS[unit])
-    } else {
-        format!("{value:.1} {}", UNITS[unit])
-    }
-}
-
-/// A count as a person reads it: exact below a million, else `1.1e12`.
-pub(crate) fn count_text(count: u64) -> String {
-    if count < 1_000_000 {
-        count.to_string()
-    } else {
-        format!("{:.1e}", count as f64)
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::{bytes_text, count_text};
-
-    #[test]
-    fn sizes_read_compactly() {
-        assert_eq!(bytes_text(512), "512 B");
-        assert_eq!(bytes_text(4_294_967_296), "4.3 GB");
-        assert_eq!(bytes_text(79_164_837_199_872), "79 TB");
-        assert_eq!(bytes_text(999_999), "1.0 MB");
-        assert_eq!(bytes_text(u128::MAX), "340282366920938 YB");
-        assert_eq!(count_text(999_999), "999999");
-        assert_eq!(count_text(1 << 40), "1.1e12");
     }
 }
