@@ -8,12 +8,13 @@
 //! `self.k * v` (an `f64` on the left), `k * v` for a nalgebra vector `v` of dual numbers,
 //! comparisons with `f64`, `as` casts, and every method of `f64` a force uses.
 //!
-//! The derivative rules (`rules.rs`) are the generated Jacobian's own (`macros/src/derivative.rs`),
-//! so the two paths agree to rounding wherever the generated one is finite: the quotient rule as
-//! a′/b − (a/b)·b′/b (finite where a/b is, even when b² overflows), xⁿ′ = n·xⁿ⁻¹ (not
-//! exp(n·ln x), NaN at x ≤ 0), rounding functions with derivative zero, and a term whose
-//! direction is zero left out rather than multiplied (0·∞ is NaN). The values are `f64`'s through
-//! [`crate::math::Transcendental`], so the `deterministic` feature covers the dual copies too.
+//! The derivative rules (`rules.rs`, `piecewise.rs`) are the generated Jacobian's own
+//! (`macros/src/derivative.rs`), so the two paths agree to rounding wherever the generated one
+//! is finite: the quotient rule as a′/b − (a/b)·b′/b (finite where a/b is, even when b²
+//! overflows), xⁿ′ = n·xⁿ⁻¹ (not exp(n·ln x), NaN at x ≤ 0), rounding functions with derivative
+//! zero, and a term whose direction is zero left out rather than multiplied (0·∞ is NaN). The
+//! values are `f64`'s through [`crate::math::Transcendental`], so the `deterministic` feature
+//! covers the dual copies too.
 //!
 //! The macro writes a copy of the model's function over `Dual` (`f64` in its types read as
 //! `Dual`, its float literals and parameters as constants) and calls it once per state component
@@ -21,6 +22,7 @@
 //! roughly twice the cost of one each, against central differences' 2n, and no step size.
 
 mod arithmetic;
+mod piecewise;
 mod rules;
 mod seed;
 mod traits;

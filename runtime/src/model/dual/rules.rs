@@ -2,13 +2,12 @@
 //!
 //! Each rule is the one the generated Jacobian uses (`macros/src/derivative.rs`), written in the
 //! same order of operations, so the two Jacobians agree to rounding wherever the generated one
-//! is finite. Functions with kinks take the derivative of the side Rust's definition falls on
-//! (|x|′ = signum x, ±1 at ±0; `max`/`min` the first argument's at a tie); step functions
-//! (`floor`, `ceil`, `round`, `trunc`, `signum`) have derivative zero, `fract` one. Values come
-//! from [`Transcendental`], the platform's functions or, under the `deterministic` feature,
+//! is finite. This file holds the smooth functions — roots, exponentials, logarithms,
+//! trigonometric and hyperbolic functions, powers — and `Transcendental` on `Dual`; the
+//! piecewise ones (kinks, steps, remainders) and the predicates are in `piecewise.rs`. Values
+//! come from [`Transcendental`], the platform's functions or, under the `deterministic` feature,
 //! `libm`'s.
 
-use std::cmp::Ordering;
 use std::f64::consts::{LN_2, LN_10};
 
 use super::Dual;
@@ -18,7 +17,7 @@ use crate::math::Transcendental;
 impl Dual {
     /// f(a) with derivative f′(a)·a′; `slope` (f′(a)) is evaluated only when a′ ≠ 0.
     #[inline(always)]
-    fn chain(self, value: f64, slope: impl FnOnce() -> f64) -> Dual {
+    pub(super) fn chain(self, value: f64, slope: impl FnOnce() -> f64) -> Dual {
         let eps = if self.eps == 0.0 {
             0.0
         } else {
@@ -192,18 +191,6 @@ impl Dual {
         })
     }
 
-    /// |a|; derivative signum a (±1 at ±0).
-    #[inline(always)]
-    pub fn abs(self) -> Dual {
-        self.chain(self.re.abs(), || self.re.signum())
-    }
-
-    /// signum a; derivative zero.
-    #[inline(always)]
-    pub fn signum(self) -> Dual {
-        Dual::constant(self.re.signum())
-    }
-
     /// 1/a.
     #[inline(always)]
     pub fn recip(self) -> Dual {
@@ -260,96 +247,6 @@ impl Dual {
         Dual::new(self.re.mul_add(b.re, c.re), product.eps + c.eps)
     }
 
-    /// The larger of a and b with its derivative (a's at a tie); a NaN argument is ignored,
-    /// as `f64::max` ignores it.
-    #[inline(always)]
-    pub fn max(self, b: Dual) -> Dual {
-        if self.re.is_nan() || b.re > self.re {
-            b
-        } else {
-            self
-        }
-    }
-
-    /// The smaller of a and b with its derivative (a's at a tie); a NaN argument is ignored,
-    /// as `f64::min` ignores it.
-    #[inline(always)]
-    pub fn min(self, b: Dual) -> Dual {
-        if self.re.is_nan() || b.re < self.re {
-            b
-        } else {
-            self
-        }
-    }
-
-    /// a restricted to [lo, hi]: max(a, lo), then min with hi; at a bound, the bound's
-    /// derivative. NaN stays NaN, as `f64::clamp` keeps it.
-    #[inline(always)]
-    pub fn clamp(self, lo: Dual, hi: Dual) -> Dual {
-        if self.re.is_nan() {
-            return self;
-        }
-        let above = if lo.re <= self.re { self } else { lo };
-        if above.re <= hi.re { above } else { hi }
-    }
-
-    /// ⌊a⌋; derivative zero.
-    #[inline(always)]
-    pub fn floor(self) -> Dual {
-        Dual::constant(self.re.floor())
-    }
-
-    /// ⌈a⌉; derivative zero.
-    #[inline(always)]
-    pub fn ceil(self) -> Dual {
-        Dual::constant(self.re.ceil())
-    }
-
-    /// a rounded half away from zero; derivative zero.
-    #[inline(always)]
-    pub fn round(self) -> Dual {
-        Dual::constant(self.re.round())
-    }
-
-    /// a rounded half to even; derivative zero.
-    #[inline(always)]
-    pub fn round_ties_even(self) -> Dual {
-        Dual::constant(self.re.round_ties_even())
-    }
-
-    /// a rounded toward zero; derivative zero.
-    #[inline(always)]
-    pub fn trunc(self) -> Dual {
-        Dual::constant(self.re.trunc())
-    }
-
-    /// a − trunc(a); derivative one.
-    #[inline(always)]
-    pub fn fract(self) -> Dual {
-        Dual::new(self.re.fract(), self.eps)
-    }
-
-    /// a with the sign of b; derivative ±a′ (b's sign is a step).
-    #[inline(always)]
-    pub fn copysign(self, b: Dual) -> Dual {
-        let value = self.re.copysign(b.re);
-        let flipped = value.is_sign_negative() != self.re.is_sign_negative();
-        Dual::new(value, if flipped { -self.eps } else { self.eps })
-    }
-
-    /// a − b·⌊a/b⌋ for b > 0 (Rust's Euclidean remainder, never negative).
-    #[inline(always)]
-    pub fn rem_euclid(self, b: Dual) -> Dual {
-        let quotient = self.re.div_euclid(b.re);
-        Dual::new(self.re.rem_euclid(b.re), self.eps - term(quotient, b.eps))
-    }
-
-    /// The Euclidean quotient, an integer; derivative zero.
-    #[inline(always)]
-    pub fn div_euclid(self, b: Dual) -> Dual {
-        Dual::constant(self.re.div_euclid(b.re))
-    }
-
     /// a in degrees.
     #[inline(always)]
     pub fn to_degrees(self) -> Dual {
@@ -366,42 +263,6 @@ impl Dual {
             self.re.to_radians(),
             self.eps * (std::f64::consts::PI / 180.0),
         )
-    }
-
-    /// Whether the value is NaN.
-    #[inline(always)]
-    pub fn is_nan(self) -> bool {
-        self.re.is_nan()
-    }
-
-    /// Whether the value and the derivative are finite.
-    #[inline(always)]
-    pub fn is_finite(self) -> bool {
-        self.re.is_finite() && self.eps.is_finite()
-    }
-
-    /// Whether the value is infinite.
-    #[inline(always)]
-    pub fn is_infinite(self) -> bool {
-        self.re.is_infinite()
-    }
-
-    /// Whether the value has a positive sign (+0 included).
-    #[inline(always)]
-    pub fn is_sign_positive(self) -> bool {
-        self.re.is_sign_positive()
-    }
-
-    /// Whether the value has a negative sign (−0 included).
-    #[inline(always)]
-    pub fn is_sign_negative(self) -> bool {
-        self.re.is_sign_negative()
-    }
-
-    /// The values' total order, as `f64::total_cmp`.
-    #[inline(always)]
-    pub fn total_cmp(&self, other: &Dual) -> Ordering {
-        self.re.total_cmp(&other.re)
     }
 }
 

@@ -1,6 +1,6 @@
 //! The number traits nalgebra, `num-traits` and `approx` ask of a scalar, so that vectors and
 //! matrices of dual numbers (`Vector3<Dual>`: `norm`, `dot`, `cross`) work as `f64`'s do. Every
-//! function delegates to the rules of `rules.rs`.
+//! function delegates to the rules of `rules.rs` and `piecewise.rs`.
 
 use nalgebra::{ComplexField, RealField};
 use num_traits::{FromPrimitive, Num, One, Signed, Zero};
