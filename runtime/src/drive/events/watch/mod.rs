@@ -1,11 +1,13 @@
 //! The events of one run as the driver steps it: which crossings each accepted step holds, and
 //! what happens at each instant.
 
+mod instant;
+
 use super::search::{Rearm, crosses, locate, rearm};
 use super::tally::Tally;
-use super::{Action, Event, EventRecord, Trigger, finite_condition, nan_condition};
-use crate::drive::{DenseStep, ulp};
-use crate::{Error, Result, State};
+use super::{Event, EventRecord, Trigger, finite_condition, nan_condition};
+use crate::drive::DenseStep;
+use crate::{Result, State};
 
 /// What an event did to the run.
 pub(crate) enum Outcome {
@@ -64,7 +66,7 @@ pub(crate) struct Watch<'a, S> {
 impl<'a, S: State> Watch<'a, S> {
     /// The events of a run from (t₀, y₀), every condition evaluated there.
     ///
-    /// Errors: [`Error::BadEvent`] when a condition is NaN at (t₀, y₀).
+    /// Errors: [`Error::BadEvent`](crate::Error::BadEvent) when a condition is NaN at (t₀, y₀).
     pub(crate) fn new(
         events: Vec<Event<'a, S>>,
         t0: f64,
@@ -138,7 +140,7 @@ impl<'a, S: State> Watch<'a, S> {
     /// Whether a crossing may have happened in the step ending at (t1, y1): evaluates every
     /// condition there. Cheap; the caller builds the dense output only when this says so.
     ///
-    /// Errors: [`Error::BadEvent`] when a condition is NaN there.
+    /// Errors: [`Error::BadEvent`](crate::Error::BadEvent) when a condition is NaN there.
     pub(crate) fn scan(&mut self, t1: f64, y1: &S) -> Result<bool> {
         let mut any = false;
         for (i, e) in self.events.iter().enumerate() {
@@ -167,10 +169,10 @@ impl<'a, S: State> Watch<'a, S> {
     /// left); a change or a stop among them ends the step there. On return `at` holds the state
     /// at the returned time (after the actions), or `y1` when the step went through.
     ///
-    /// Errors: [`Error::BadEvent`] when a condition is NaN where a crossing is sought, or a change
-    /// leaves the state non-finite or its condition NaN; [`Error::EventsAccumulate`] when a
-    /// change event fires again sooner than the tolerance resolves, or the run's events exceed
-    /// its `max_events`.
+    /// Errors: [`Error::BadEvent`](crate::Error::BadEvent) when a condition is NaN where a
+    /// crossing is sought, or a change leaves the state non-finite or its condition NaN;
+    /// [`Error::EventsAccumulate`](crate::Error::EventsAccumulate) when a change event fires
+    /// again sooner than the tolerance resolves, or the run's events exceed its `max_events`.
     // The driver's step in its parts (model, dense step, times, states, records): a struct for
     // them would be built and taken apart at the one call site.
     #[allow(clippy::too_many_arguments)]
@@ -297,111 +299,6 @@ impl<'a, S: State> Watch<'a, S> {
         }
         found.sort_unstable_by(|a, b| a.t.total_cmp(&b.t).then(a.event.cmp(&b.event)));
         Ok(())
-    }
-
-    /// Takes the located events instant by instant (see [`Watch::handle`]).
-    #[allow(
-        clippy::too_many_arguments,
-        reason = "the step's parts, each one borrowed"
-    )]
-    fn act<M: crate::Model<State = S>>(
-        &mut self,
-        model: &M,
-        found: &[Found],
-        dense: &DenseStep<S>,
-        t1: f64,
-        y1: &S,
-        at: &mut S,
-        records: &mut Vec<EventRecord<S>>,
-    ) -> Result<Outcome> {
-        let mut rest = found;
-        while let Some(first) = rest.first() {
-            let window = self.tolerance.max(4.0 * ulp(first.t));
-            let count = rest.partition_point(|f| f.t <= first.t + window);
-            let (instant, later) = rest.split_at(count);
-            rest = later;
-            // The latest crossing of the instant: past every one of them.
-            let t = instant.iter().fold(first.t, |m, f| m.max(f.t));
-            if t == t1 {
-                at.clone_from(y1);
-            } else {
-                dense.eval((t - dense.t) / dense.h, at);
-            }
-            let (mut changed, mut stop) = (false, false);
-            for event in (0..self.events.len()).filter(|&i| instant.iter().any(|f| f.event == i)) {
-                // A time event may list several times within the window.
-                let times = instant.iter().filter(|f| f.event == event).count();
-                if let Trigger::Times(_) = self.events[event].trigger {
-                    self.next_time[event] += times;
-                }
-                let before = at.clone();
-                match &self.events[event].action {
-                    Action::Record => {}
-                    Action::Stop => stop = true,
-                    Action::Change(change) => {
-                        change(t, at);
-                        self.check_change(event, t, at)?;
-                        let e = &self.events[event];
-                        let condition = match &e.trigger {
-                            Trigger::Crossing { condition, .. } => Some(&**condition as _),
-                            Trigger::Times(_) => None,
-                        };
-                        let jump = super::Jump {
-                            name: &e.name,
-                            condition,
-                            change: &**change,
-                        };
-                        model.complete_change(t, &before, at, jump)?;
-                        // The change moved the state off the algebraic equations, perhaps: the
-                        // algebraic components follow the differential ones there.
-                        model.consistent(t, at, &crate::NewtonOptions::default())?;
-                        changed = true;
-                    }
-                }
-                let name = &self.events[event].name;
-                let change = matches!(self.events[event].action, Action::Change(_));
-                self.tally.count(event, name, change, t)?;
-                records.push(EventRecord {
-                    t,
-                    event,
-                    name: self.events[event].name.clone(),
-                    before,
-                    after: at.clone(),
-                });
-            }
-            if changed {
-                self.reset(t, at)?;
-                // The events of the instant left their conditions on (or a rounding away from)
-                // zero: each is latched on the side it came from.
-                for f in instant.iter().filter(|f| f.side != 0.0) {
-                    self.latch[f.event] = Latch::Fired { side: f.side };
-                }
-            }
-            if stop {
-                return Ok(Outcome::Stop(t));
-            }
-            if changed {
-                return Ok(Outcome::Changed(t));
-            }
-        }
-        Ok(Outcome::Continue)
-    }
-
-    /// Checks the state a change left.
-    fn check_change(&self, event: usize, t: f64, at: &S) -> Result<()> {
-        match at.as_slice().iter().position(|x| !x.is_finite()) {
-            None => Ok(()),
-            Some(k) => Err(Error::BadEvent {
-                event: self.events[event].name.clone(),
-                t,
-                reason: format!(
-                    "its change left component `{}` = {:?}; the state after a change must be \
-                     finite",
-                    at.component_name(k),
-                    at.as_slice()[k]
-                ),
-            }),
-        }
     }
 
     /// The step went through: the end values are the next step's start values. An event that
