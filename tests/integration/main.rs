@@ -5,10 +5,11 @@
 //! `tests/models/`; two binaries rather than one let the compiler's serial front end run on both
 //! cores. Run one topic with `cargo test -p odyn-tests --test integration grid::`.
 //!
-//! A new topic is `tests/integration/NAME.rs`, listed below; it reaches the shared models with
-//! `use crate::common;`. Tests that count every allocation of the process stay binaries of their
-//! own (`tests/allocations.rs`, `tests/grid_allocations.rs`, `tests/particle_allocations.rs`):
-//! here other tests run beside them. `grid` installs this binary's global allocator, which
+//! A new topic is `tests/integration/NAME.rs`, listed below (a folder `NAME/` of files by
+//! subtopic once it passes 600 lines); it reaches the shared models with `use crate::common;`.
+//! Tests that count every allocation of the process stay binaries of their own
+//! (`tests/allocations.rs`, `tests/grid_allocations.rs`, `tests/particle_allocations.rs`): here
+//! other tests run beside them. `grid/budget.rs` installs this binary's global allocator, which
 //! refuses allocations only on a thread that has been given a budget and passes every other
 //! call to the system allocator.
 

@@ -4,8 +4,8 @@
 //! tests are the other, `tests/integration/`). Run one topic with
 //! `cargo test -p odyn-tests --test models dae::`.
 //!
-//! A new topic is `tests/models/NAME.rs`, listed below; it reaches the shared models with
-//! `use crate::common;`.
+//! A new topic is `tests/models/NAME.rs`, listed below (a folder `NAME/` of files by subtopic
+//! once it passes 600 lines); it reaches the shared models with `use crate::common;`.
 
 #[path = "../common/mod.rs"]
 mod common;
