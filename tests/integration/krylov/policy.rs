@@ -1,0 +1,92 @@
+//! `Auto`'s choice of Krylov for big grids only, and the fallback to the direct solve when a
+//! Krylov solve cannot converge.
+
+use odyn::grid::Boundary;
+use odyn::integrators::ImplicitEuler;
+use odyn::{Krylov, LinearSolver, NewtonOptions};
+
+use super::{counts_of, stepped, with};
+use crate::grid::{GrayScott, gray_scott};
+use crate::particles::cloth;
+
+#[test]
+fn auto_chooses_krylov_for_big_grids_only() {
+    let auto = NewtonOptions::default();
+    assert_eq!(auto.linear, LinearSolver::Auto);
+    // 22² cells × 2 fields = 968 unknowns: below the threshold, direct.
+    let small: GrayScott = gray_scott(22, Boundary::Periodic);
+    let counts = counts_of(&small, 1.0, &auto);
+    assert_eq!(counts.krylov.solves, 0, "{counts:?}");
+    assert!(counts.lu + counts.cholesky > 0);
+    // 23² × 2 = 1 058: Krylov, block Jacobi, no factorization at all.
+    let big: GrayScott = gray_scott(23, Boundary::Periodic);
+    let counts = counts_of(&big, 1.0, &auto);
+    assert!(counts.krylov.solves >= 10, "{counts:?}");
+    assert_eq!(counts.krylov.preconditioners, counts.krylov.solves);
+    assert_eq!(
+        (counts.lu, counts.cholesky, counts.krylov.fallbacks),
+        (0, 0, 0)
+    );
+    // The same grid with cells 120× finer (h·D_u/Δx² = 125 at h = 1), linearized steps (solved
+    // to `Krylov::rtol`, 1e-8): block Jacobi needs more than 50 iterations, so Auto moves on
+    // for the rest of the run. Its moves (to Fourier, to multigrid, to the direct solver),
+    // then factorizations and fallbacks, on n² cells of side `dx` with `boundary`:
+    let linearized = NewtonOptions {
+        linearized: true,
+        ..auto
+    };
+    let moves = |n: usize, boundary: Boundary, dx: f64| {
+        let mut fine: GrayScott = gray_scott(n, boundary);
+        fine.dx = dx;
+        let c = counts_of(&fine, 1.0, &linearized);
+        let k = c.krylov;
+        (
+            k.switched_to_fourier,
+            k.switched_to_multigrid,
+            k.switched_to_direct,
+            c.lu + c.cholesky,
+            k.fallbacks,
+        )
+    };
+    // Periodic: to Fourier, which needs no more than 50 and never factorizes.
+    assert_eq!(moves(23, Boundary::Periodic, 4e-4), (1, 0, 0, 0, 0));
+    // Zero-flux edges (no Fourier) below `MULTIGRID_FROM`: Auto gives Krylov up and factorizes
+    // from then on.
+    let (fourier, multigrid, direct, factorizations, _) = moves(23, Boundary::Neumann, 4e-4);
+    assert_eq!((fourier, multigrid, direct), (0, 0, 1));
+    assert!(factorizations > 0);
+    // 64² cells (8 192 unknowns, `MULTIGRID_FROM`), zero-flux: on with multigrid, which needs
+    // no more than 50 iterations, and never factorizes.
+    assert_eq!(moves(64, Boundary::Neumann, 4e-4), (0, 1, 0, 0, 0));
+    // Cells 5× coarser than that (h·D_u/Δx² = 5): block Jacobi takes 26 iterations a solve on
+    // the periodic grid, 31 with zero-flux edges (10 steps, measured), more than
+    // `tries_fourier_after` but within `AUTO_DIRECT_ABOVE`. The periodic grid moves to Fourier
+    // (about 5 a solve then); the other keeps block Jacobi, which still pays there.
+    assert_eq!(moves(23, Boundary::Periodic, 2e-3), (1, 0, 0, 0, 0));
+    assert_eq!(moves(23, Boundary::Neumann, 2e-3), (0, 0, 0, 0, 0));
+    // A cloth of 20² particles (1 200 unknowns in the velocity form) stays direct.
+    let cloth = cloth(20, 1e3, 0.0, 0.1);
+    let counts = counts_of(&cloth, 1.0 / 60.0, &auto);
+    assert_eq!(counts.krylov.solves, 0, "{counts:?}");
+}
+
+#[test]
+fn a_krylov_solve_that_cannot_converge_falls_back_to_the_direct_solve() {
+    // One iteration to a residual of 1e-14: never enough, so every solve is redone directly,
+    // counted, and the run equals the direct run.
+    let mut model: GrayScott = gray_scott(24, Boundary::Periodic);
+    model.dx = 2.5 / 256.0;
+    let starved = with(LinearSolver::Krylov(Krylov {
+        rtol: 1e-14,
+        max_iters: 1,
+        ..Krylov::default()
+    }));
+    let counts = counts_of(&model, 10.0, &starved);
+    assert!(counts.krylov.fallbacks >= 10, "{counts:?}");
+    assert_eq!(counts.krylov.solves, 0, "{counts:?}");
+    assert_eq!(counts.lu + counts.cholesky, counts.krylov.fallbacks);
+    let (x, _) = stepped::<GrayScott, ImplicitEuler<_>>(&model, 10.0, 10, &starved);
+    let (y, _) =
+        stepped::<GrayScott, ImplicitEuler<_>>(&model, 10.0, 10, &with(LinearSolver::Direct));
+    assert_eq!(x, y);
+}
