@@ -67,11 +67,11 @@ impl LinearSolver {
     /// iteration costs ([`LinearSolver::fourier_iteration_cost`]: a Fourier solve of one
     /// iteration would have cost less), and again each time block Jacobi needs twice the
     /// iterations of the solve before the last trial Fourier lost. A trial's Fourier solve
-    /// decides: Fourier stays for the run unless its iterations, at that cost each, cost more
-    /// than the block-Jacobi solve before it. On the 2-D Brusselator this matches Fourier
-    /// chosen by hand; on Gray–Scott at Pearson's set-up Fourier is tried and given back. A model
-    /// whose diffusion grows in time is given it back twice and keeps it the third time
-    /// (`tests/integration/krylov.rs`, `auto_tries_fourier_again_as_the_problem_stiffens`).
+    /// decides: Fourier stays for the run unless its iterations, at that cost each, cost more than
+    /// the block-Jacobi solve before it. On the 2-D Brusselator this matches Fourier chosen by
+    /// hand; on Gray–Scott at Pearson's set-up Fourier is tried and given back. A model whose
+    /// diffusion grows in time is given it back twice and keeps it the third time
+    /// (`tests/integration/krylov/fourier.rs`, `auto_tries_fourier_again_as_the_problem_stiffens`).
     pub fn tries_fourier_after(n: usize) -> f64 {
         Self::fourier_iteration_cost(n)
     }
