@@ -1,4 +1,4 @@
-"""SciPy's BDF step counts on the stiff problems `tests/bdf.rs` compares odyn's `Bdf` with.
+"""SciPy's BDF step counts on the stiff problems `tests/integration/bdf.rs` compares `Bdf` with.
 
 odyn's `Bdf` implements the algorithm of `scipy.integrate.BDF` (Shampine & Reichelt's NDFs,
 orders 1-5): this prints, for the same problems, tolerances and analytic Jacobians, SciPy's

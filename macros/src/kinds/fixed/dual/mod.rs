@@ -2,7 +2,7 @@
 //! model's own code, for code the lowering cannot read (loops to a const parameter `N`, calls of
 //! functions generic over the number type) but which computes with numbers Rust can make dual.
 //!
-//! The force is emitted a second time over `odyn::Dual` (runtime `model/dual.rs`): `f64` in its
+//! The force is emitted a second time over `odyn::Dual` (runtime `model/dual/`): `f64` in its
 //! types reads `Dual`, a float literal, a parameter (`self.k`, `self.m[i]`, `self.g` as a
 //! vector) and an `as f64` cast are constants of it, and `as usize` of a dual number casts its
 //! value. Each Jacobian column j is one call of that copy at the state with component j seeded
