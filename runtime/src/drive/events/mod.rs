@@ -1,7 +1,6 @@
 //! Events: a condition g(t, state) that stops the run or changes the state where it crosses
 //! zero, located on the dense output; and time events that land the run exactly on given times.
 
-use crate::model::Jump;
 use crate::trajectory::EventRecord;
 use std::fmt;
 use std::sync::Arc;

@@ -2,8 +2,10 @@
 //! the order of the run's event list, and the check of the state a change leaves.
 
 use super::{Found, Latch, Outcome, Watch};
-use crate::drive::events::{Action, EventRecord, Jump, Trigger};
+use crate::drive::events::{Action, Trigger};
 use crate::drive::{DenseStep, ulp};
+use crate::model::Jump;
+use crate::trajectory::EventRecord;
 use crate::{Error, Result, State};
 
 impl<S: State> Watch<'_, S> {
