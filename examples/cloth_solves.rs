@@ -154,7 +154,7 @@ fn baraff_witkin() -> NewtonOptions {
 fn newton_converged() -> NewtonOptions {
     NewtonOptions {
         tol: 1e-10,
-        max_iters: 200,
+        max_iterations: 200,
         max_halvings: 0,
         particle_solve: ParticleSolve::Newton,
         ..NewtonOptions::default()

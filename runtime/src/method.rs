@@ -11,9 +11,6 @@
 //! on choosing a method runs it).
 
 use std::fmt;
-use std::str::FromStr;
-
-use crate::Error;
 
 /// Makes [`Method`], [`Method::ALL`] and [`Method::info`] from the rows of
 /// `odyn_methods::for_each_method!`, the one table of methods.
@@ -155,24 +152,6 @@ impl Method {
 impl fmt::Display for Method {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
-    }
-}
-
-impl FromStr for Method {
-    type Err = Error;
-
-    /// Parses the snake-case [`Method::name`].
-    fn from_str(s: &str) -> Result<Self, Error> {
-        Method::ALL
-            .into_iter()
-            .find(|m| m.name() == s)
-            .ok_or_else(|| {
-                let names: Vec<_> = Method::ALL.iter().map(|m| m.name()).collect();
-                Error::invalid(
-                    "method",
-                    format!("unknown method `{s}`; supported: {}", names.join(", ")),
-                )
-            })
     }
 }
 

@@ -163,6 +163,18 @@ pub fn number(x: f64) -> String {
     format!("{x:?}")
 }
 
+// The trajectory's own writer lives with the writers: `output` reads trajectories, and a
+// trajectory does not depend on how it is written.
+impl<S: State> Trajectory<S> {
+    /// Writes the samples as CSV (`method,step,t,<components>,energy`), atomically.
+    ///
+    /// Errors: [`Error::InvalidInput`] when `samples` is empty; [`Error::Io`] when the file
+    /// cannot be written.
+    pub fn write_csv(&self, path: impl AsRef<Path>) -> Result<()> {
+        write_csv(path, &[self])
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::with_temporary;
@@ -182,17 +194,5 @@ mod tests {
         assert!(result.is_err());
         let left: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
         assert!(left.is_empty(), "{left:?}");
-    }
-}
-
-// The trajectory's own writer lives with the writers: `output` reads trajectories, and a
-// trajectory does not depend on how it is written.
-impl<S: State> Trajectory<S> {
-    /// Writes the samples as CSV (`method,step,t,<components>,energy`), atomically.
-    ///
-    /// Errors: [`Error::InvalidInput`] when `samples` is empty; [`Error::Io`] when the file
-    /// cannot be written.
-    pub fn write_csv(&self, path: impl AsRef<Path>) -> Result<()> {
-        write_csv(path, &[self])
     }
 }

@@ -84,7 +84,7 @@ fn shards_that_do_not_add_up_are_typed_errors() {
     // Shard 1 of 3 of 10 members is members ⌊10/3⌋ … ⌊20/3⌋ − 1 = 3 … 5.
     let missing = Members::merge(vec![part(0), part(2)]).unwrap_err();
     assert!(
-        matches!(&missing, Error::BadShards { members: 10, count: 3, missing, twice }
+        matches!(&missing, Error::BadShards { members: 10, count: 3, missing, twice, .. }
             if missing.as_slice() == std::slice::from_ref(&(1..2)) && twice.is_empty())
             && missing
                 .to_string()

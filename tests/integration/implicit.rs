@@ -194,7 +194,7 @@ fn newton_failure_is_a_typed_error() {
     };
     // One iteration can never confirm convergence; without halvings the first step fails.
     let strict = NewtonOptions {
-        max_iters: 1,
+        max_iterations: 1,
         max_halvings: 0,
         ..NewtonOptions::default()
     };
@@ -216,7 +216,7 @@ fn newton_failure_is_a_typed_error() {
             assert!(
                 error
                     .to_string()
-                    .contains("raise `NewtonOptions::max_iters`"),
+                    .contains("raise `NewtonOptions::max_iterations`"),
                 "{error}"
             );
         }
@@ -224,7 +224,7 @@ fn newton_failure_is_a_typed_error() {
     }
     // With halvings it retries down to dt/2³ and reports the failing sub-step's end.
     let halving = NewtonOptions {
-        max_iters: 1,
+        max_iterations: 1,
         max_halvings: 3,
         ..NewtonOptions::default()
     };

@@ -25,7 +25,7 @@ fn quasi_newton(max_iterations: u32, tolerance: f64) -> NewtonOptions {
 fn newton() -> NewtonOptions {
     NewtonOptions {
         tol: 1e-12,
-        max_iters: 100,
+        max_iterations: 100,
         max_halvings: 0,
         particle_solve: ParticleSolve::Newton,
         ..NewtonOptions::default()

@@ -77,6 +77,7 @@ impl Members {
         let missing = missing_ranges(&seen, count);
         if !missing.is_empty() || !twice.is_empty() {
             return Err(Error::BadShards {
+                message: bad_shards_text(members, count, &missing, &twice),
                 members,
                 count,
                 missing,
@@ -146,12 +147,7 @@ fn missing_ranges(seen: &BTreeMap<u64, u32>, count: u64) -> Vec<Range<u64>> {
 
 /// The message of [`Error::BadShards`]: the shards missing (with their members) and given more
 /// than once, the first few of each by name.
-pub(crate) fn bad_shards_text(
-    members: u64,
-    count: u64,
-    missing: &[Range<u64>],
-    twice: &[u64],
-) -> String {
+fn bad_shards_text(members: u64, count: u64, missing: &[Range<u64>], twice: &[u64]) -> String {
     const SHOWN: usize = 5;
     let shard = |index| Shard { index, count };
     let members_of =

@@ -30,8 +30,6 @@ pub use members::Members;
 pub use shard::{MemberRng, Shard, member_rng};
 pub use statistics::Statistics;
 
-pub(crate) use merge::bad_shards_text;
-
 use rayon::prelude::*;
 
 use crate::error::{bytes_text, count_text};

@@ -57,7 +57,7 @@ pub(super) fn step_advice(
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum NewtonFailure {
-    /// It ran out of iterations (`NewtonOptions::max_iters`) while still converging.
+    /// It ran out of iterations (`NewtonOptions::max_iterations`) while still converging.
     Iterations,
     /// Its updates stopped shrinking: the step is too large for the nonlinearity there.
     Diverging,
@@ -73,7 +73,7 @@ impl NewtonFailure {
         match self {
             NewtonFailure::Iterations => format!(
                 "it was still converging when its {iters} iterations ran out; raise \
-                 `NewtonOptions::max_iters`"
+                 `NewtonOptions::max_iterations`"
             ),
             NewtonFailure::Diverging | NewtonFailure::Singular => format!(
                 "{}; reduce dt, or raise `NewtonOptions::max_halvings` (now {halvings}) so the \

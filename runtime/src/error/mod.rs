@@ -276,7 +276,7 @@ pub enum Error {
     /// ensemble exactly once: some missing (their tasks failed, or their files were not
     /// gathered), or given more than once. Nothing was merged: what is there would be a
     /// silently smaller ensemble.
-    #[error("{}", crate::ensemble::bad_shards_text(*members, *count, missing, twice))]
+    #[error("{message}")]
     BadShards {
         /// Members in the whole ensemble.
         members: u64,
@@ -286,6 +286,8 @@ pub enum Error {
         missing: Vec<std::ops::Range<u64>>,
         /// The k of each shard given more than once, ascending.
         twice: Vec<u64>,
+        /// What is wrong, the first few shards by name with their members, and what to run.
+        message: String,
     },
     /// A step of one of the solvers beside the ODE runner ([`crate::xpbd::Xpbd`],
     /// [`crate::fluids::StableFluids`]) left its state NaN or infinite: the step was too large
@@ -364,5 +366,25 @@ impl Error {
                 bytes_text(bytes)
             ),
         )
+    }
+}
+
+// Parsing a method name fails with an `Error`, so the parser lives with the errors: the table of
+// methods (`crate::method`) stays below them.
+impl std::str::FromStr for Method {
+    type Err = Error;
+
+    /// Parses the snake-case [`Method::name`].
+    fn from_str(s: &str) -> Result<Self, Error> {
+        Method::ALL
+            .into_iter()
+            .find(|m| m.name() == s)
+            .ok_or_else(|| {
+                let names: Vec<_> = Method::ALL.iter().map(|m| m.name()).collect();
+                Error::invalid(
+                    "method",
+                    format!("unknown method `{s}`; supported: {}", names.join(", ")),
+                )
+            })
     }
 }

@@ -10,7 +10,7 @@ pub struct NewtonOptions {
     /// Mixed relative/absolute tolerance on the Newton update (default 1e-10).
     pub tol: f64,
     /// Iterations allowed per solve (default 20).
-    pub max_iters: u32,
+    pub max_iterations: u32,
     /// When Newton fails, the step is retried as two half steps, and a failing half again, up to
     /// this depth (default 20, so down to dt/1 048 576; at most 52); the recorded grid is
     /// unchanged. Halving costs nothing until a step fails; Robertson's kinetics at dt = 1e3 need
@@ -133,9 +133,9 @@ impl NewtonOptions {
                 format!("must be finite and positive, got {:?}", self.tol),
             ));
         }
-        if self.max_iters == 0 {
+        if self.max_iterations == 0 {
             return Err(Error::invalid(
-                "NewtonOptions::max_iters",
+                "NewtonOptions::max_iterations",
                 "must be at least 1",
             ));
         }
@@ -181,7 +181,7 @@ impl Default for NewtonOptions {
     fn default() -> Self {
         NewtonOptions {
             tol: 1e-10,
-            max_iters: 20,
+            max_iterations: 20,
             max_halvings: 20,
             linearized: false,
             definite: false,

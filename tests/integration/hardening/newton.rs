@@ -34,10 +34,10 @@ fn newton_options_are_validated() {
         ),
         (
             NewtonOptions {
-                max_iters: 0,
+                max_iterations: 0,
                 ..NewtonOptions::default()
             },
-            "NewtonOptions::max_iters",
+            "NewtonOptions::max_iterations",
         ),
         (
             NewtonOptions {
@@ -80,7 +80,7 @@ fn newton_on_nan_input_fails_fast_and_says_why() {
 
 /// Robertson at dt = 1e3: the default halving depth carries implicit Euler through; when the
 /// halvings are cut to 4 it fails, and the advice names `max_halvings`, which is what helps
-/// (raising `max_iters` does not).
+/// (raising `max_iterations` does not).
 #[test]
 fn newton_advice_names_the_option_that_helps() {
     let model = common::Robertson::classic();
@@ -99,7 +99,7 @@ fn newton_advice_names_the_option_that_helps() {
         "{error}"
     );
     let more_iterations = NewtonOptions {
-        max_iters: 100,
+        max_iterations: 100,
         ..shallow
     };
     assert!(

@@ -78,7 +78,7 @@ fn a_krylov_solve_that_cannot_converge_falls_back_to_the_direct_solve() {
     model.dx = 2.5 / 256.0;
     let starved = with(LinearSolver::Krylov(Krylov {
         rtol: 1e-14,
-        max_iters: 1,
+        max_iterations: 1,
         ..Krylov::default()
     }));
     let counts = counts_of(&model, 10.0, &starved);

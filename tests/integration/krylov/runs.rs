@@ -117,10 +117,10 @@ fn bad_krylov_options_are_typed_errors() {
         ),
         (
             Krylov {
-                max_iters: 0,
+                max_iterations: 0,
                 ..Krylov::default()
             },
-            "Krylov::max_iters",
+            "Krylov::max_iterations",
         ),
         (
             Krylov {

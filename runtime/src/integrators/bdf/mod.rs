@@ -84,7 +84,7 @@ use crate::{Error, Jacobian, Method, NewtonMatrix, NewtonOptions, Result, State,
 /// **Fixed-step runs** have no error estimate to choose the order by: the order rises by one
 /// after every k + 1 steps, to 2 (the A-stable orders) unless [`Bdf::set_max_order`] says
 /// otherwise, and Newton follows [`NewtonOptions`] (`tol` on ‖Δ‖ weighted by 1 + |y|,
-/// `max_iters`); a failing solve is retried as two half steps by the driver. Steps that differ
+/// `max_iterations`); a failing solve is retried as two half steps by the driver. Steps that differ
 /// from dt only by the rounding of t₀ + n·dt count as equal.
 ///
 /// - **Order** 1–5 (2 at a fixed step, so [`Method::order`] is 2).

@@ -15,14 +15,14 @@ use crate::{
 pub(super) enum Convergence {
     /// SciPy's test: rate/(1 − rate)·‖Δ‖ < `tol` (so two iterations at least, unless Δ = 0);
     /// abandoned when the rate reaches 1 or cannot reach `tol` in the iterations left.
-    SciPy { tol: f64, max_iters: usize },
+    SciPy { tol: f64, max_iterations: usize },
     /// CVODE's test (`cvNlsConvTest` in `cvode_nls.c`): ‖Δ‖·min(1, R) ≤ `tol`, R = 1 at the
     /// first iteration and max(0.3·R, rate) after, so one iteration suffices when its update
     /// is itself below `tol`; abandoned when ‖Δ‖ exceeds twice the one before or after
-    /// `max_iters`. (CVODE carries R from step to step; here it starts at 1 in each step: with
+    /// `max_iterations`. (CVODE carries R from step to step; here it starts at 1 in each step: with
     /// this test forced on Robertson, HIRES and van der Pol at rtol 1e-6, 20–40 % fewer steps
     /// than carrying R, which let a first iteration pass on an old, small rate.)
-    Cvode { tol: f64, max_iters: usize },
+    Cvode { tol: f64, max_iterations: usize },
 }
 
 impl<M: Jacobian> Bdf<M> {
@@ -58,13 +58,13 @@ impl<M: Jacobian> Bdf<M> {
                     // The error estimate is ‖ERROR_CONST[k]·d‖: d's own error may use a tenth.
                     Convergence::Cvode {
                         tol: CVODE_NLSCOEF / ERROR_CONST[k],
-                        max_iters: CVODE_MAXCOR,
+                        max_iterations: CVODE_MAXCOR,
                     }
                 } else {
                     let rtol = tolerances.rtol.max(100.0 * f64::EPSILON);
                     Convergence::SciPy {
                         tol: (10.0 * f64::EPSILON / rtol).max(0.03f64.min(rtol.sqrt())),
-                        max_iters: NEWTON_MAXITER,
+                        max_iterations: NEWTON_MAXITER,
                     }
                 }
             }
@@ -74,7 +74,7 @@ impl<M: Jacobian> Bdf<M> {
                 }
                 Convergence::SciPy {
                     tol: self.newton.tol,
-                    max_iters: self.newton.max_iters as usize,
+                    max_iterations: self.newton.max_iterations as usize,
                 }
             }
         }
@@ -96,9 +96,9 @@ impl<M: Jacobian> Bdf<M> {
     ) -> Result<usize> {
         y.clone_from(&self.predict);
         self.correction.as_mut_slice().fill(0.0);
-        let max_iters = match test {
-            Convergence::SciPy { max_iters, .. } | Convergence::Cvode { max_iters, .. } => {
-                max_iters
+        let max_iterations = match test {
+            Convergence::SciPy { max_iterations, .. } | Convergence::Cvode { max_iterations, .. } => {
+                max_iterations
             }
         };
         let mut previous: Option<f64> = None;
@@ -113,7 +113,7 @@ impl<M: Jacobian> Bdf<M> {
             cause,
             halvings: 0,
         };
-        for iter in 0..max_iters {
+        for iter in 0..max_iterations {
             model.derivative(t_new, y, &mut self.update);
             stats.evaluations += 1;
             // The residual c·f − ψ − d, solved in place into the update Δ.
@@ -178,7 +178,7 @@ impl<M: Jacobian> Bdf<M> {
                     Some(NewtonFailure::Diverging)
                 }
                 (Convergence::SciPy { tol, .. }, Some(rate))
-                    if rate.powi((max_iters - iter) as i32) / (1.0 - rate) * norm > tol =>
+                    if rate.powi((max_iterations - iter) as i32) / (1.0 - rate) * norm > tol =>
                 {
                     Some(NewtonFailure::Iterations)
                 }
@@ -216,6 +216,6 @@ impl<M: Jacobian> Bdf<M> {
             }
             previous = Some(norm);
         }
-        Err(fail(max_iters, residual, NewtonFailure::Iterations))
+        Err(fail(max_iterations, residual, NewtonFailure::Iterations))
     }
 }

@@ -167,7 +167,7 @@ impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
             cause,
             halvings: 0,
         };
-        for iter in 1..=self.newton.max_iters {
+        for iter in 1..=self.newton.max_iterations {
             model.derivative(t1, y, &mut self.force);
             s.stats.evaluations += 1;
             let rhs = self.update.as_mut_slice();
@@ -245,7 +245,7 @@ impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
         }
         let residual = self.residual(model, t1, h, s.y, y);
         Err(fail(
-            self.newton.max_iters,
+            self.newton.max_iterations,
             residual,
             NewtonFailure::Iterations,
         ))

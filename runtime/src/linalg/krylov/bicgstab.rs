@@ -52,7 +52,7 @@ impl Vectors {
 /// ‖b − A·x‖₂ < `rtol`·‖b‖₂, as measured by the recursively updated residual; returns the
 /// iterations taken, each a half step counting as one when it ends the solve (as faer counts).
 ///
-/// Errors: [`NoConvergence`] after `max_iters` iterations, or on a breakdown (a zero or
+/// Errors: [`NoConvergence`] after `max_iterations` iterations, or on a breakdown (a zero or
 /// non-finite ρ, r̂₀·v or ω).
 #[allow(clippy::too_many_arguments)] // reason: the operator, its preconditioner, the system and the stopping rule, each needed
 pub(super) fn bicgstab(
@@ -62,7 +62,7 @@ pub(super) fn bicgstab(
     x: &mut [f64],
     zero_start: bool,
     rtol: f64,
-    max_iters: usize,
+    max_iterations: usize,
     work: &mut Vectors,
     stack: &mut MemStack,
 ) -> Result<usize, NoConvergence> {
@@ -99,7 +99,7 @@ pub(super) fn bicgstab(
     shadow.copy_from_slice(r);
     p.copy_from_slice(r);
     let mut rho = rr;
-    for iter in 1..=max_iters {
+    for iter in 1..=max_iterations {
         k.apply_column(p_hat, p, stack);
         let (shadow_v, _) = a.product(p_hat, v, shadow);
         let alpha = rho / shadow_v;

@@ -156,7 +156,7 @@ pub struct Krylov {
     /// Iterations allowed per solve (default 500). A solve that has not converged by then —
     /// or breaks down — is redone by the direct solver and counted
     /// ([`KrylovCounts::fallbacks`]): never a wrong answer.
-    pub max_iters: usize,
+    pub max_iterations: usize,
     /// What approximates the matrix's inverse (default [`Preconditioner::BlockJacobi`]).
     pub preconditioner: Preconditioner,
     /// Start each solve from the previous solution, scaled to the best multiple for the new
@@ -172,7 +172,7 @@ impl Default for Krylov {
             rtol: 1e-8,
             newton_rtol: 1e-3,
             bdf_rtol: 0.05,
-            max_iters: 500,
+            max_iterations: 500,
             preconditioner: Preconditioner::BlockJacobi,
             warm_start: true,
         }
@@ -212,9 +212,9 @@ impl Krylov {
                 ));
             }
         }
-        if self.max_iters == 0 {
+        if self.max_iterations == 0 {
             return Err(crate::Error::invalid(
-                "Krylov::max_iters",
+                "Krylov::max_iterations",
                 "must be at least 1",
             ));
         }
@@ -294,7 +294,7 @@ pub struct KrylovCounts {
     /// Block-Jacobi, ILU(0) and multigrid preconditioners built (a reused factorization counts
     /// as a Cholesky or LU instead).
     pub preconditioners: u64,
-    /// Solves redone by the direct solver (no convergence within `max_iters`, or a
+    /// Solves redone by the direct solver (no convergence within `max_iterations`, or a
     /// breakdown).
     pub fallbacks: u64,
     /// 1 when [`LinearSolver::Auto`] moved from block Jacobi to Fourier for this run (0 again

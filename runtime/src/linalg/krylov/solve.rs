@@ -55,7 +55,7 @@ pub(crate) enum FourierTrial {
     Kept,
 }
 
-/// A Krylov solve that did not converge within `max_iters`, broke down, or ended on a
+/// A Krylov solve that did not converge within `max_iterations`, broke down, or ended on a
 /// non-finite iterate: the caller solves directly.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct NoConvergence;
@@ -97,7 +97,7 @@ impl KrylovSolver {
         let Krylov {
             rtol,
             newton_rtol,
-            max_iters,
+            max_iterations,
             warm_start,
             ..
         } = self.options;
@@ -122,7 +122,7 @@ impl KrylovSolver {
             let params = CgParams {
                 initial_guess,
                 rel_tolerance: rtol,
-                max_iters,
+                max_iters: max_iterations,
                 ..CgParams::default()
             };
             let out = MatMut::from_column_major_slice_mut(x, n, 1);
@@ -144,7 +144,7 @@ impl KrylovSolver {
                 x,
                 scale == 0.0,
                 rtol,
-                max_iters,
+                max_iterations,
                 &mut self.vectors,
                 stack,
             ) {
