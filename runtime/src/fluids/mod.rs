@@ -11,6 +11,6 @@
 //!
 //! [`StableFluids`] is that solver on a staggered (MAC) grid.
 
-mod stable;
+mod stable_fluids;
 
-pub use stable::{FluidOptions, StableFluids};
+pub use stable_fluids::{FluidOptions, StableFluids};
