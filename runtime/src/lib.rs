@@ -82,6 +82,7 @@ pub mod __private {
     pub mod grid {
         pub use crate::grid::glue::*;
     }
+    pub use crate::model::Sealed;
     pub use crate::model::differences::central_differences;
     pub use crate::model::dual::{DualCast, Seeded, Tangent, ToDual};
 

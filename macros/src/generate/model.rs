@@ -112,6 +112,8 @@ impl<'a> ModelImpl<'a> {
                 #as_jacobian
                 #check
             }
+            #[automatically_derived]
+            impl #impl_generics ::odyn::__private::Sealed for #self_ty #where_clause {}
             #evaluated
         }
     }

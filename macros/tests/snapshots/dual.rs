@@ -68,6 +68,8 @@ impl ::odyn::Model for Tabled {
         ::core::option::Option::Some(self)
     }
 }
+#[automatically_derived]
+impl ::odyn::__private::Sealed for Tabled {}
 const _: () = {
     let _ = <Tabled as ::odyn::Model>::DEFAULT_DT;
     let _ = <Tabled as ::odyn::Model>::DEFAULT_RTOL;

@@ -60,6 +60,8 @@ impl ::odyn::Model for Duffing {
         ::core::option::Option::Some(self)
     }
 }
+#[automatically_derived]
+impl ::odyn::__private::Sealed for Duffing {}
 const _: () = {
     let _ = <Duffing as ::odyn::Model>::DEFAULT_DT;
     let _ = <Duffing as ::odyn::Model>::DEFAULT_RTOL;

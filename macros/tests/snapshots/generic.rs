@@ -64,6 +64,8 @@ impl<const N: usize> ::odyn::Model for Chain<N> {
     }
 }
 #[automatically_derived]
+impl<const N: usize> ::odyn::__private::Sealed for Chain<N> {}
+#[automatically_derived]
 impl<const N: usize> ::odyn::SecondOrder for Chain<N> {
     const READS_VELOCITY: bool = false;
     #[inline(always)]

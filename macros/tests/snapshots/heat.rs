@@ -148,6 +148,8 @@ impl ::odyn::Model for Heat {
         ::core::result::Result::Ok(())
     }
 }
+#[automatically_derived]
+impl ::odyn::__private::Sealed for Heat {}
 const _: () = {
     let _ = <Heat as ::odyn::Model>::DEFAULT_DT;
     let _ = <Heat as ::odyn::Model>::DEFAULT_RTOL;

@@ -60,6 +60,8 @@ impl ::odyn::Model for Kepler {
         ::core::option::Option::Some(self)
     }
 }
+#[automatically_derived]
+impl ::odyn::__private::Sealed for Kepler {}
 const _: () = {
     let _ = <Kepler as ::odyn::Model>::DEFAULT_DT;
     let _ = <Kepler as ::odyn::Model>::DEFAULT_RTOL;

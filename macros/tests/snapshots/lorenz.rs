@@ -67,6 +67,8 @@ impl ::odyn::Model for Lorenz {
         ::core::option::Option::Some(self)
     }
 }
+#[automatically_derived]
+impl ::odyn::__private::Sealed for Lorenz {}
 const _: () = {
     let _ = <Lorenz as ::odyn::Model>::DEFAULT_DT;
     let _ = <Lorenz as ::odyn::Model>::DEFAULT_RTOL;

@@ -346,6 +346,8 @@ impl ::odyn::Model for Pleiades {
         ::core::option::Option::None
     }
 }
+#[automatically_derived]
+impl ::odyn::__private::Sealed for Pleiades {}
 const _: () = {
     let _ = <Pleiades as ::odyn::Model>::DEFAULT_DT;
     let _ = <Pleiades as ::odyn::Model>::DEFAULT_RTOL;

@@ -75,6 +75,8 @@ impl ::odyn::Model for Spring {
         ::core::option::Option::Some(self)
     }
 }
+#[automatically_derived]
+impl ::odyn::__private::Sealed for Spring {}
 const _: () = {
     let _ = <Spring as ::odyn::Model>::DEFAULT_DT;
     let _ = <Spring as ::odyn::Model>::DEFAULT_RTOL;

@@ -49,9 +49,17 @@ pub trait State: Clone + PartialEq + Debug {
     }
 }
 
+/// Implemented by the code `#[system]` generates (and the runtime's own wrappers) alone, so
+/// [`Model`] — and every trait built on it, [`Parameters`], `ParticleSystem`, `GridSystem` — is
+/// sealed: their hidden items are for the generated code, not extension points. Reached as
+/// `odyn::__private::Sealed`; not a stable API.
+#[doc(hidden)]
+pub trait Sealed {}
+
 /// A system of ordinary differential equations, y′ = f(t, y), with optional energy.
 ///
-/// Implemented by `#[system]`; the runtime never asks a user to write it by hand. What a model
+/// Implemented by `#[system]` alone (the trait is sealed); the runtime never asks a user to write
+/// it by hand. What a model
 /// can do beyond f(t, y) shows as two capabilities, each an associated type that is `Self` when
 /// the model has it and [`Unavailable`] when it does not: [`SecondOrder`] (a position/velocity
 /// split, needed by the symplectic methods) and [`Jacobian`] (∂f/∂y, needed by implicit Euler).
@@ -61,7 +69,7 @@ pub trait State: Clone + PartialEq + Debug {
             defines `fn acceleration` or `fn derivative` (or a particle or field model's \
             kernels)"
 )]
-pub trait Model {
+pub trait Model: Sealed {
     /// The typed state (`<Model>State`).
     type State: State;
     /// This model as a [`SecondOrder`] one.

@@ -14,6 +14,8 @@ pub enum Unavailable<M> {
     Never(Infallible, PhantomData<M>),
 }
 
+impl<M: Model> super::Sealed for Unavailable<M> {}
+
 impl<M: Model> Model for Unavailable<M> {
     type State = M::State;
     type SecondOrder = Self;

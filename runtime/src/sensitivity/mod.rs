@@ -157,6 +157,13 @@ where
     }
 }
 
+impl<M> crate::model::Sealed for Sensitive<'_, M>
+where
+    M: Parameters + Jacobian,
+    M::Matrix: DenseMatrix,
+{
+}
+
 impl<M> Model for Sensitive<'_, M>
 where
     M: Parameters + Jacobian,
