@@ -10,7 +10,7 @@ use crate::model::{split, split_mut};
 use crate::{Method, SecondOrder, State};
 
 /// The weights γ₁ … γₛ of a symmetric composition (γᵢ = γₛ₊₁₋ᵢ, Σγᵢ = 1).
-pub trait Weights: Clone + Debug {
+pub trait Weights: Clone + Debug + super::Sealed {
     /// The method the composition implements.
     const METHOD: Method;
     /// γ₁ … γₛ, in the order the substeps are taken.
@@ -37,6 +37,8 @@ pub type Composition<S, W> = Verlet<S, Composed<W>>;
 /// start-up evaluation, with s leapfrog substeps a step.
 #[derive(Clone, Debug)]
 pub struct Composed<W>(PhantomData<W>);
+
+impl<W: Weights> crate::integrators::sealed::Sealed for Composed<W> {}
 
 impl<W: Weights> VerletForm for Composed<W> {
     const METHOD: Method = W::METHOD;

@@ -56,6 +56,8 @@ fn combined(h: f64, err5: f64, err3: f64, n: usize) -> f64 {
 #[derive(Clone, Copy, Debug)]
 pub struct Dop853Tableau;
 
+impl crate::integrators::sealed::Sealed for Dop853Tableau {}
+
 impl Tableau for Dop853Tableau {
     const METHOD: Method = Method::Dop853;
     const CONTROLLER: Controller = Controller::dop853();

@@ -26,6 +26,8 @@ pub struct ExplicitEuler<S> {
     dydt: S,
 }
 
+impl<S> crate::integrators::sealed::Sealed for ExplicitEuler<S> {}
+
 impl<M: Model> Integrator<M> for ExplicitEuler<M::State> {
     const METHOD: Method = Method::ExplicitEuler;
 

@@ -15,7 +15,7 @@ use crate::{Controller, Method, Model, NewtonOptions, Result, State, Stats, Tole
 /// kᵢ = f(tₙ + cᵢh, yₙ + h·Σⱼ₍ⱼ₍ᵢ₎ aᵢⱼkⱼ) for i = 1 … s, yₙ₊₁ = yₙ + h·Σᵢ bᵢkᵢ,
 ///
 /// and kₛ₊₁ = f(tₙ₊₁, yₙ₊₁) is the next step's k₁ (first same as last).
-pub trait Tableau: Clone + Debug {
+pub trait Tableau: Clone + Debug + super::Sealed {
     /// The method the tableau implements.
     const METHOD: Method;
     /// The step-size controller of adaptive runs.
@@ -88,6 +88,8 @@ impl<S: State, T: Tableau, const K: usize> ExplicitRk<S, T, K> {
         model.derivative(t + T::c(I) * h, &self.probe, &mut rest[0]);
     }
 }
+
+impl<S, T: Tableau, const K: usize> crate::integrators::sealed::Sealed for ExplicitRk<S, T, K> {}
 
 impl<M: Model, T: Tableau, const K: usize> Integrator<M> for ExplicitRk<M::State, T, K> {
     const METHOD: Method = T::METHOD;

@@ -42,6 +42,8 @@ const G3: f64 = -0.706_246_172_557_639_359_81;
 const G4: f64 = 0.082_213_596_293_550_800_23;
 const G5: f64 = 0.798_543_990_934_829_963_40;
 
+impl crate::integrators::sealed::Sealed for KahanLi6Weights {}
+
 impl Weights for KahanLi6Weights {
     const METHOD: Method = Method::KahanLi6;
     const WEIGHTS: &'static [f64] = &[G1, G2, G3, G4, G5, G4, G3, G2, G1];

@@ -24,6 +24,8 @@ pub type Leapfrog<S> = Verlet<S, LeapfrogForm>;
 #[derive(Clone, Copy, Debug)]
 pub struct LeapfrogForm;
 
+impl crate::integrators::sealed::Sealed for LeapfrogForm {}
+
 impl VerletForm for LeapfrogForm {
     const METHOD: Method = Method::Leapfrog;
 

@@ -135,8 +135,18 @@ pub(crate) fn polynomial_from_tableau<const S: usize>(a: &[[f64; S]; S], b: &[f6
 
 use crate::{Controller, Method, Model, NewtonOptions, Result, State, Stats, Tolerances};
 
-/// One integration method, specialised to a model.
-pub trait Integrator<M: Model>: Sized {
+mod sealed {
+    /// Implemented by odyn's own methods and their coefficient types alone, so
+    /// [`Integrator`](super::Integrator), [`Tableau`](super::Tableau),
+    /// [`RosenbrockTableau`](super::RosenbrockTableau), [`VerletForm`](super::VerletForm) and
+    /// [`Weights`](super::Weights) are sealed: each names its [`Method`](crate::Method), a
+    /// variant of the closed table of methods, so a type from outside could not run.
+    pub trait Sealed {}
+}
+use sealed::Sealed;
+
+/// One integration method, specialised to a model. Sealed: the methods are the table's.
+pub trait Integrator<M: Model>: Sized + Sealed {
     /// The [`Method`] this integrator implements.
     const METHOD: Method;
     /// Degree of the polynomial [`Integrator::dense`] fills (3 for the cubic Hermite interpolant

@@ -39,6 +39,8 @@ pub struct PositionVerlet<S> {
     h: f64,
 }
 
+impl<S> crate::integrators::sealed::Sealed for PositionVerlet<S> {}
+
 impl<M: SecondOrder> Integrator<M> for PositionVerlet<M::State> {
     const METHOD: Method = Method::PositionVerlet;
 

@@ -26,6 +26,8 @@ pub struct Rk4<S> {
     probe: S,
 }
 
+impl<S> crate::integrators::sealed::Sealed for Rk4<S> {}
+
 impl<M: Model> Integrator<M> for Rk4<M::State> {
     const METHOD: Method = Method::Rk4;
 

@@ -49,6 +49,8 @@ pub type Rodas5P<M> = Rosenbrock<M, Rodas5PTableau, { STAGES + 2 }>;
 #[derive(Clone, Copy, Debug)]
 pub struct Rodas5PTableau;
 
+impl crate::integrators::sealed::Sealed for Rodas5PTableau {}
+
 impl RosenbrockTableau for Rodas5PTableau {
     const METHOD: Method = Method::Rodas5P;
     const CONTROLLER: Controller = Controller::dopri5(4);

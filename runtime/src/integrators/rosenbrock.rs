@@ -12,7 +12,7 @@ use super::{DenseStep, Integrator, Step, copies};
 use crate::{Controller, Jacobian, Method, NewtonOptions, Result, State, Stats};
 
 /// The stages of one Rosenbrock method: its formulas, given W factorized and f(tₙ, yₙ).
-pub trait RosenbrockTableau: Clone + Debug {
+pub trait RosenbrockTableau: Clone + Debug + super::Sealed {
     /// The method.
     const METHOD: Method;
     /// The step-size controller of adaptive runs.
@@ -58,6 +58,11 @@ pub struct Rosenbrock<M: Jacobian, T, const K: usize> {
     fsal: bool,
     work: [M::State; K],
     tableau: PhantomData<T>,
+}
+
+impl<M: Jacobian, T: RosenbrockTableau, const K: usize> crate::integrators::sealed::Sealed
+    for Rosenbrock<M, T, K>
+{
 }
 
 impl<M: Jacobian, T: RosenbrockTableau, const K: usize> Integrator<M> for Rosenbrock<M, T, K> {

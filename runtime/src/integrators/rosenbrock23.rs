@@ -49,6 +49,8 @@ pub type Rosenbrock23<M> = Rosenbrock<M, Rosenbrock23Tableau, 6>;
 #[derive(Clone, Copy, Debug)]
 pub struct Rosenbrock23Tableau;
 
+impl crate::integrators::sealed::Sealed for Rosenbrock23Tableau {}
+
 impl RosenbrockTableau for Rosenbrock23Tableau {
     const METHOD: Method = Method::Rosenbrock23;
     const CONTROLLER: Controller = Controller::rosenbrock23();

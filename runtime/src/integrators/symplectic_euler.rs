@@ -21,6 +21,8 @@ pub struct SymplecticEuler<S> {
     accel: S,
 }
 
+impl<S> crate::integrators::sealed::Sealed for SymplecticEuler<S> {}
+
 impl<M: SecondOrder> Integrator<M> for SymplecticEuler<M::State> {
     const METHOD: Method = Method::SymplecticEuler;
 

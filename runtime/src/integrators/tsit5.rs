@@ -36,6 +36,8 @@ pub type Tsit5<S> = ExplicitRk<S, Tsit5Tableau, STAGES>;
 #[derive(Clone, Copy, Debug)]
 pub struct Tsit5Tableau;
 
+impl crate::integrators::sealed::Sealed for Tsit5Tableau {}
+
 impl Tableau for Tsit5Tableau {
     const METHOD: Method = Method::Tsit5;
     const CONTROLLER: Controller = Controller::dopri5(4);

@@ -26,6 +26,8 @@ pub type VelocityVerlet<S> = Verlet<S, VelocityVerletForm>;
 #[derive(Clone, Copy, Debug)]
 pub struct VelocityVerletForm;
 
+impl crate::integrators::sealed::Sealed for VelocityVerletForm {}
+
 impl VerletForm for VelocityVerletForm {
     const METHOD: Method = Method::VelocityVerlet;
 

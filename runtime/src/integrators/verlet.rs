@@ -10,7 +10,7 @@ use crate::{Method, NewtonOptions, Result, SecondOrder, State, Stats};
 
 /// One form of the Verlet step: how a step goes from (xₙ, vₙ) and aₙ to (xₙ₊₁, vₙ₊₁), with one
 /// evaluation of aₙ₊₁.
-pub trait VerletForm: Clone + Debug {
+pub trait VerletForm: Clone + Debug + super::Sealed {
     /// The method the form implements.
     const METHOD: Method;
 
@@ -40,6 +40,8 @@ pub struct Verlet<S, F> {
     probe: S,
     form: PhantomData<F>,
 }
+
+impl<S, F: VerletForm> crate::integrators::sealed::Sealed for Verlet<S, F> {}
 
 impl<M: SecondOrder, F: VerletForm> Integrator<M> for Verlet<M::State, F> {
     const METHOD: Method = F::METHOD;

@@ -29,6 +29,8 @@ pub struct Yoshida4Weights;
 /// 2^⅓ (f64 has no const cube root; 1.2599210498948731647672106 to 25 digits).
 const CBRT_2: f64 = 1.259_921_049_894_873_2;
 
+impl crate::integrators::sealed::Sealed for Yoshida4Weights {}
+
 impl Weights for Yoshida4Weights {
     const METHOD: Method = Method::Yoshida4;
     const WEIGHTS: &'static [f64] = &[

@@ -35,6 +35,8 @@ const G1: f64 = 0.784_513_610_477_557_263_82;
 const G2: f64 = 0.235_573_213_359_358_133_68;
 const G3: f64 = -1.177_679_984_178_871_006_95;
 
+impl crate::integrators::sealed::Sealed for Yoshida6Weights {}
+
 impl Weights for Yoshida6Weights {
     const METHOD: Method = Method::Yoshida6;
     const WEIGHTS: &'static [f64] = &[G1, G2, G3, 1.0 - 2.0 * (G1 + G2 + G3), G3, G2, G1];

@@ -142,6 +142,8 @@ pub struct Bdf<M: Jacobian> {
     mass: Option<crate::Mass>,
 }
 
+impl<M: Jacobian> crate::integrators::sealed::Sealed for Bdf<M> {}
+
 impl<M: Jacobian> Integrator<M> for Bdf<M> {
     const METHOD: Method = Method::Bdf;
     const DENSE_DEGREE: usize = MAX_ORDER;

@@ -60,6 +60,8 @@ pub struct ImplicitEuler<M: Jacobian> {
     mass: Option<Mass>,
 }
 
+impl<M: Jacobian> crate::integrators::sealed::Sealed for ImplicitEuler<M> {}
+
 impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
     const METHOD: Method = Method::ImplicitEuler;
 
