@@ -1,5 +1,6 @@
 //! Stepping a particle model allocates nothing after the first step: every integrator, and
-//! implicit Euler's sparse Newton solve (Cholesky), counted by a global allocator. One test in its
+//! implicit Euler's sparse Newton solve (Cholesky) and its quasi-Newton solve (L-BFGS on the
+//! prefactored link Laplacian), counted by a global allocator. One test in its
 //! own binary, so no other test's allocations are counted.
 
 mod common;
@@ -14,7 +15,9 @@ use odyn::integrators::{
 use odyn::nalgebra::Vector2;
 use odyn::particles::Spring;
 use odyn::prelude::*;
-use odyn::{Integrator, Krylov, LinearSolver, NewtonOptions, Stepper};
+use odyn::{
+    Integrator, Krylov, LinearSolver, NewtonOptions, ParticleSolve, QuasiNewtonOptions, Stepper,
+};
 
 #[global_allocator]
 static GLOBAL: common::Counting = common::Counting;
@@ -107,6 +110,16 @@ fn stepping_a_particle_model_allocates_nothing() {
                 &model,
                 &NewtonOptions {
                     linear: LinearSolver::Krylov(Krylov::default()),
+                    ..NewtonOptions::default()
+                },
+            ),
+        ),
+        (
+            "implicit Euler, quasi-Newton",
+            allocations::<ImplicitEuler<_>>(
+                &model,
+                &NewtonOptions {
+                    particle_solve: ParticleSolve::QuasiNewton(QuasiNewtonOptions::default()),
                     ..NewtonOptions::default()
                 },
             ),
