@@ -46,8 +46,9 @@ pub struct Simulation<'m, M: Model> {
     /// Whether `options.stepping` is the attribute's `dt`, which a switch to an adaptive method
     /// drops in favour of tolerances.
     attribute_dt: bool,
-    /// The options; the setters below are shorthands for assigning these fields.
-    pub options: RunOptions,
+    /// The options the setters below assign ([`Simulation::options`] reads them,
+    /// [`Simulation::with_options`] replaces them whole).
+    options: RunOptions,
 }
 
 impl<'m, M: Model> Simulation<'m, M> {
@@ -91,6 +92,34 @@ impl<'m, M: Model> Simulation<'m, M> {
             self.options.stepping = None;
             self.attribute_dt = false;
         }
+        self
+    }
+
+    /// The run's options as the builder has set them so far.
+    pub fn options(&self) -> &RunOptions {
+        &self.options
+    }
+
+    /// Replaces every option at once (a `RunOptions` kept from another run, or built as a
+    /// plain struct). Its `stepping` is taken as given: a switch to an adaptive method no
+    /// longer drops it.
+    pub fn with_options(mut self, options: RunOptions) -> Self {
+        self.options = options;
+        self.attribute_dt = false;
+        self
+    }
+
+    /// Locates events to within `tolerance` seconds (default 1e-12, or the resolution of t if
+    /// coarser; see [`RunOptions::event_tolerance`]).
+    pub fn event_tolerance(mut self, tolerance: f64) -> Self {
+        self.options.event_tolerance = tolerance;
+        self
+    }
+
+    /// Ends the run with [`Error::EventsAccumulate`] past `count` events (default 100 000; see
+    /// [`RunOptions::max_events`]).
+    pub fn max_events(mut self, count: u64) -> Self {
+        self.options.max_events = count;
         self
     }
 

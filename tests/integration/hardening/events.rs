@@ -169,12 +169,12 @@ fn an_event_that_fires_without_end_is_a_typed_error() {
     let bounce = Event::crossing("bounce", |_, s: &common::BallState| s.y)
         .falling()
         .change(|_, s: &mut common::BallState| s.v = -s.v);
-    let mut sim = ball
+    let sim = ball
         .simulate()
         .integrator(Method::Tsit5)
         .duration(100.0)
-        .event(bounce);
-    sim.options.max_events = 10;
+        .event(bounce)
+        .max_events(10);
     let error = sim.run().unwrap_err();
     match &error {
         Error::EventsAccumulate { count, reason, .. } => {
