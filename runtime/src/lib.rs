@@ -52,6 +52,7 @@ pub use drive::{Action, Direction, Event, Progress};
 pub use error::{Error, NewtonFailure, Rejection, Result};
 pub use fingerprint::Fingerprint;
 pub use integrators::Integrator;
+pub use linalg::sparse::Factorizations;
 pub use linalg::{
     DenseMatrix, FactorizeError, FaerDense, Krylov, KrylovCounts, LinearSolver, LinkLaplacian,
     NewtonMatrix, NewtonOptions, ParticleSolve, Preconditioner, QuasiNewtonOptions, SolveError,

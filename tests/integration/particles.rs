@@ -2,9 +2,10 @@
 //! Newton matrix against a dense finite-difference one, energy and equilibrium of a hanging cloth
 //! under implicit Euler, one symbolic factorization per run, and typed topology errors.
 
+use odyn::Factorizations;
 use odyn::integrators::ImplicitEuler;
 use odyn::nalgebra::{SVector, Vector2, Vector3};
-use odyn::particles::{Factorizations, ParticleJacobian, ParticleState, ParticleSystem, Spring};
+use odyn::particles::{ParticleJacobian, ParticleState, ParticleSystem, Spring};
 use odyn::prelude::*;
 use odyn::{Error, Jacobian, NewtonOptions, Stepper};
 use scenes::{Hang, Sheet};

@@ -26,6 +26,7 @@ use nalgebra::SVector;
 
 use crate::{Error, Model, Result, State};
 
+/// Also at the crate root, where it belongs: grids return it too.
 pub use crate::linalg::sparse::Factorizations;
 pub use jacobian::ParticleJacobian;
 

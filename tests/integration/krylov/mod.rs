@@ -94,7 +94,7 @@ fn stepped<M: Jacobian, I: Integrator<M>>(
 }
 
 /// The factorization and Krylov counts of 10 implicit Euler steps of `model`.
-fn counts_of<M>(model: &M, dt: f64, newton: &NewtonOptions) -> odyn::particles::Factorizations
+fn counts_of<M>(model: &M, dt: f64, newton: &NewtonOptions) -> odyn::Factorizations
 where
     M: Jacobian,
     M::Matrix: Counted,
@@ -109,15 +109,15 @@ where
 
 /// The Jacobians that count their factorizations.
 trait Counted {
-    fn counts(&self) -> odyn::particles::Factorizations;
+    fn counts(&self) -> odyn::Factorizations;
 }
 impl Counted for odyn::grid::GridJacobian {
-    fn counts(&self) -> odyn::particles::Factorizations {
+    fn counts(&self) -> odyn::Factorizations {
         self.factorizations()
     }
 }
 impl Counted for odyn::particles::ParticleJacobian<3> {
-    fn counts(&self) -> odyn::particles::Factorizations {
+    fn counts(&self) -> odyn::Factorizations {
         self.factorizations()
     }
 }
