@@ -55,14 +55,56 @@ pub(crate) struct Args {
     pub(crate) rtol: Option<Expr>,
     /// `atol = <expr>`, checked like `dt`.
     pub(crate) atol: Option<Expr>,
+    /// `jacobian = ...`: how the Jacobian is made.
+    pub(crate) jacobian: JacobianKey,
+}
+
+/// How the model's Jacobian is made (`jacobian = ...`), with the token for error spans: one
+/// value, so no combination of the forms can be represented.
+#[derive(Clone, Default)]
+pub(crate) enum JacobianKey {
+    /// Generated exactly from the model's code: the default, or `jacobian = true`.
+    #[default]
+    Generated,
     /// `jacobian = false` opts out of the generated Jacobian (and so of implicit methods).
-    pub(crate) no_jacobian: Option<syn::LitBool>,
+    Off(syn::LitBool),
     /// `jacobian = finite_differences`: a fixed-size model's Jacobian by central differences of
     /// its own code, for code the macro cannot differentiate.
-    pub(crate) differences: Option<Ident>,
+    Differences(Ident),
     /// `jacobian = dual`: a fixed-size model's Jacobian by forward-mode automatic
     /// differentiation of its own code over dual numbers.
-    pub(crate) dual: Option<Ident>,
+    Dual(Ident),
+}
+
+impl JacobianKey {
+    /// The `false` of `jacobian = false`.
+    pub(crate) fn off(&self) -> Option<&syn::LitBool> {
+        match self {
+            JacobianKey::Off(token) => Some(token),
+            _ => None,
+        }
+    }
+
+    /// The word of `jacobian = finite_differences`.
+    pub(crate) fn differences(&self) -> Option<&Ident> {
+        match self {
+            JacobianKey::Differences(word) => Some(word),
+            _ => None,
+        }
+    }
+
+    /// The word of `jacobian = dual`.
+    pub(crate) fn dual(&self) -> Option<&Ident> {
+        match self {
+            JacobianKey::Dual(word) => Some(word),
+            _ => None,
+        }
+    }
+
+    /// The word of a Jacobian made from the model's own code (`finite_differences` or `dual`).
+    pub(crate) fn of_code(&self) -> Option<&Ident> {
+        self.differences().or(self.dual())
+    }
 }
 
 /// The arguments `#[system]` takes, for error messages.
@@ -137,14 +179,18 @@ fn read(name: &str, value: Expr, args: &mut Args, errors: &mut Errors) {
                 ..
             }) => {
                 if !value.value {
-                    args.no_jacobian = Some(value.clone());
+                    args.jacobian = JacobianKey::Off(value.clone());
                 }
             }
             Expr::Path(p) if p.path.is_ident("finite_differences") => {
-                args.differences = p.path.get_ident().cloned();
+                if let Some(word) = p.path.get_ident() {
+                    args.jacobian = JacobianKey::Differences(word.clone());
+                }
             }
             Expr::Path(p) if p.path.is_ident("dual") => {
-                args.dual = p.path.get_ident().cloned();
+                if let Some(word) = p.path.get_ident() {
+                    args.jacobian = JacobianKey::Dual(word.clone());
+                }
             }
             _ => errors.at(
                 &value,

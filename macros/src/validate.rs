@@ -50,7 +50,7 @@ pub(crate) fn structure(args: &Args, first_order: Option<&FirstOrder>, errors: &
             ),
         );
     }
-    if let Some(no) = &args.no_jacobian
+    if let Some(no) = args.jacobian.off()
         && info.needs_jacobian
     {
         errors.at(

@@ -136,8 +136,9 @@ pub(crate) fn expand_struct(args_tokens: TokenStream, item: &ItemStruct) -> Toke
         if !kind.takes_parameters() {
             refuse_parameters(item, &mut errors);
         }
-        let of_code = args.differences.iter().chain(&args.dual);
-        for word in of_code.filter(|_| !kind.takes_finite_differences()) {
+        if let Some(word) = args.jacobian.of_code()
+            && !kind.takes_finite_differences()
+        {
             errors.at(
                 word,
                 format_args!(

@@ -62,7 +62,7 @@ pub(super) fn fields_accepted(
 /// Refuses `jacobian = false` on a model with `#[algebraic]` fields: consistent initial values
 /// and the methods that take a mass matrix all solve with the Jacobian.
 pub(super) fn args_accepted(item: &ItemStruct, args: &Args, errors: &mut Errors) {
-    let Some(no_jacobian) = &args.no_jacobian else {
+    let Some(no_jacobian) = args.jacobian.off() else {
         return;
     };
     let first = item

@@ -110,7 +110,7 @@ impl FrontEnd for Kind {
         if refused_parameters {
             return None;
         }
-        if model.is_generic() && args.dual.is_none() {
+        if model.is_generic() && args.jacobian.dual().is_none() {
             let params = item.fields.iter().filter_map(|f| param_attribute(&f.attrs));
             for attr in params {
                 errors.at(
@@ -164,9 +164,9 @@ impl FrontEnd for Kind {
             })
         });
         validate::forces(args, velocity_read, errors);
-        let generated_jacobian = args.no_jacobian.is_none()
-            && args.differences.is_none()
-            && args.dual.is_none()
+        let generated_jacobian = args.jacobian.off().is_none()
+            && args.jacobian.differences().is_none()
+            && args.jacobian.dual().is_none()
             && !model.is_generic();
         let lowered = match &functions.force {
             // A helper with a problem has been reported; its calls are not followed.
@@ -182,7 +182,7 @@ impl FrontEnd for Kind {
             _ => None,
         };
         let params = parameters::parse(item, errors);
-        if let (Some(first), Some(no_jacobian)) = (params.first(), &args.no_jacobian) {
+        if let (Some(first), Some(no_jacobian)) = (params.first(), args.jacobian.off()) {
             errors.at(
                 no_jacobian,
                 format_args!(
@@ -191,7 +191,7 @@ impl FrontEnd for Kind {
                 ),
             );
         }
-        if let (Some(first), Some(differences)) = (params.first(), &args.differences) {
+        if let (Some(first), Some(differences)) = (params.first(), args.jacobian.differences()) {
             errors.at(
                 differences,
                 format_args!(
@@ -221,18 +221,20 @@ impl FrontEnd for Kind {
             };
         }
         // A const-generic model's code is not lowered (its loops run to `N`): differences.
-        let differences = args.differences.is_some()
-            || (model.is_generic() && args.no_jacobian.is_none() && args.dual.is_none());
+        let differences = args.jacobian.differences().is_some()
+            || (model.is_generic()
+                && args.jacobian.off().is_none()
+                && args.jacobian.dual().is_none());
         let generated = generate::model_impls(
             &model,
             args,
             &functions,
             imp,
-            lowered.is_some() || differences || args.dual.is_some(),
+            lowered.is_some() || differences || args.jacobian.dual().is_some(),
         );
         let jacobian = match (lowered, &functions.force) {
             (Some(lowered), Some(force)) => jacobian::jacobian(&model, lowered, force, imp),
-            (None, Some(force)) if args.dual.is_some() => {
+            (None, Some(force)) if args.jacobian.dual().is_some() => {
                 dual::jacobian(&model, force, &helpers, &params, imp)
             }
             (None, Some(force)) if differences => jacobian::differences(&model, force, imp),
@@ -252,7 +254,7 @@ fn stand_ins(model: &Model<'_>, args: &Args, parameters: usize, imp: &ItemImpl) 
     let never = quote!(::core::unreachable!(
         "odyn rejected this model at compile time"
     ));
-    let jacobian = if args.no_jacobian.is_none() {
+    let jacobian = if args.jacobian.off().is_none() {
         let matrix = if !model.is_generic() && model.len() <= layout::SMALL {
             let n = model.len_tokens();
             quote!(::odyn::__private::nalgebra::SMatrix<f64, #n, #n>)

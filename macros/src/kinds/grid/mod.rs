@@ -197,7 +197,7 @@ impl FrontEnd for Kind {
             let before = errors.len();
             let renamed = reads::rename(&cell.f, &cell.stencils, errors);
             misread = errors.len() > before;
-            if args.no_jacobian.is_none() && errors.is_empty() {
+            if args.jacobian.off().is_none() && errors.is_empty() {
                 let model = Model::parameters(fields.item, Order::First);
                 let outputs = fields.fields.len();
                 match lower::lower_kernel(

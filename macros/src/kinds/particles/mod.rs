@@ -248,7 +248,7 @@ impl FrontEnd for Kind {
         });
         validate::forces(args, velocity_read, errors);
         let mut lowered = Vec::new();
-        if args.no_jacobian.is_none() && helpers_ok {
+        if args.jacobian.off().is_none() && helpers_ok {
             let model = Model::parameters(particles.item, Order::Second);
             for kernel in &functions.kernels {
                 match lower::lower_kernel(
@@ -271,7 +271,7 @@ impl FrontEnd for Kind {
                 stand_ins: TokenStream::new(),
             };
         }
-        let jacobian = (args.no_jacobian.is_none()).then_some(lowered);
+        let jacobian = (args.jacobian.off().is_none()).then_some(lowered);
         Impl::Accepted(generate::generate(
             &particles, args, &functions, imp, jacobian,
         ))
