@@ -15,10 +15,10 @@
 //!   counting everything in [`Stats`].
 
 mod adaptive;
+mod attempt;
 mod events;
 mod fixed;
 mod record;
-mod step;
 mod track;
 
 pub use crate::control::{AdaptiveOptions, Atol, Controller, Tolerances};
