@@ -43,14 +43,15 @@ fn mass_is_conserved_exactly_and_the_kernel_is_normalised() {
 /// equation of state p = B((ρ/ρ₀)⁷ − 1), B = c₀²ρ₀/7, gives a hydrostatic compression
 /// ρ/ρ₀ − 1 ≈ ρ₀gy/(7B) = g·y/c₀² at depth y. The bottom particles' mean compression, measured
 /// after 1 s, is within 25 % of g·H/c₀² (particle noise and the boundary layer), and nothing
-/// is compressed more than twice that.
+/// is compressed more than twice that. At a spacing of 6.25 mm (32 × 16 particles) the mean is
+/// +9 % of it; at 5 mm −7 %, in 2.3× the time.
 #[test]
 fn a_resting_layer_is_compressed_as_the_equation_of_state_predicts() {
     let (w, depth): (f64, f64) = (0.2, 0.1);
     let c0 = 10.0 * (2.0 * 9.81 * depth).sqrt();
     let mut sph = Sph::block(
         SphOptions {
-            spacing: 0.005,
+            spacing: 0.00625,
             sound_speed: c0,
             viscosity: 0.1,
             domain: (w, 0.15),
