@@ -7,6 +7,7 @@ pub(crate) mod krylov;
 pub(crate) mod laplacian;
 mod multigrid;
 mod newton;
+mod operator;
 mod precond;
 pub(crate) mod sparse;
 pub(crate) mod spd;

@@ -12,8 +12,8 @@
 use faer::dyn_stack::MemStack;
 
 use crate::linalg::krylov::NoConvergence;
-use crate::linalg::precond::Column;
-use crate::linalg::sparse::Products;
+use crate::linalg::operator::Column;
+use crate::linalg::operator::Products;
 
 /// The vectors of one solve, kept between solves.
 #[derive(Clone, Debug)]

@@ -11,8 +11,8 @@ use faer::{MatMut, MatRef, Par};
 
 use super::bicgstab::{Vectors, bicgstab};
 use super::{Krylov, KrylovCounts, Preconditioner, Solves};
-use crate::linalg::precond::Column;
-use crate::linalg::sparse::Products;
+use crate::linalg::operator::Column;
+use crate::linalg::operator::Products;
 
 /// What a Krylov solve keeps between calls: the options, the previous solution for the warm
 /// start, and every buffer, allocated once.

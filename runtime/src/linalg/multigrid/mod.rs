@@ -29,7 +29,8 @@ use faer::linalg::lu::partial_pivoting::{factor, solve};
 use faer::sparse::SymbolicSparseColMat;
 use faer::{Mat, Par};
 
-use super::precond::{Column, PrecondError};
+use super::operator::{Column, as_precond};
+use super::precond::PrecondError;
 use aggregate::aggregate;
 use blocks::Blocks;
 use level::Level;
@@ -283,3 +284,5 @@ impl Column for MultigridRef<'_> {
         self.0.apply(out, r, stack);
     }
 }
+
+as_precond!(MultigridRef<'_>);

@@ -14,13 +14,13 @@ use faer::matrix_free::LinOp;
 use faer::sparse::SymbolicSparseColMat;
 use faer::{MatMut, MatRef, Par};
 
-use crate::linalg::precond::columns;
+use super::columns;
 
 /// Rows a chunk pads to one width.
 const CHUNK: usize = 64;
 
 /// A square sparse matrix by rows, its pattern fixed and its values copied from the column-major
-/// values of [`super::SparseSolver`] at every factorization.
+/// values of [`crate::linalg::sparse::SparseSolver`] at every factorization.
 #[derive(Clone, Debug)]
 pub(crate) struct RowMatrix {
     /// Rows (and columns).
@@ -40,7 +40,7 @@ const PADDING: u32 = u32::MAX;
 
 impl RowMatrix {
     /// The rows of a structurally symmetric `pattern` (every entry's transpose is in it, as in
-    /// [`super::SparseSolver`]'s), values zero. None when it has too many rows or entries for
+    /// [`crate::linalg::sparse::SparseSolver`]'s), values zero. None when it has too many rows or entries for
     /// 32-bit indices.
     pub(crate) fn new(pattern: &SymbolicSparseColMat<usize>) -> Option<Self> {
         let n = pattern.nrows();

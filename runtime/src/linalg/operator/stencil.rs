@@ -14,7 +14,7 @@ use faer::dyn_stack::{MemStack, StackReq};
 use faer::matrix_free::LinOp;
 use faer::{MatMut, MatRef, Par};
 
-use crate::linalg::precond::columns;
+use super::columns;
 
 /// What a read past the grid's edge in one direction gives.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -24,7 +24,7 @@ use rustfft::num_complex::Complex;
 use rustfft::{Fft, FftPlanner};
 
 use super::{Column, PrecondError};
-use crate::linalg::sparse::{Edge, StencilBlock, StencilMatrix};
+use crate::linalg::operator::{Edge, StencilBlock, StencilMatrix};
 
 type C = Complex<f64>;
 

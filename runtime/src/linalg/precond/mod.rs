@@ -17,15 +17,15 @@
 use std::fmt;
 
 use faer::dyn_stack::{MemStack, StackReq};
-use faer::matrix_free::{LinOp, Precond};
 use faer::sparse::linalg::cholesky::LltRef;
 use faer::sparse::linalg::lu::LuRef;
-use faer::{Conj, MatMut, MatRef, Par};
+use faer::{Conj, MatMut, Par};
 
 mod fourier;
 mod ilu;
 mod jacobi;
 
+pub(crate) use super::operator::{Column, as_precond};
 pub(crate) use fourier::{Fourier, FourierRef};
 
 pub(crate) use ilu::{Ilu0, Ilu0Ref};
@@ -91,79 +91,7 @@ impl Column for Factors<'_> {
     }
 }
 
-/// Writes P·rhs into `out` column by column with `apply(out_column, rhs_column, stack)`.
-pub(crate) fn columns(
-    mut out: MatMut<'_, f64>,
-    rhs: MatRef<'_, f64>,
-    stack: &mut MemStack,
-    mut apply: impl FnMut(&mut [f64], &[f64], &mut MemStack),
-) {
-    for j in 0..rhs.ncols() {
-        let r: Vec<f64>;
-        let r_col = rhs.col(j);
-        let r_slice = match r_col.try_as_col_major() {
-            Some(c) => c.as_slice(),
-            None => {
-                // faer's solvers pass contiguous columns; this path is never taken by them.
-                r = r_col.iter().copied().collect();
-                &r
-            }
-        };
-        let out_slice = out
-            .as_mut()
-            .col_mut(j)
-            .try_as_col_major_mut()
-            .expect("faer's Krylov solvers pass contiguous columns")
-            .as_slice_mut();
-        apply(out_slice, r_slice, stack);
-    }
-}
-
-/// A preconditioner applied one column at a time; [`as_precond!`] makes it a faer operator.
-pub(crate) trait Column {
-    fn n(&self) -> usize;
-    fn scratch(&self) -> StackReq;
-    fn apply_column(&self, out: &mut [f64], r: &[f64], stack: &mut MemStack);
-}
-
-/// faer's operator traits for a [`Column`] type (a blanket impl would break the orphan rule).
-macro_rules! as_precond {
-    ($ty:ty) => {
-        impl LinOp<f64> for $ty {
-            fn apply_scratch(&self, _: usize, _: Par) -> StackReq {
-                Column::scratch(self)
-            }
-            fn nrows(&self) -> usize {
-                Column::n(self)
-            }
-            fn ncols(&self) -> usize {
-                Column::n(self)
-            }
-            fn apply(
-                &self,
-                out: MatMut<'_, f64>,
-                rhs: MatRef<'_, f64>,
-                _: Par,
-                stack: &mut MemStack,
-            ) {
-                columns(out, rhs, stack, |o, r, s| self.apply_column(o, r, s));
-            }
-            fn conj_apply(
-                &self,
-                out: MatMut<'_, f64>,
-                rhs: MatRef<'_, f64>,
-                par: Par,
-                stack: &mut MemStack,
-            ) {
-                self.apply(out, rhs, par, stack);
-            }
-        }
-        impl Precond<f64> for $ty {}
-    };
-}
-
 as_precond!(BlockJacobiRef<'_>);
 as_precond!(Factors<'_>);
 as_precond!(Ilu0Ref<'_>);
 as_precond!(FourierRef<'_>);
-as_precond!(super::multigrid::MultigridRef<'_>);

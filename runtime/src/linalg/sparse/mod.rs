@@ -23,15 +23,10 @@ use super::precond::{BlockJacobi, Fourier, Ilu0};
 mod direct;
 mod iterative;
 mod pattern;
-mod products;
-mod rows;
-mod stencil;
 #[cfg(test)]
 mod tests;
 
-pub(crate) use products::Products;
-pub(crate) use rows::RowMatrix;
-pub(crate) use stencil::{Edge, StencilBlock, StencilMatrix};
+pub(crate) use super::operator::{Edge, Products, RowMatrix, StencilBlock, StencilMatrix};
 
 /// How often a sparse Newton matrix has factorized: the symbolic analyses happen once per run,
 /// the numeric factorizations once per Newton iteration (or Rosenbrock step).
