@@ -197,7 +197,7 @@ impl GridJacobian {
 
     /// Solves the last factorization against `b` in place: the "solve" of a step's cost.
     ///
-    /// Errors: [`SolveError::WrongLength`], [`SolveError::NotFinite`].
+    /// Errors: [`SolveError::WrongLength`], [`SolveError::NotFinite`], [`SolveError::Singular`].
     pub fn substitute(&mut self, b: &mut [f64]) -> Result<(), SolveError> {
         let expected = self.solver.rhs.len();
         if b.len() != expected {
@@ -207,7 +207,7 @@ impl GridJacobian {
             });
         }
         self.solver.rhs.copy_from_slice(b);
-        self.solver.substitute_with(Some(&self.stencil));
+        self.solver.substitute_with(Some(&self.stencil))?;
         b.copy_from_slice(&self.solver.rhs);
         finite(b)
     }

@@ -177,7 +177,9 @@ impl Pressure {
                 };
             }
         }
-        self.solver.substitute();
+        self.solver.substitute().map_err(|error| {
+            Error::invalid("pressure", format!("the pressure solve failed: {error}"))
+        })?;
         if let Some(k) = self.solver.rhs.iter().position(|r| !r.is_finite()) {
             return Err(Error::invalid(
                 "pressure",

@@ -131,6 +131,10 @@ pub enum SolveError {
     /// working precision.
     #[error("the solution of W·x = b is not finite")]
     NotFinite,
+    /// W is singular: found when an iterative solve did not converge and the direct solve that
+    /// took over met a zero pivot (sparse matrices only).
+    #[error("the matrix W is singular (found by the direct solve after the Krylov solve failed)")]
+    Singular,
     /// b does not have one entry per unknown of the system.
     #[error("the right-hand side has {found} entries, the system {expected} unknowns")]
     WrongLength {

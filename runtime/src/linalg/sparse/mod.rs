@@ -15,7 +15,7 @@ use faer::sparse::linalg::cholesky::SymbolicCholesky;
 use faer::sparse::linalg::lu::{NumericLu, SymbolicLu};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 
-use super::dense::FactorizeError;
+use super::dense::{FactorizeError, SolveError};
 use super::krylov::{KrylovCounts, KrylovSolver, LinearSolver, Preconditioner, Solves, Structure};
 use super::multigrid::Multigrid;
 use super::precond::{BlockJacobi, Fourier, Ilu0};
@@ -291,27 +291,40 @@ impl SparseSolver {
     }
 
     /// Solves the matrix against [`SparseSolver::rhs`], in place: by the Krylov method when
-    /// the last factorization prepared one (redone directly if it fails; NaN if the matrix
-    /// then turns out singular), else by substitution in the direct factors.
-    pub(crate) fn substitute(&mut self) {
-        self.substitute_with(None);
+    /// the last factorization prepared one (redone directly if it fails), else by
+    /// substitution in the direct factors.
+    ///
+    /// Errors: [`SolveError::Singular`] when the Krylov solve failed and the direct solve that
+    /// took over found the matrix singular (a zero pivot, or a solution that is not finite);
+    /// the right-hand side's contents are then unspecified.
+    pub(crate) fn substitute(&mut self) -> Result<(), SolveError> {
+        self.substitute_with(None)
     }
 
     /// [`SparseSolver::substitute`], a Krylov solve multiplying by `stencil` when given (it must
     /// be the same matrix as the values).
-    pub(crate) fn substitute_with(&mut self, stencil: Option<&StencilMatrix>) {
+    pub(crate) fn substitute_with(
+        &mut self,
+        stencil: Option<&StencilMatrix>,
+    ) -> Result<(), SolveError> {
         if self.iterative && self.solve_iteratively(stencil).is_ok() {
-            return;
+            return Ok(());
         }
         if self.iterative {
-            // The Krylov solve failed: the direct solve of the same matrix decides.
+            // The Krylov solve failed (its right-hand side was finite): the direct solve of the
+            // same matrix decides, and a solution that is not finite means W is singular (faer's
+            // LU takes a zero pivot and divides by it).
             self.iterative = false;
-            if self.factorize_direct().is_err() {
-                self.rhs.fill(f64::NAN);
-                return;
-            }
+            self.factorize_direct()
+                .map_err(|FactorizeError::Singular| SolveError::Singular)?;
+            self.substitute_direct();
+            return match self.rhs.iter().all(|x| x.is_finite()) {
+                true => Ok(()),
+                false => Err(SolveError::Singular),
+            };
         }
         self.substitute_direct();
+        Ok(())
     }
 }
 

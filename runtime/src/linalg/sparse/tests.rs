@@ -1,6 +1,7 @@
 //! The Krylov solves against the direct solve, on a symmetric and an unsymmetric matrix.
 
 use super::*;
+use crate::linalg::krylov::{Solves, Structure};
 use crate::{Krylov, LinearSolver, Preconditioner};
 
 /// A 2-D Laplacian-like SPD matrix, and an unsymmetric one, solved directly and by each
@@ -38,7 +39,7 @@ fn krylov_solves_agree_with_the_direct_solve() {
         fill(&mut direct);
         direct.factorize().expect("the matrix is regular");
         direct.rhs.copy_from_slice(&b);
-        direct.substitute();
+        direct.substitute().expect("the matrix is regular");
         for preconditioner in [
             Preconditioner::BlockJacobi,
             Preconditioner::Ilu0,
@@ -56,7 +57,7 @@ fn krylov_solves_agree_with_the_direct_solve() {
             for _ in 0..2 {
                 krylov.factorize().expect("the matrix is regular");
                 krylov.rhs.copy_from_slice(&b);
-                krylov.substitute();
+                krylov.substitute().expect("the matrix is regular");
                 let error = krylov
                     .rhs
                     .iter()
@@ -69,4 +70,28 @@ fn krylov_solves_agree_with_the_direct_solve() {
             assert_eq!(krylov.counts.krylov.solves, 2);
         }
     }
+}
+
+/// A singular matrix whose diagonal blocks are regular: block Jacobi builds, the Krylov solve
+/// cannot converge (b is outside the range of A = [[1, 1], [1, 1]]), and the direct solve
+/// that takes over finds A singular. The failure is a typed error, not a right-hand side of NaN
+/// left for the caller to find.
+#[test]
+fn a_singular_matrix_behind_a_failed_krylov_solve_is_a_typed_error() {
+    let mut solver = SparseSolver::new(2, &[(0, 1)]);
+    let linear = LinearSolver::Krylov(Krylov {
+        preconditioner: Preconditioner::BlockJacobi,
+        ..Krylov::default()
+    });
+    solver.configure(&linear, Structure::Particles, Solves::OneStep);
+    solver.values.fill(1.0);
+    solver
+        .factorize()
+        .expect("block Jacobi's 1×1 blocks are regular");
+    solver.rhs.copy_from_slice(&[1.0, -1.0]);
+    assert_eq!(solver.substitute(), Err(SolveError::Singular));
+    assert_eq!(
+        solver.counts.krylov.fallbacks, 1,
+        "the Krylov solve failed first"
+    );
 }

@@ -111,10 +111,21 @@ impl<const D: usize> ParticleJacobian<D> {
     }
 
     /// Solves the factorized matrix against `rhs` (D·n long) in place.
-    pub fn substitute(&mut self, rhs: &mut [f64]) {
+    ///
+    /// Errors: [`SolveError::WrongLength`]; [`SolveError::Singular`] when a Krylov solve
+    /// failed and the direct solve that took over found the matrix singular (`rhs`'s contents
+    /// unspecified then).
+    pub fn substitute(&mut self, rhs: &mut [f64]) -> Result<(), SolveError> {
+        if rhs.len() != self.solver.rhs.len() {
+            return Err(SolveError::WrongLength {
+                expected: self.solver.rhs.len(),
+                found: rhs.len(),
+            });
+        }
         self.solver.rhs.copy_from_slice(rhs);
-        self.solver.substitute();
+        self.solver.substitute()?;
         rhs.copy_from_slice(&self.solver.rhs);
+        Ok(())
     }
 }
 
@@ -155,7 +166,7 @@ impl<const D: usize> NewtonMatrix for ParticleJacobian<D> {
         let c = self.scale;
         let (bx, bv) = b.split_at_mut(n);
         self.velocity_rhs(c, bx, bv);
-        self.solver.substitute();
+        self.solver.substitute()?;
         for ((x, v), dv) in bx.iter_mut().zip(bv.iter_mut()).zip(&self.solver.rhs) {
             *v = *dv;
             *x += c * dv;
