@@ -2,8 +2,8 @@
 //! one module per topic, in one test binary: each binary links faer, plotters and image on its
 //! own, so few binaries save most of `cargo test`'s link time. The macro's models (what
 //! `#[system]` generates: Jacobians, parameters, dual numbers, DAEs) are the other binary,
-//! `tests/models/`; two binaries rather than one let the compiler's serial front end run on both
-//! cores. Run one topic with `cargo test -p odyn-tests --test integration grid::`.
+//! `tests/models/` (package `odyn-model-tests`, unoptimised); two binaries rather than one let
+//! the compiler's serial front end run on both cores. Run one topic with `cargo test -p odyn-tests --test integration grid::`.
 //!
 //! A new topic is `tests/integration/NAME.rs`, listed below (a folder `NAME/` of files by
 //! subtopic once it passes 600 lines); it reaches the shared models with `use crate::common;`.
@@ -18,6 +18,7 @@ mod common;
 
 mod adaptive;
 mod bdf;
+mod big_states;
 mod compositions;
 mod convergence;
 mod energy;

@@ -2,7 +2,7 @@
 //! helper, parameters and sensitivities, fitting, dual numbers, differential–algebraic models —
 //! one module per topic, in one test binary (the runtime's
 //! tests are the other, `tests/integration/`). Run one topic with
-//! `cargo test -p odyn-tests --test models dae::`.
+//! `cargo test -p odyn-model-tests dae::`.
 //!
 //! A new topic is `tests/models/NAME.rs`, listed below (a folder `NAME/` of files by subtopic
 //! once it passes 600 lines); it reaches the shared models with `use crate::common;`.
