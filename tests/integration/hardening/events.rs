@@ -183,6 +183,22 @@ fn an_event_that_fires_without_end_is_a_typed_error() {
         }
         other => panic!("expected EventsAccumulate, got {other:?}"),
     }
+    // `max_events(0)`: no event may fire. The first bounce, at t = √(2·1 m/g) = 0.4515 s (free
+    // fall), ends the run with the error, and the partial run keeps the samples before it.
+    let (partial, failure) = sim.clone().max_events(0).run_partial().unwrap();
+    match &failure {
+        Some(Error::EventsAccumulate { count, reason, .. }) => {
+            assert_eq!(*count, 1);
+            assert!(reason.contains("`max_events` = 0"), "{reason}");
+        }
+        other => panic!("expected EventsAccumulate, got {other:?}"),
+    }
+    let first_bounce = (2.0f64 / 9.81).sqrt();
+    let end = partial.last().t;
+    assert!(
+        end > 0.0 && end <= first_bounce + 1e-9,
+        "ended at t = {end}"
+    );
 }
 
 /// A change that does not reverse the crossing (the ball keeps falling, faster) fires once and
