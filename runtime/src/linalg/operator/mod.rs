@@ -44,15 +44,16 @@ pub(crate) fn columns(
     }
 }
 
-/// A preconditioner applied one column at a time; [`as_precond!`] makes it a faer operator.
+/// An operator applied one column at a time: a matrix's products or a preconditioner.
+/// [`column_operator!`] makes it faer's operator, [`as_precond!`] faer's preconditioner.
 pub(crate) trait Column {
     fn n(&self) -> usize;
     fn scratch(&self) -> StackReq;
     fn apply_column(&self, out: &mut [f64], r: &[f64], stack: &mut MemStack);
 }
 
-/// faer's operator traits for a [`Column`] type (a blanket impl would break the orphan rule).
-macro_rules! as_precond {
+/// faer's operator trait for a [`Column`] type (a blanket impl would break the orphan rule).
+macro_rules! column_operator {
     ($ty:ty) => {
         impl faer::matrix_free::LinOp<f64> for $ty {
             fn apply_scratch(&self, _: usize, _: faer::Par) -> faer::dyn_stack::StackReq {
@@ -85,8 +86,19 @@ macro_rules! as_precond {
                 faer::matrix_free::LinOp::apply(self, out, rhs, par, stack);
             }
         }
+    };
+}
+
+/// faer's preconditioner traits for a [`Column`] type.
+macro_rules! as_precond {
+    ($ty:ty) => {
+        $crate::linalg::operator::column_operator!($ty);
         impl faer::matrix_free::Precond<f64> for $ty {}
     };
 }
 
-pub(crate) use as_precond;
+pub(crate) use {as_precond, column_operator};
+
+column_operator!(Products<'_>);
+column_operator!(RowMatrix);
+column_operator!(StencilMatrix);

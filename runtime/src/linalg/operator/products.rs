@@ -2,10 +2,8 @@
 //! on its grid.
 
 use faer::dyn_stack::{MemStack, StackReq};
-use faer::matrix_free::LinOp;
-use faer::{MatMut, MatRef, Par};
 
-use super::{RowMatrix, StencilMatrix};
+use super::{Column, RowMatrix, StencilMatrix};
 
 /// The products of a Krylov solve with the Newton matrix.
 #[derive(Clone, Copy, Debug)]
@@ -27,36 +25,18 @@ impl Products<'_> {
     }
 }
 
-/// faer's operator, for its conjugate gradient.
-impl LinOp<f64> for Products<'_> {
-    fn apply_scratch(&self, rhs_ncols: usize, par: Par) -> StackReq {
+/// faer's operator, for its conjugate gradient (through [`super::column_operator!`]).
+impl Column for Products<'_> {
+    fn n(&self) -> usize {
         match self {
-            Products::Rows(a) => a.apply_scratch(rhs_ncols, par),
-            Products::Stencil(a) => a.apply_scratch(rhs_ncols, par),
+            Products::Rows(a) => a.n(),
+            Products::Stencil(a) => a.n(),
         }
     }
-    fn nrows(&self) -> usize {
-        match self {
-            Products::Rows(a) => a.nrows(),
-            Products::Stencil(a) => a.nrows(),
-        }
+    fn scratch(&self) -> StackReq {
+        StackReq::EMPTY
     }
-    fn ncols(&self) -> usize {
-        self.nrows()
-    }
-    fn apply(&self, out: MatMut<'_, f64>, rhs: MatRef<'_, f64>, par: Par, stack: &mut MemStack) {
-        match self {
-            Products::Rows(a) => a.apply(out, rhs, par, stack),
-            Products::Stencil(a) => a.apply(out, rhs, par, stack),
-        }
-    }
-    fn conj_apply(
-        &self,
-        out: MatMut<'_, f64>,
-        rhs: MatRef<'_, f64>,
-        par: Par,
-        stack: &mut MemStack,
-    ) {
-        self.apply(out, rhs, par, stack);
+    fn apply_column(&self, out: &mut [f64], r: &[f64], _: &mut MemStack) {
+        self.product(r, out, r);
     }
 }

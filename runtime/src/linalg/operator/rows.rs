@@ -10,11 +10,9 @@
 //! fastest of eight runs each, on the shared machine).
 
 use faer::dyn_stack::{MemStack, StackReq};
-use faer::matrix_free::LinOp;
 use faer::sparse::SymbolicSparseColMat;
-use faer::{MatMut, MatRef, Par};
 
-use super::columns;
+use super::Column;
 
 /// Rows a chunk pads to one width.
 const CHUNK: usize = 64;
@@ -129,30 +127,17 @@ impl RowMatrix {
     }
 }
 
-/// faer's operator, for its conjugate gradient: the same products as BiCGSTAB's.
-impl LinOp<f64> for RowMatrix {
-    fn apply_scratch(&self, _: usize, _: Par) -> StackReq {
+/// faer's operator, for its conjugate gradient: the same products as BiCGSTAB's (through
+/// [`super::column_operator!`]).
+impl Column for RowMatrix {
+    fn n(&self) -> usize {
+        self.n
+    }
+    fn scratch(&self) -> StackReq {
         StackReq::EMPTY
     }
-    fn nrows(&self) -> usize {
-        self.n
-    }
-    fn ncols(&self) -> usize {
-        self.n
-    }
-    fn apply(&self, out: MatMut<'_, f64>, rhs: MatRef<'_, f64>, _: Par, stack: &mut MemStack) {
-        columns(out, rhs, stack, |y, x, _| {
-            self.product(x, y, x);
-        });
-    }
-    fn conj_apply(
-        &self,
-        out: MatMut<'_, f64>,
-        rhs: MatRef<'_, f64>,
-        par: Par,
-        stack: &mut MemStack,
-    ) {
-        self.apply(out, rhs, par, stack);
+    fn apply_column(&self, out: &mut [f64], r: &[f64], _: &mut MemStack) {
+        self.product(r, out, r);
     }
 }
 

@@ -11,10 +11,8 @@
 //! 12 indices.
 
 use faer::dyn_stack::{MemStack, StackReq};
-use faer::matrix_free::LinOp;
-use faer::{MatMut, MatRef, Par};
 
-use super::columns;
+use super::Column;
 
 /// What a read past the grid's edge in one direction gives.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -200,29 +198,15 @@ impl StencilMatrix {
     }
 }
 
-/// faer's operator, for its conjugate gradient.
-impl LinOp<f64> for StencilMatrix {
-    fn apply_scratch(&self, _: usize, _: Par) -> StackReq {
-        StackReq::EMPTY
-    }
-    fn nrows(&self) -> usize {
+/// faer's operator, for its conjugate gradient (through [`super::column_operator!`]).
+impl Column for StencilMatrix {
+    fn n(&self) -> usize {
         self.fields * self.nx * self.ny
     }
-    fn ncols(&self) -> usize {
-        self.nrows()
+    fn scratch(&self) -> StackReq {
+        StackReq::EMPTY
     }
-    fn apply(&self, out: MatMut<'_, f64>, rhs: MatRef<'_, f64>, _: Par, stack: &mut MemStack) {
-        columns(out, rhs, stack, |y, x, _| {
-            self.product(x, y, x);
-        });
-    }
-    fn conj_apply(
-        &self,
-        out: MatMut<'_, f64>,
-        rhs: MatRef<'_, f64>,
-        par: Par,
-        stack: &mut MemStack,
-    ) {
-        self.apply(out, rhs, par, stack);
+    fn apply_column(&self, out: &mut [f64], r: &[f64], _: &mut MemStack) {
+        self.product(r, out, r);
     }
 }
