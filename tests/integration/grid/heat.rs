@@ -125,9 +125,9 @@ fn temporal_orders() {
 
 /// Explicit Euler's limit: Gershgorin's discs give dx²/(4D) exactly; bisection on long runs
 /// measures the grid's true limit 2/|λ_max|, above it by 1/sin²(nπ/(2(n + 1))) = 1.0056 at
-/// n = 20 — within 1 %. (20 cells a side rather than 32: the bisection's 20 000-step runs cost
-/// n², and this was the slowest test, 14 s.) Stable at 0.99×, diverged at 1.01×. RK4's prediction is its real-axis
-/// reach over the same disc, measured within 1 % too.
+/// n = 20 — within 1 %. (20 cells a side: the bisection's 20 000-step runs cost n².) Stable at
+/// 0.99×, diverged at 1.01×. RK4's prediction is its real-axis reach over the same disc,
+/// measured within 1 % too.
 #[test]
 fn explicit_euler_limit_is_predicted_and_measured() {
     let model = heat(20);

@@ -1,6 +1,7 @@
 //! Events that misbehave: NaN conditions and changes, bouncing balls at the Zeno time, events
 //! that fire without end or at one instant, changes that do not reverse the crossing.
 
+use odyn::RunOptions;
 use odyn::prelude::*;
 
 use super::oscillator;
@@ -280,4 +281,69 @@ fn simultaneous_events_all_fire_in_list_order() {
             run.events
         );
     }
+}
+
+/// Probe of the event options' builders: a NaN, infinite or negative `event_tolerance` is the
+/// options' typed error naming it; ±0 asks for the resolution of t. `with_options` replaces the
+/// options whole, bad ones included, and they are checked the same way.
+#[test]
+fn bad_event_options_are_typed_errors() {
+    let ball = common::Ball {
+        y: 1.0,
+        v: 0.0,
+        g: 9.81,
+    };
+    let bounce = || {
+        Event::crossing("bounce", |_, s: &common::BallState| s.y)
+            .falling()
+            .change(|_, s: &mut common::BallState| s.v = -s.v)
+    };
+    for tolerance in [f64::NAN, f64::INFINITY, -1.0, -1e-300] {
+        let error = ball
+            .simulate()
+            .integrator(Method::Tsit5)
+            .duration(1.0)
+            .event(bounce())
+            .event_tolerance(tolerance)
+            .run()
+            .unwrap_err();
+        assert!(
+            matches!(&error, Error::InvalidInput { field, .. } if field == "event_tolerance"),
+            "{tolerance:e}: {error}"
+        );
+    }
+    // Free fall from 1 m lands at √(2/g) = 0.4515 s; at ±0 the bounce is located to the
+    // resolution of t.
+    let landing = (2.0f64 / 9.81).sqrt();
+    for tolerance in [0.0, -0.0] {
+        let run = ball
+            .simulate()
+            .integrator(Method::Tsit5)
+            .duration(0.6)
+            .event(bounce())
+            .event_tolerance(tolerance)
+            .run()
+            .unwrap();
+        assert_eq!(run.events.len(), 1, "{tolerance:e}");
+        assert!(
+            (run.events[0].t - landing).abs() < 1e-6,
+            "{}",
+            run.events[0].t
+        );
+    }
+    let options = RunOptions {
+        event_tolerance: f64::NAN,
+        ..ball.simulate().integrator(Method::Tsit5).options().clone()
+    };
+    let error = ball
+        .simulate()
+        .with_options(options)
+        .duration(1.0)
+        .event(bounce())
+        .run()
+        .unwrap_err();
+    assert!(
+        matches!(&error, Error::InvalidInput { field, .. } if field == "event_tolerance"),
+        "{error}"
+    );
 }
