@@ -140,6 +140,9 @@ pub struct Bdf<M: Jacobian> {
     scale: M::State,
     /// M, for a model with a mass matrix: the step solves M(d + ψ) = c·f, Newton with M − c·J.
     mass: Option<crate::Mass>,
+    /// Room for the rounding of a Newton update of a mass-matrix step (filled on the first
+    /// failing iteration only).
+    rounding: Vec<f64>,
 }
 
 impl<M: Jacobian> crate::integrators::sealed::Sealed for Bdf<M> {}
@@ -190,6 +193,7 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
             update: y0.try_clone()?,
             scale: y0.try_clone()?,
             mass: crate::model::mass_of(model, y0)?,
+            rounding: Vec::new(),
         };
         bdf.start_history(model, t0, y0, stats);
         Ok(bdf)
