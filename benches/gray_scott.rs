@@ -18,7 +18,7 @@
 //!
 //! `equal_accuracy`: whole solves of "coral" (F = 0.0545, k = 0.062) on 64² cells to t = 500 at
 //! equal final error (largest absolute error over u and v: 1e-3 and 1e-6), against a DOP853
-//! reference at rtol 1e-12 that `tests/integration/grid/gray_scott.rs` checks against SciPy's. Each
+//! reference at rtol 1e-12 that `tests/continua/grid/gray_scott.rs` checks against SciPy's. Each
 //! adaptive method's configuration is the loosest rtol (= atol) in a half-decade sweep from 1e-2
 //! meeting the target, as in `scripts/scipy_gray_scott.py`, which runs SciPy's BDF (with
 //! `jac_sparsity`), RK45 and DOP853 the same way. The calibration is printed before the timings.

@@ -1,4 +1,4 @@
-//! The material point method's validation figures (`tests/integration/mpm.rs` checks each at a
+//! The material point method's validation figures (`tests/continua/mpm.rs` checks each at a
 //! cheaper size): an elastic block's period against the continuum's as the grid refines, a
 //! spinning disc's angular momentum under APIC and PIC, and snow that holds beside snow that
 //! slumps.

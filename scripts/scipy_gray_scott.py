@@ -10,7 +10,7 @@ The state is every u, then every v, cell k = j*n + i (odyn's layout).
 
 Reference: DOP853 at rtol = atol = 1e-13, cross-checked (with --check) against Radau at rtol =
 atol = 1e-10. Its probe values are printed for the Rust test `gray_scott_matches_scipy` in
-tests/integration/grid/gray_scott.rs, which checks odyn's own reference (DOP853 at 1e-12, used
+tests/continua/grid/gray_scott.rs, which checks odyn's own reference (DOP853 at 1e-12, used
 by the bench) against them.
 
 Calibration as in scripts/scipy_stiff.py but in half decades: rtol swept over 1e-2 ... 1e-10 with

@@ -436,7 +436,7 @@ fn bounces_and_save_times_land_on_the_closed_form() {
 /// Heat flow on a 15 × 15 grid, u′ = D·∇²u (five-point Laplacian, u = 0 on the boundary): a field
 /// model, whose Jacobian is sparse. BDF's generic Newton matrix takes it as it takes the dense
 /// ones. From two modes sin(mπx)·sin(kπy), the semi-discrete solution decays each at the grid's own
-/// eigenvalue −(4D/dx²)·(sin²(mπdx/2) + sin²(kπdx/2)) (as in tests/integration/grid/heat.rs): at
+/// eigenvalue −(4D/dx²)·(sin²(mπdx/2) + sin²(kπdx/2)) (as in tests/continua/grid/heat.rs): at
 /// rtol 1e-8 the state at t = 0.5 is within 1e-6 of it, with fewer than one Jacobian in five steps
 /// (measured: 4.4e-9, 133 steps, 1 J, 26 LU).
 #[test]

@@ -1,17 +1,19 @@
-//! The runtime's integration tests — methods, drivers, solvers, particle, grid and fluid models —
-//! one module per topic, in one test binary: each binary links faer, plotters and image on its
-//! own, so few binaries save most of `cargo test`'s link time. The macro's models (what
-//! `#[system]` generates: Jacobians, parameters, dual numbers, DAEs) are the other binary,
-//! `tests/models/` (package `odyn-model-tests`, unoptimised); two binaries rather than one let
-//! the compiler's serial front end run on both cores. Run one topic with `cargo test -p odyn-tests --test integration grid::`.
+//! The runtime's integration tests for methods and drivers — fixed-size models under every
+//! integrator, adaptive control, BDF, Rosenbrock, ensembles, outputs, the hardening probes —
+//! one module per topic. The particle, grid, fluid and hybrid models' tests are the binary
+//! `tests/continua/`, and the macro's models (what `#[system]` generates: Jacobians,
+//! parameters, dual numbers, DAEs) `tests/models/` (package `odyn-model-tests`, unoptimised).
+//! Each binary links faer, plotters and image on its own, but three of about equal size let
+//! the compiler's serial front end run on both cores however cargo orders them (it picks among
+//! ready test binaries in no particular order, and one binary of 90 s started last was a
+//! minute of one idle core). Run one topic with `cargo test -p odyn-tests --test integration
+//! bdf::`.
 //!
 //! A new topic is `tests/integration/NAME.rs`, listed below (a folder `NAME/` of files by
 //! subtopic once it passes 600 lines); it reaches the shared models with `use crate::common;`.
 //! Tests that count every allocation of the process stay binaries of their own
 //! (`tests/allocations.rs`, `tests/grid_allocations.rs`, `tests/particle_allocations.rs`): here
-//! other tests run beside them. `grid/budget.rs` installs this binary's global allocator, which
-//! refuses allocations only on a thread that has been given a budget and passes every other
-//! call to the system allocator.
+//! other tests run beside them.
 
 #[path = "../common/mod.rs"]
 mod common;
@@ -25,21 +27,12 @@ mod energy;
 mod ensemble;
 mod ensemble_files;
 mod extremes;
-mod flip;
-mod fluids;
-mod grid;
 mod hardening;
 mod implicit;
-mod krylov;
-mod mpm;
 mod output;
-mod particles;
-mod quasi_newton;
 mod reference_dop853;
 mod rosenbrock;
 mod runner;
-mod sph;
 mod stability;
 mod typed;
 mod work_precision;
-mod xpbd;

@@ -21,7 +21,7 @@
 //!
 //! The fluid's mass is its particle count (never changed); its volume is kept only as well as
 //! the particles stay evenly spread, which [`Flip::filled_area`] measures
-//! (`tests/integration/flip.rs`). Bit-identical on any thread count, like MPM.
+//! (`tests/continua/flip.rs`). Bit-identical on any thread count, like MPM.
 
 mod bodies;
 mod mac;
@@ -69,7 +69,7 @@ pub struct FlipOptions {
     /// positions only, so it adds no velocity: the implicit density projection of Kugelstadt,
     /// Longva, Thuerey & Bender (IEEE TVCG 2019) with the step's cells. Without it, the
     /// particles of a dam break bunch until the liquid fills 70 % of its area after 4 s
-    /// (`tests/integration/flip.rs`).
+    /// (`tests/continua/flip.rs`).
     pub volume_correction: f64,
 }
 

@@ -22,7 +22,7 @@
 //! Mass is conserved exactly (particles are never made or lost); with APIC the transfers also
 //! conserve linear and angular momentum exactly, and the stress of an isotropic material exerts
 //! no net torque, so a free body keeps its angular momentum to rounding
-//! (`tests/integration/mpm.rs`).
+//! (`tests/continua/mpm.rs`).
 //!
 //! # Threads, deterministically
 //!

@@ -71,7 +71,7 @@ impl LinearSolver {
     /// the block-Jacobi solve before it. On the 2-D Brusselator this matches Fourier chosen by
     /// hand; on Gray–Scott at Pearson's set-up Fourier is tried and given back. A model whose
     /// diffusion grows in time is given it back twice and keeps it the third time
-    /// (`tests/integration/krylov/fourier.rs`, `auto_tries_fourier_again_as_the_problem_stiffens`).
+    /// (`tests/continua/krylov/fourier.rs`, `auto_tries_fourier_again_as_the_problem_stiffens`).
     pub fn tries_fourier_after(n: usize) -> f64 {
         Self::fourier_iteration_cost(n)
     }
