@@ -41,8 +41,10 @@ pub(super) fn step_advice(
             .to_owned(),
         (true, _) => "the error estimate stays above the tolerances however short the step: f \
              switches abruptly here (`abs`, `signum`, `min`/`max` or an `if` on the state, \
-             which no step resolves: stop the run there with an event and restart from it), or \
-             the solution blows up at t"
+             which no step resolves: stop the run there with an event and restart from it), the \
+             solution blows up at t, or the tolerances ask for more than rounding allows (an \
+             atol far below ε times the values a component is computed from, such as 1e-18 on \
+             a component fixed by a conservation law among values of order 1: loosen atol)"
             .to_owned(),
     };
     if large_t {

@@ -225,7 +225,8 @@ pub enum Error {
         if method.needs_jacobian() {
             "its steps stayed short, so f is probably not smooth there (a switch such as `abs`, \
              `signum`, `min`/`max` or an `if` on the state, which a step straddles over and \
-             over: stop the run there with an event and restart from it), or raise `max_steps`"
+             over: stop the run there with an event and restart from it), or the tolerances ask \
+             for more than rounding allows (loosen atol), or raise `max_steps`"
         } else {
             "the problem is probably stiff for this method (use an implicit one: Rodas5P or \
              Bdf), or raise `max_steps`"
