@@ -30,8 +30,8 @@ use std::sync::OnceLock;
 use scenes::GrayScott;
 
 use odyn::{
-    Integrator, Jacobian, Krylov, LinearSolver, Method, Model, NewtonOptions, Preconditioner,
-    Simulate, State, Stats, Stepper,
+    Integrator, Jacobian, KrylovOptions, LinearSolver, Method, Model, NewtonOptions,
+    Preconditioner, Simulate, State, Stats, Stepper,
 };
 
 fn main() {
@@ -91,9 +91,9 @@ fn step(bencher: divan::Bencher, n: usize) {
 /// The whole step with a Krylov solve in place of the sparse LU (no warm start, as above).
 #[divan::bench(args = SIZES, sample_count = 10)]
 fn step_krylov(bencher: divan::Bencher, n: usize) {
-    let krylov = Krylov {
+    let krylov = KrylovOptions {
         warm_start: false,
-        ..Krylov::default()
+        ..KrylovOptions::default()
     };
     linearized_step(bencher, n, LinearSolver::Krylov(krylov));
 }
@@ -101,10 +101,10 @@ fn step_krylov(bencher: divan::Bencher, n: usize) {
 /// The whole step with multigrid-preconditioned BiCGSTAB (no warm start).
 #[divan::bench(args = SIZES, sample_count = 10)]
 fn step_multigrid(bencher: divan::Bencher, n: usize) {
-    let krylov = Krylov {
+    let krylov = KrylovOptions {
         warm_start: false,
         preconditioner: Preconditioner::Multigrid,
-        ..Krylov::default()
+        ..KrylovOptions::default()
     };
     linearized_step(bencher, n, LinearSolver::Krylov(krylov));
 }
@@ -112,10 +112,10 @@ fn step_multigrid(bencher: divan::Bencher, n: usize) {
 /// The whole step with ILU(0)-preconditioned BiCGSTAB (no warm start).
 #[divan::bench(args = SIZES, sample_count = 10)]
 fn step_ilu(bencher: divan::Bencher, n: usize) {
-    let krylov = Krylov {
+    let krylov = KrylovOptions {
         warm_start: false,
         preconditioner: Preconditioner::Ilu0,
-        ..Krylov::default()
+        ..KrylovOptions::default()
     };
     linearized_step(bencher, n, LinearSolver::Krylov(krylov));
 }
@@ -152,7 +152,7 @@ fn run_direct(bencher: divan::Bencher, n: usize) {
 /// Ten full-Newton steps, block-Jacobi BiCGSTAB with the warm start.
 #[divan::bench(args = SIZES, sample_count = 3)]
 fn run_krylov(bencher: divan::Bencher, n: usize) {
-    ten_steps(bencher, n, LinearSolver::Krylov(Krylov::default()));
+    ten_steps(bencher, n, LinearSolver::Krylov(KrylovOptions::default()));
 }
 
 /// A `simulate()` run of the linearized step (the default `Auto` solver): zero steps, the

@@ -23,8 +23,8 @@ use odyn::integrators::ImplicitEuler;
 use odyn::particles::{ParticleJacobian, ParticleState};
 use odyn::prelude::*;
 use odyn::{
-    Integrator, Jacobian, Krylov, LinearSolver, NewtonOptions, ParticleSolve, QuasiNewtonOptions,
-    Stats, Stepper,
+    Integrator, Jacobian, KrylovOptions, LinearSolver, NewtonOptions, ParticleSolve,
+    QuasiNewtonOptions, Stats, Stepper,
 };
 use scenes::{Cloth, Sheet};
 
@@ -195,7 +195,7 @@ fn half_second_direct(bencher: divan::Bencher, n: usize) {
 /// Half a second of the falling cloth, block-Jacobi CG.
 #[divan::bench(args = [32, 64], sample_count = 3)]
 fn half_second_krylov(bencher: divan::Bencher, n: usize) {
-    half_second(bencher, n, LinearSolver::Krylov(Krylov::default()));
+    half_second(bencher, n, LinearSolver::Krylov(KrylovOptions::default()));
 }
 
 /// The kernels' derivative blocks.

@@ -27,8 +27,8 @@ use odyn::grid::{Boundary, Grid, GridState, Stencil};
 use odyn::output::{number, write_table};
 use odyn::plot::{Field, FieldStyle, field_image};
 use odyn::{
-    Krylov, LinearSolver, Method, NewtonOptions, Preconditioner, Simulate, State, Trajectory,
-    system,
+    KrylovOptions, LinearSolver, Method, NewtonOptions, Preconditioner, Simulate, State,
+    Trajectory, system,
 };
 
 /// The Brusselator: concentrations u and v on a periodic grid.
@@ -160,17 +160,17 @@ fn main() -> odyn::Result<()> {
     };
     let (auto, seconds) = run(LinearSolver::Auto)?;
     report("Auto (the default)", &auto, seconds);
-    let (krylov, seconds) = run(LinearSolver::Krylov(Krylov::default()))?;
+    let (krylov, seconds) = run(LinearSolver::Krylov(KrylovOptions::default()))?;
     report("block-Jacobi BiCGSTAB", &krylov, seconds);
-    let multigrid = LinearSolver::Krylov(Krylov {
+    let multigrid = LinearSolver::Krylov(KrylovOptions {
         preconditioner: Preconditioner::Multigrid,
-        ..Krylov::default()
+        ..KrylovOptions::default()
     });
     let (multigrid, seconds) = run(multigrid)?;
     report("multigrid BiCGSTAB", &multigrid, seconds);
-    let fourier = LinearSolver::Krylov(Krylov {
+    let fourier = LinearSolver::Krylov(KrylovOptions {
         preconditioner: Preconditioner::Fourier,
-        ..Krylov::default()
+        ..KrylovOptions::default()
     });
     let (fourier, seconds) = run(fourier)?;
     report("Fourier BiCGSTAB", &fourier, seconds);

@@ -16,7 +16,7 @@ use scenes::GrayScott;
 use odyn::grid::{Boundary, Grid, Stencil};
 use odyn::integrators::{ExplicitEuler, ImplicitEuler, Rk4};
 use odyn::{
-    Integrator, Krylov, LinearSolver, Model, NewtonOptions, Preconditioner, Stepper, system,
+    Integrator, KrylovOptions, LinearSolver, Model, NewtonOptions, Preconditioner, Stepper, system,
 };
 
 #[global_allocator]
@@ -88,9 +88,9 @@ fn stepping_a_field_model_allocates_nothing() {
         dx: 2.5 / 256.0,
     };
     let krylov = |preconditioner| NewtonOptions {
-        linear: LinearSolver::Krylov(Krylov {
+        linear: LinearSolver::Krylov(KrylovOptions {
             preconditioner,
-            ..Krylov::default()
+            ..KrylovOptions::default()
         }),
         ..NewtonOptions::default()
     };

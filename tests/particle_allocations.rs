@@ -16,7 +16,8 @@ use odyn::nalgebra::Vector2;
 use odyn::particles::Spring;
 use odyn::prelude::*;
 use odyn::{
-    Integrator, Krylov, LinearSolver, NewtonOptions, ParticleSolve, QuasiNewtonOptions, Stepper,
+    Integrator, KrylovOptions, LinearSolver, NewtonOptions, ParticleSolve, QuasiNewtonOptions,
+    Stepper,
 };
 
 #[global_allocator]
@@ -109,7 +110,7 @@ fn stepping_a_particle_model_allocates_nothing() {
             allocations::<ImplicitEuler<_>>(
                 &model,
                 &NewtonOptions {
-                    linear: LinearSolver::Krylov(Krylov::default()),
+                    linear: LinearSolver::Krylov(KrylovOptions::default()),
                     ..NewtonOptions::default()
                 },
             ),

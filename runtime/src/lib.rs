@@ -52,9 +52,8 @@ pub use drive::{Action, Direction, Event, Progress};
 pub use error::{Error, NewtonFailure, Rejection, Result};
 pub use fingerprint::Fingerprint;
 pub use integrators::Integrator;
-pub use linalg::sparse::Factorizations;
 pub use linalg::{
-    DenseMatrix, FactorizeError, FaerDense, Krylov, KrylovCounts, LinearSolver, LinkLaplacian,
+    DenseMatrix, FactorizeError, FaerDense, KrylovOptions, LinearSolver, LinkLaplacian,
     NewtonMatrix, NewtonOptions, ParticleSolve, Preconditioner, QuasiNewtonOptions, SolveError,
     Solves,
 };
@@ -66,7 +65,22 @@ pub use nalgebra;
 /// `Rng`).
 pub use rand;
 pub use simulation::{Length, MethodType, RunOptions, Simulate, Simulation};
-pub use stats::Stats;
+pub use stats::{KrylovWork, LinearWork, SensitivityWork, Stats};
+
+/// Renamed [`LinearWork`], a section of [`Stats`] ([`Stats::linear`]).
+#[deprecated(
+    since = "0.1.0",
+    note = "renamed `LinearWork`; a run's is `trajectory.stats.linear`"
+)]
+pub type Factorizations = LinearWork;
+
+/// Renamed [`KrylovOptions`] (the options of [`LinearSolver::Krylov`]).
+#[deprecated(since = "0.1.0", note = "renamed `KrylovOptions`")]
+pub type Krylov = KrylovOptions;
+
+/// Renamed [`KrylovWork`] ([`LinearWork::krylov`]).
+#[deprecated(since = "0.1.0", note = "renamed `KrylovWork`")]
+pub type KrylovCounts = KrylovWork;
 pub use stepper::Stepper;
 pub use stepping::Stepping;
 pub use trajectory::EventRecord;

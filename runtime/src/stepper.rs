@@ -156,7 +156,10 @@ impl<'m, M: Model, I: Integrator<M>> Stepper<'m, M, I> {
 
     /// What the steps so far cost.
     pub fn stats(&self) -> Stats {
-        self.driver.track.stats
+        Stats {
+            linear: self.driver.integrator().linear_work(),
+            ..self.driver.track.stats
+        }
     }
 
     /// The model being stepped.

@@ -2,7 +2,7 @@
 //! Newton matrix against a dense finite-difference one, energy and equilibrium of a hanging cloth
 //! under implicit Euler, one symbolic factorization per run, and typed topology errors.
 
-use odyn::Factorizations;
+use odyn::LinearWork;
 use odyn::integrators::ImplicitEuler;
 use odyn::nalgebra::{SVector, Vector2, Vector3};
 use odyn::particles::{ParticleJacobian, ParticleState, ParticleSystem, Spring};
@@ -203,7 +203,7 @@ fn damped_pinned_cloth_settles_to_static_equilibrium() {
 
 /// Runs `steps` implicit steps of `model` and returns its factorization counts and Jacobian
 /// evaluations.
-fn factorization_counts(model: &Cloth, newton: NewtonOptions, steps: u32) -> (Factorizations, u64) {
+fn factorization_counts(model: &Cloth, newton: NewtonOptions, steps: u32) -> (LinearWork, u64) {
     let mut stepper = Stepper::<Cloth, ImplicitEuler<Cloth>>::with_newton(
         model,
         model.state(),
@@ -251,6 +251,23 @@ fn the_symbolic_factorization_is_computed_once_per_run() {
     );
     assert_eq!(counts.cholesky + counts.lu, jacobians, "{counts:?}");
     assert!(counts.lu > 0 && counts.cholesky > 0, "{counts:?}");
+    // A run reports the same counts in its stats (the `linear` section), and each of its
+    // factorizations is one of them.
+    let run = damped
+        .simulate()
+        .integrator(Method::ImplicitEuler)
+        .dt(1.0 / 60.0)
+        .steps(60)
+        .record_every(u64::MAX)
+        .run()
+        .unwrap();
+    assert_eq!(run.stats.linear, counts, "{}", run.stats);
+    assert_eq!(
+        run.stats.linear.cholesky + run.stats.linear.lu,
+        run.stats.factorizations,
+        "{}",
+        run.stats
+    );
 }
 
 #[test]

@@ -101,6 +101,13 @@ pub(crate) struct Driver<'a, 'm, M: Model, I> {
 impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
     /// Prepares the method on a started track ([`Track::new`] checked the state and the model
     /// and recorded the initial sample).
+    /// The track, its [`Stats::linear`] read from the method's Newton matrix: what the run
+    /// leaves once it has stopped.
+    pub(crate) fn into_track(mut self) -> Track<'a, 'm, M> {
+        self.track.stats.linear = self.integrator.linear_work();
+        self.track
+    }
+
     pub(crate) fn on(mut track: Track<'a, 'm, M>, newton: &NewtonOptions) -> Result<Self> {
         let integrator = I::prepare(track.model, track.t0, &track.y, newton, &mut track.stats)?;
         Ok(Driver { integrator, track })

@@ -7,7 +7,8 @@ use faer::sparse::SparseColMatRef;
 use super::stencil::neighbour;
 use super::{Block, Boundary, NEIGHBOURS};
 use crate::linalg::dense::finite;
-use crate::linalg::sparse::{Edge, Factorizations, SparseSolver, StencilBlock, StencilMatrix};
+use crate::linalg::sparse::{Edge, SparseSolver, StencilBlock, StencilMatrix};
+use crate::stats::LinearWork;
 use crate::{FactorizeError, NewtonMatrix, SolveError};
 
 /// The Jacobian ∂f/∂y of a field model, assembled from its cells' blocks, and the sparse
@@ -119,7 +120,7 @@ impl GridJacobian {
     }
 
     /// How often this Jacobian has factorized.
-    pub fn factorizations(&self) -> Factorizations {
+    pub fn factorizations(&self) -> LinearWork {
         self.solver.counts
     }
 
@@ -215,6 +216,10 @@ impl GridJacobian {
 
 impl NewtonMatrix for GridJacobian {
     const COSTLY_SOLVES: bool = true;
+
+    fn work(&self) -> LinearWork {
+        self.solver.counts
+    }
 
     fn configure(&mut self, newton: &crate::NewtonOptions, solves: crate::Solves) {
         self.solver.configure(

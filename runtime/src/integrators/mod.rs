@@ -221,6 +221,13 @@ pub trait Integrator<M: Model>: Sized + Sealed {
         None
     }
 
+    /// The sparse factorizations and Krylov solves of this integrator's Newton matrix so far, for
+    /// [`Stats::linear`]; zero (the default) for explicit methods and dense models.
+    #[inline]
+    fn linear_work(&self) -> crate::LinearWork {
+        crate::LinearWork::default()
+    }
+
     /// A copy of this integrator, if it can be copied cheaply (`None`, the default, when not).
     /// Fixed-step runs step small plain integrators in a local copy, which the optimiser keeps in
     /// registers as it would a hand-written loop's variables.

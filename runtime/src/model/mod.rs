@@ -162,6 +162,13 @@ pub trait Model: Sealed {
         let _ = (t, before, after, jump);
         Ok(())
     }
+
+    /// The model's own evaluations so far when it is a [`crate::sensitivity::Sensitive`] one,
+    /// which a run reports in [`crate::Stats::sensitivity`]; zero (the default) for others.
+    #[doc(hidden)]
+    fn sensitivity_work(&self) -> crate::SensitivityWork {
+        crate::SensitivityWork::default()
+    }
 }
 
 /// A model with a position/velocity split, q̈ = a(t, q, q̇).

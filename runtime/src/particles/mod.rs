@@ -27,7 +27,12 @@ use nalgebra::SVector;
 use crate::{Error, Model, Result, State};
 
 /// Also at the crate root, where it belongs: grids return it too.
-pub use crate::linalg::sparse::Factorizations;
+/// Renamed [`crate::LinearWork`], a section of [`crate::Stats`], at the crate root.
+#[deprecated(
+    since = "0.1.0",
+    note = "renamed `odyn::LinearWork`; a run's is `trajectory.stats.linear`"
+)]
+pub type Factorizations = crate::LinearWork;
 pub use jacobian::ParticleJacobian;
 
 /// The state of a particle model: every position, then every velocity, as one `Vec<f64>`.

@@ -120,6 +120,10 @@ impl<J: NewtonMatrix + DenseMatrix> NewtonMatrix for AugmentedJacobian<J> {
         Ok(())
     }
 
+    fn work(&self) -> crate::LinearWork {
+        self.jacobian.work()
+    }
+
     fn configure(&mut self, newton: &NewtonOptions, solves: crate::Solves) {
         self.jacobian.configure(newton, solves);
     }

@@ -55,18 +55,7 @@ pub struct Sensitive<'m, M: Parameters + Jacobian> {
     work: Cell<SensitivityWork>,
 }
 
-/// The model's own evaluations a [`Sensitive`] run made: what the sensitivities cost beyond the
-/// run's [`crate::Stats`] (which count evaluations of the augmented system).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct SensitivityWork {
-    /// Evaluations of f (one per augmented derivative).
-    pub derivatives: u64,
-    /// Evaluations of ∂f/∂y: one per augmented derivative, 1 + 2n per augmented Jacobian (its
-    /// coupling blocks are central differences of J in each of the n components).
-    pub jacobians: u64,
-    /// Evaluations of ∂f/∂p: one per augmented derivative, 2n per augmented Jacobian.
-    pub parameter_jacobians: u64,
-}
+pub use crate::stats::SensitivityWork;
 
 impl<'m, M> Sensitive<'m, M>
 where
@@ -169,6 +158,10 @@ where
     M: Parameters + Jacobian,
     M::Matrix: DenseMatrix,
 {
+    fn sensitivity_work(&self) -> SensitivityWork {
+        self.work.get()
+    }
+
     type State = SensitivityState;
     type SecondOrder = Unavailable<Self>;
     type Jacobian = Self;

@@ -181,6 +181,7 @@ impl<'s, M: Model> Plan<'s, '_, M> {
     {
         let simulation = self.simulation;
         let o = &simulation.options;
+        let sensitivity = model.sensitivity_work();
         let (track, span) = self.start(model, I::DENSE_DEGREE, I::METHOD)?;
         let mut driver = Driver::<N, I>::on(track, &o.newton)?;
         let outcome = match &span {
@@ -202,7 +203,9 @@ impl<'s, M: Model> Plan<'s, '_, M> {
                 }
             }
         };
-        Ok(trajectory(driver.track, I::METHOD, span, outcome))
+        let mut track = driver.into_track();
+        track.stats.sensitivity = model.sensitivity_work().since(sensitivity);
+        Ok(trajectory(track, I::METHOD, span, outcome))
     }
 }
 

@@ -4,7 +4,7 @@
 use odyn::grid::{Boundary, Grid};
 use odyn::integrators::ImplicitEuler;
 use odyn::prelude::*;
-use odyn::{Krylov, KrylovCounts, LinearSolver, NewtonOptions, Preconditioner, Stepper};
+use odyn::{KrylovOptions, KrylovWork, LinearSolver, NewtonOptions, Preconditioner, Stepper};
 
 use super::{Counted, counts_of, with};
 use crate::grid::{GrayScott, gray_scott};
@@ -16,9 +16,9 @@ use crate::grid::{GrayScott, gray_scott};
 /// goes on with block Jacobi.
 #[test]
 fn fourier_solves_a_uniform_grid_in_one_iteration() {
-    let fourier = with(LinearSolver::Krylov(Krylov {
+    let fourier = with(LinearSolver::Krylov(KrylovOptions {
         preconditioner: Preconditioner::Fourier,
-        ..Krylov::default()
+        ..KrylovOptions::default()
     }));
     let mut model: GrayScott = gray_scott(32, Boundary::Periodic);
     model.dx = 2.5 / 256.0;
@@ -59,7 +59,7 @@ fn auto_gives_fourier_back_when_its_solve_costs_more() {
         };
         counts_of(&model, 10.0, &newton)
     };
-    let block_jacobi = LinearSolver::Krylov(Krylov::default());
+    let block_jacobi = LinearSolver::Krylov(KrylovOptions::default());
     let (auto, block_jacobi) = (counts(LinearSolver::Auto), counts(block_jacobi));
     let (a, b) = (auto.krylov, block_jacobi.krylov);
     assert_eq!(a.solves, b.solves);
@@ -97,7 +97,7 @@ impl Stiffening {
 }
 
 /// The Krylov counts of `model` after each of `steps` linearized implicit Euler steps of 1.
-fn counts_per_step(model: &Stiffening, linear: LinearSolver, steps: usize) -> Vec<KrylovCounts> {
+fn counts_per_step(model: &Stiffening, linear: LinearSolver, steps: usize) -> Vec<KrylovWork> {
     let newton = NewtonOptions {
         linearized: true,
         linear,
@@ -142,7 +142,11 @@ fn auto_tries_fourier_again_as_the_problem_stiffens() {
     };
     let steps = 30;
     let auto = counts_per_step(&model, LinearSolver::Auto, steps);
-    let block_jacobi = counts_per_step(&model, LinearSolver::Krylov(Krylov::default()), steps);
+    let block_jacobi = counts_per_step(
+        &model,
+        LinearSolver::Krylov(KrylovOptions::default()),
+        steps,
+    );
     // Tried at once and given back, block Jacobi's again for the next steps.
     assert_eq!(auto[1].switched_to_fourier, 0, "{:?}", auto[1]);
     // Fourier for the last steps.
@@ -152,7 +156,7 @@ fn auto_tries_fourier_again_as_the_problem_stiffens() {
         "{:?}",
         auto[steps - 1]
     );
-    let last = |c: &[KrylovCounts]| c[steps - 1].iterations - c[steps - 2].iterations;
+    let last = |c: &[KrylovWork]| c[steps - 1].iterations - c[steps - 2].iterations;
     let cost = LinearSolver::fourier_iteration_cost(n * n);
     assert!(
         last(&auto) as f64 * cost < last(&block_jacobi) as f64,

@@ -11,7 +11,7 @@ mod solves;
 use odyn::integrators::ImplicitEuler;
 use odyn::prelude::*;
 use odyn::{
-    Integrator, Jacobian, Krylov, LinearSolver, NewtonMatrix, NewtonOptions, Preconditioner,
+    Integrator, Jacobian, KrylovOptions, LinearSolver, NewtonMatrix, NewtonOptions, Preconditioner,
     Stepper,
 };
 
@@ -27,12 +27,12 @@ fn krylovs() -> [LinearSolver; 5] {
         Preconditioner::Factorization { refresh_above: 5 },
     ]
     .map(|preconditioner| {
-        LinearSolver::Krylov(Krylov {
+        LinearSolver::Krylov(KrylovOptions {
             preconditioner,
             rtol: 1e-12,
             newton_rtol: 1e-12,
             bdf_rtol: 1e-12,
-            ..Krylov::default()
+            ..KrylovOptions::default()
         })
     })
 }
@@ -94,7 +94,7 @@ fn stepped<M: Jacobian, I: Integrator<M>>(
 }
 
 /// The factorization and Krylov counts of 10 implicit Euler steps of `model`.
-fn counts_of<M>(model: &M, dt: f64, newton: &NewtonOptions) -> odyn::Factorizations
+fn counts_of<M>(model: &M, dt: f64, newton: &NewtonOptions) -> odyn::LinearWork
 where
     M: Jacobian,
     M::Matrix: Counted,
@@ -109,15 +109,15 @@ where
 
 /// The Jacobians that count their factorizations.
 trait Counted {
-    fn counts(&self) -> odyn::Factorizations;
+    fn counts(&self) -> odyn::LinearWork;
 }
 impl Counted for odyn::grid::GridJacobian {
-    fn counts(&self) -> odyn::Factorizations {
+    fn counts(&self) -> odyn::LinearWork {
         self.factorizations()
     }
 }
 impl Counted for odyn::particles::ParticleJacobian<3> {
-    fn counts(&self) -> odyn::Factorizations {
+    fn counts(&self) -> odyn::LinearWork {
         self.factorizations()
     }
 }

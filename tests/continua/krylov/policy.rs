@@ -3,7 +3,7 @@
 
 use odyn::grid::Boundary;
 use odyn::integrators::ImplicitEuler;
-use odyn::{Krylov, LinearSolver, NewtonOptions};
+use odyn::{KrylovOptions, LinearSolver, NewtonOptions};
 
 use super::{counts_of, stepped, with};
 use crate::grid::{GrayScott, gray_scott};
@@ -28,7 +28,7 @@ fn auto_chooses_krylov_for_big_grids_only() {
         (0, 0, 0)
     );
     // The same grid with cells 120× finer (h·D_u/Δx² = 125 at h = 1), linearized steps (solved
-    // to `Krylov::rtol`, 1e-8): block Jacobi needs more than 50 iterations, so Auto moves on
+    // to `KrylovOptions::rtol`, 1e-8): block Jacobi needs more than 50 iterations, so Auto moves on
     // for the rest of the run. Its moves (to Fourier, to multigrid, to the direct solver),
     // then factorizations and fallbacks, on n² cells of side `dx` with `boundary`:
     let linearized = NewtonOptions {
@@ -76,10 +76,10 @@ fn a_krylov_solve_that_cannot_converge_falls_back_to_the_direct_solve() {
     // counted, and the run equals the direct run.
     let mut model: GrayScott = gray_scott(24, Boundary::Periodic);
     model.dx = 2.5 / 256.0;
-    let starved = with(LinearSolver::Krylov(Krylov {
+    let starved = with(LinearSolver::Krylov(KrylovOptions {
         rtol: 1e-14,
         max_iterations: 1,
-        ..Krylov::default()
+        ..KrylovOptions::default()
     }));
     let counts = counts_of(&model, 10.0, &starved);
     assert!(counts.krylov.fallbacks >= 10, "{counts:?}");

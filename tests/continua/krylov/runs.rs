@@ -4,7 +4,7 @@
 use odyn::grid::Boundary;
 use odyn::integrators::{ImplicitEuler, Rodas5P, Rosenbrock23};
 use odyn::prelude::*;
-use odyn::{Error, Krylov, LinearSolver, NewtonOptions, Preconditioner};
+use odyn::{Error, KrylovOptions, LinearSolver, NewtonOptions, Preconditioner};
 
 use super::{difference, krylovs, stepped, with};
 use crate::grid::{GrayScott, gray_scott};
@@ -88,44 +88,44 @@ fn bad_krylov_options_are_typed_errors() {
     let model: GrayScott = gray_scott(8, Boundary::Periodic);
     for (krylov, field) in [
         (
-            Krylov {
+            KrylovOptions {
                 rtol: 0.0,
-                ..Krylov::default()
+                ..KrylovOptions::default()
             },
             "Krylov::rtol",
         ),
         (
-            Krylov {
+            KrylovOptions {
                 rtol: 1.5,
-                ..Krylov::default()
+                ..KrylovOptions::default()
             },
             "Krylov::rtol",
         ),
         (
-            Krylov {
+            KrylovOptions {
                 rtol: f64::NAN,
-                ..Krylov::default()
+                ..KrylovOptions::default()
             },
             "Krylov::rtol",
         ),
         (
-            Krylov {
+            KrylovOptions {
                 bdf_rtol: 1.0,
-                ..Krylov::default()
+                ..KrylovOptions::default()
             },
             "Krylov::bdf_rtol",
         ),
         (
-            Krylov {
+            KrylovOptions {
                 max_iterations: 0,
-                ..Krylov::default()
+                ..KrylovOptions::default()
             },
             "Krylov::max_iterations",
         ),
         (
-            Krylov {
+            KrylovOptions {
                 preconditioner: Preconditioner::Factorization { refresh_above: 0 },
-                ..Krylov::default()
+                ..KrylovOptions::default()
             },
             "Preconditioner::Factorization::refresh_above",
         ),

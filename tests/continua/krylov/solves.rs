@@ -5,7 +5,7 @@ use odyn::grid::Boundary;
 use odyn::integrators::ImplicitEuler;
 use odyn::particles::ParticleState;
 use odyn::prelude::*;
-use odyn::{Jacobian, Krylov, LinearSolver, NewtonOptions, Preconditioner};
+use odyn::{Jacobian, KrylovOptions, LinearSolver, NewtonOptions, Preconditioner};
 
 use super::{counts_of, difference, krylovs, relative_residual, solve, stepped, with};
 use crate::grid::{GrayScott, gray_scott};
@@ -127,10 +127,10 @@ fn multigrid_iterations_stay_flat_as_the_grid_is_refined() {
         model.dx = 4e-4;
         let newton = NewtonOptions {
             linearized: true,
-            linear: LinearSolver::Krylov(Krylov {
+            linear: LinearSolver::Krylov(KrylovOptions {
                 preconditioner,
                 warm_start: false,
-                ..Krylov::default()
+                ..KrylovOptions::default()
             }),
             ..NewtonOptions::default()
         };
@@ -158,10 +158,10 @@ fn krylov_solves_inside_newton_stop_at_the_forcing_term() {
     let mut model: GrayScott = gray_scott(24, Boundary::Periodic);
     model.dx = 2.5 / 256.0;
     let newton = |newton_rtol: f64| {
-        with(LinearSolver::Krylov(Krylov {
+        with(LinearSolver::Krylov(KrylovOptions {
             preconditioner: Preconditioner::Multigrid,
             newton_rtol,
-            ..Krylov::default()
+            ..KrylovOptions::default()
         }))
     };
     let (loose, tight) = (newton(1e-3), newton(1e-12));

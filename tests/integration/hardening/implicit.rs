@@ -106,26 +106,26 @@ fn bdf_steps_as_long_as_the_solution_allows() {
 /// that cannot serve the method are refused, naming the option.
 #[test]
 fn krylov_targets_that_cannot_serve_the_method_are_refused() {
-    use odyn::{Krylov, LinearSolver, NewtonOptions};
+    use odyn::{KrylovOptions, LinearSolver, NewtonOptions};
     for (krylov, field) in [
         (
-            Krylov {
+            KrylovOptions {
                 rtol: 0.999,
-                ..Krylov::default()
+                ..KrylovOptions::default()
             },
             "Krylov::rtol",
         ),
         (
-            Krylov {
+            KrylovOptions {
                 newton_rtol: 0.5,
-                ..Krylov::default()
+                ..KrylovOptions::default()
             },
             "Krylov::newton_rtol",
         ),
         (
-            Krylov {
+            KrylovOptions {
                 bdf_rtol: 0.9,
-                ..Krylov::default()
+                ..KrylovOptions::default()
             },
             "Krylov::bdf_rtol",
         ),

@@ -227,6 +227,8 @@ fn stiff_methods_give_robertson_sensitivities_that_match_differences_of_solution
         // The model's own work: f, J and ∂f/∂p once per augmented derivative, and J 1 + 2n = 7
         // times and ∂f/∂p 2n = 6 times per augmented Jacobian.
         let (stats, work) = (run.stats, sensitive.work());
+        // One run of this `Sensitive`: its stats carry all of its work.
+        assert_eq!(stats.sensitivity, work, "{method}");
         assert!(stats.jacobian_evaluations > 0, "{method}");
         assert_eq!(work.derivatives, stats.evaluations, "{method}");
         assert_eq!(

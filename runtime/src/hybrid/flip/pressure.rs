@@ -12,7 +12,7 @@
 //! cell and its four neighbours — is made and analysed once, and each step only refills values.
 
 use super::mac::{Cell, Mac};
-use crate::linalg::krylov::{Krylov, LinearSolver, Preconditioner, Solves, Structure};
+use crate::linalg::krylov::{KrylovOptions, LinearSolver, Preconditioner, Solves, Structure};
 use crate::linalg::sparse::SparseSolver;
 use crate::{Error, Result};
 
@@ -46,10 +46,10 @@ impl Pressure {
             }
         }
         let mut solver = SparseSolver::new(w * h, &entries);
-        let krylov = Krylov {
+        let krylov = KrylovOptions {
             rtol: tolerance,
             preconditioner,
-            ..Krylov::default()
+            ..KrylovOptions::default()
         };
         solver.configure(
             &LinearSolver::Krylov(krylov),

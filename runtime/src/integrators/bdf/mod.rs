@@ -148,6 +148,10 @@ pub struct Bdf<M: Jacobian> {
 impl<M: Jacobian> crate::integrators::sealed::Sealed for Bdf<M> {}
 
 impl<M: Jacobian> Integrator<M> for Bdf<M> {
+    fn linear_work(&self) -> crate::LinearWork {
+        crate::NewtonMatrix::work(&self.jacobian)
+    }
+
     const METHOD: Method = Method::Bdf;
     const DENSE_DEGREE: usize = MAX_ORDER;
     const START_ORDER: u32 = 1;

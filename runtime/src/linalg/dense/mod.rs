@@ -84,6 +84,12 @@ pub trait NewtonMatrix: Clone + fmt::Debug {
         let _ = (newton, solves);
     }
 
+    /// The sparse factorizations and Krylov solves this matrix has made so far
+    /// ([`crate::Stats::linear`]); zero (the default) for dense matrices.
+    fn work(&self) -> crate::LinearWork {
+        crate::LinearWork::default()
+    }
+
     /// The first entry of J, as [`crate::Jacobian::jacobian`] last wrote it, that is NaN or
     /// infinite: (row, column, value) in the state's layout. The implicit methods check it after
     /// every evaluation of J and report [`crate::Error::NonFiniteJacobian`]: no step size makes

@@ -1,5 +1,5 @@
 //! Krylov solvers for the sparse Newton matrices of particle and field models: how a run
-//! chooses them ([`LinearSolver`], [`Krylov`], [`Preconditioner`]), here, and the solve itself,
+//! chooses them ([`LinearSolver`], [`KrylovOptions`], [`Preconditioner`]), here, and the solve itself,
 //! on faer's conjugate gradient (`faer::matrix_free`) and our BiCGSTAB (`bicgstab.rs`), in
 //! `solve.rs`.
 
@@ -21,17 +21,17 @@ pub(crate) use solve::{FourierTrial, KrylovSolver, NoConvergence};
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[non_exhaustive]
 pub enum LinearSolver {
-    /// [`Krylov::default()`] (block Jacobi) for field models of at least
+    /// [`KrylovOptions::default()`] (block Jacobi) for field models of at least
     /// [`LinearSolver::FIELD_KRYLOV_FROM`] unknowns, [`LinearSolver::Direct`] otherwise —
     /// particle models included, for the reason above. On a periodic grid a slow block-Jacobi
     /// solve ([`LinearSolver::tries_fourier_after`]) has the next solve tried with
     /// [`Preconditioner::Fourier`], which stays for the run if that solve cost less
-    /// ([`KrylovCounts::switched_to_fourier`]). A field model whose Krylov solve needs
+    /// ([`crate::KrylovWork::switched_to_fourier`]). A field model whose Krylov solve needs
     /// more than [`LinearSolver::AUTO_DIRECT_ABOVE`] iterations goes on, for the rest of the
     /// run, with [`Preconditioner::Fourier`] on a periodic grid, else (or when Fourier too needs more) with
     /// [`Preconditioner::Multigrid`] from [`LinearSolver::MULTIGRID_FROM`] unknowns
-    /// ([`KrylovCounts::switched_to_multigrid`]), else with the direct solver
-    /// ([`KrylovCounts::switched_to_direct`]), as it does when multigrid too needs more. The
+    /// ([`crate::KrylovWork::switched_to_multigrid`]), else with the direct solver
+    /// ([`crate::KrylovWork::switched_to_direct`]), as it does when multigrid too needs more. The
     /// default.
     #[default]
     Auto,
@@ -40,7 +40,7 @@ pub enum LinearSolver {
     /// A preconditioned Krylov method: conjugate gradient when the matrix is symmetric,
     /// BiCGSTAB otherwise (and when CG finds the matrix indefinite). A matrix of 2³² stored
     /// entries or more (its products index columns in 32 bits) is solved directly instead.
-    Krylov(Krylov),
+    Krylov(KrylovOptions),
 }
 
 /// Which kind of model a sparse matrix belongs to, for [`LinearSolver::Auto`].
@@ -96,7 +96,7 @@ impl LinearSolver {
             LinearSolver::Auto
                 if structure == Structure::Field && n >= LinearSolver::FIELD_KRYLOV_FROM =>
             {
-                let mut solver = KrylovSolver::new(Krylov::default(), n);
+                let mut solver = KrylovSolver::new(KrylovOptions::default(), n);
                 solver.direct_above = Some(LinearSolver::AUTO_DIRECT_ABOVE);
                 Some(solver)
             }
@@ -127,7 +127,7 @@ impl LinearSolver {
 /// 1e-8, well below the tolerances these methods are run at. (To make BDF's solves as tight,
 /// set `newton_rtol` too: `rtol` alone no longer reaches them.)
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Krylov {
+pub struct KrylovOptions {
     /// Relative residual that ends a solve of a one-step method — the Rosenbrock stages, the
     /// linearized implicit Euler — where nothing corrects the linear error (default 1e-8; at
     /// most 1e-2). For an adaptive run keep it below a hundredth of the run's rtol: a stage's
@@ -155,7 +155,7 @@ pub struct Krylov {
     pub bdf_rtol: f64,
     /// Iterations allowed per solve (default 500). A solve that has not converged by then —
     /// or breaks down — is redone by the direct solver and counted
-    /// ([`KrylovCounts::fallbacks`]): never a wrong answer.
+    /// ([`crate::KrylovWork::fallbacks`]): never a wrong answer.
     pub max_iterations: usize,
     /// What approximates the matrix's inverse (default [`Preconditioner::BlockJacobi`]).
     pub preconditioner: Preconditioner,
@@ -166,9 +166,9 @@ pub struct Krylov {
     pub warm_start: bool,
 }
 
-impl Default for Krylov {
+impl Default for KrylovOptions {
     fn default() -> Self {
-        Krylov {
+        KrylovOptions {
             rtol: 1e-8,
             newton_rtol: 1e-3,
             bdf_rtol: 0.05,
@@ -179,7 +179,7 @@ impl Default for Krylov {
     }
 }
 
-impl Krylov {
+impl KrylovOptions {
     fn check(&self) -> crate::Result<()> {
         for (name, rtol, most, why) in [
             (
@@ -233,13 +233,13 @@ impl Krylov {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Solves {
     /// The stages of a one-step method (the Rosenbrock methods, the linearized implicit Euler),
-    /// whose error nothing corrects: [`Krylov::rtol`].
+    /// whose error nothing corrects: [`KrylovOptions::rtol`].
     OneStep,
     /// The updates of a Newton iteration run to a tight tolerance (full-Newton implicit Euler,
-    /// BDF under SciPy's Newton test): [`Krylov::newton_rtol`].
+    /// BDF under SciPy's Newton test): [`KrylovOptions::newton_rtol`].
     Newton,
     /// The updates of BDF's Newton iteration under CVODE's test, which stops once an update's
-    /// error is a tenth of the step's error allowance: [`Krylov::bdf_rtol`].
+    /// error is a tenth of the step's error allowance: [`KrylovOptions::bdf_rtol`].
     LooseNewton,
 }
 
@@ -282,27 +282,4 @@ pub enum Preconditioner {
         /// Iterations of one solve above which the next factorization is a real one.
         refresh_above: usize,
     },
-}
-
-/// Work counts of the Krylov solves of one matrix.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct KrylovCounts {
-    /// Solves by a Krylov method.
-    pub solves: u64,
-    /// Their iterations, together.
-    pub iterations: u64,
-    /// Block-Jacobi, ILU(0) and multigrid preconditioners built (a reused factorization counts
-    /// as a Cholesky or LU instead).
-    pub preconditioners: u64,
-    /// Solves redone by the direct solver (no convergence within `max_iterations`, or a
-    /// breakdown).
-    pub fallbacks: u64,
-    /// 1 when [`LinearSolver::Auto`] moved from block Jacobi to Fourier for this run (0 again
-    /// when it tried Fourier and gave it back, [`LinearSolver::tries_fourier_after`]).
-    pub switched_to_fourier: u64,
-    /// 1 when [`LinearSolver::Auto`] moved from block Jacobi or Fourier to multigrid for this
-    /// run.
-    pub switched_to_multigrid: u64,
-    /// 1 when [`LinearSolver::Auto`] gave up Krylov solves for this run.
-    pub switched_to_direct: u64,
 }

@@ -10,14 +10,15 @@ use faer::matrix_free::{InitialGuessStatus, Precond};
 use faer::{MatMut, MatRef, Par};
 
 use super::bicgstab::{Vectors, bicgstab};
-use super::{Krylov, KrylovCounts, Preconditioner, Solves};
+use super::{KrylovOptions, Preconditioner, Solves};
 use crate::linalg::operator::Column;
 use crate::linalg::operator::Products;
+use crate::stats::KrylovWork;
 
 /// What a Krylov solve keeps between calls: the options, the previous solution for the warm
 /// start, and every buffer, allocated once.
 pub(crate) struct KrylovSolver {
-    pub(crate) options: Krylov,
+    pub(crate) options: KrylovOptions,
     /// The previous solution.
     guess: Vec<f64>,
     /// A·guess, for the warm start's scaling.
@@ -61,7 +62,7 @@ pub(crate) enum FourierTrial {
 pub(crate) struct NoConvergence;
 
 impl KrylovSolver {
-    pub(crate) fn new(options: Krylov, n: usize) -> Self {
+    pub(crate) fn new(options: KrylovOptions, n: usize) -> Self {
         KrylovSolver {
             options,
             guess: vec![0.0; n],
@@ -89,12 +90,12 @@ impl KrylovSolver {
         symmetric: bool,
         precond: P,
         x: &mut [f64],
-        counts: &mut KrylovCounts,
+        counts: &mut KrylovWork,
     ) -> Result<(), NoConvergence> {
         let n = x.len();
         self.reserve(a, precond);
         self.rhs.copy_from_slice(x);
-        let Krylov {
+        let KrylovOptions {
             rtol,
             newton_rtol,
             max_iterations,

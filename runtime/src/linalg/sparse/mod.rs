@@ -16,9 +16,10 @@ use faer::sparse::linalg::lu::{NumericLu, SymbolicLu};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 
 use super::dense::{FactorizeError, SolveError};
-use super::krylov::{KrylovCounts, KrylovSolver, LinearSolver, Preconditioner, Solves, Structure};
+use super::krylov::{KrylovSolver, LinearSolver, Preconditioner, Solves, Structure};
 use super::multigrid::Multigrid;
 use super::precond::{BlockJacobi, Fourier, Ilu0};
+use crate::stats::LinearWork;
 
 mod direct;
 mod iterative;
@@ -27,25 +28,6 @@ mod pattern;
 mod tests;
 
 pub(crate) use super::operator::{Edge, Products, RowMatrix, StencilBlock, StencilMatrix};
-
-/// How often a sparse Newton matrix has factorized: the symbolic analyses happen once per run,
-/// the numeric factorizations once per Newton iteration (or Rosenbrock step).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Factorizations {
-    /// Symbolic Cholesky analyses (fill-reducing ordering and elimination tree).
-    pub symbolic_cholesky: u64,
-    /// Symbolic LU analyses (made only if a Newton matrix is unsymmetric or indefinite).
-    pub symbolic_lu: u64,
-    /// Numeric Cholesky factorizations that succeeded.
-    pub cholesky: u64,
-    /// Numeric Cholesky factorizations abandoned at a non-positive pivot (a symmetric but
-    /// indefinite matrix), each followed by an LU: work done twice.
-    pub cholesky_failed: u64,
-    /// Numeric LU factorizations.
-    pub lu: u64,
-    /// The Krylov solves, when [`crate::LinearSolver`] chose them.
-    pub krylov: KrylovCounts,
-}
 
 /// A sparse LU: the symbolic analysis (shared by clones) and the numeric factors.
 type SparseLu = (Arc<SymbolicLu<usize>>, NumericLu<usize, f64>);
@@ -67,7 +49,7 @@ pub(crate) struct SparseSolver {
     cholesky_values: Vec<f64>,
     lu: Option<SparseLu>,
     scratch: MemBuffer,
-    pub(crate) counts: Factorizations,
+    pub(crate) counts: LinearWork,
     factored: Option<Factored>,
     /// Factorizations left to go straight to LU after a Cholesky failed.
     skip_cholesky: u32,
@@ -126,7 +108,7 @@ impl SparseSolver {
             rhs: vec![0.0; n],
             lu: None,
             scratch: MemBuffer::new(StackReq::EMPTY),
-            counts: Factorizations::default(),
+            counts: LinearWork::default(),
             factored: None,
             skip_cholesky: 0,
             krylov: None,

@@ -2,7 +2,7 @@
 
 use super::*;
 use crate::linalg::krylov::{Solves, Structure};
-use crate::{Krylov, LinearSolver, Preconditioner};
+use crate::{KrylovOptions, LinearSolver, Preconditioner};
 
 /// A 2-D Laplacian-like SPD matrix, and an unsymmetric one, solved directly and by each
 /// Krylov configuration: same answer to the Krylov tolerance.
@@ -47,10 +47,10 @@ fn krylov_solves_agree_with_the_direct_solve() {
         ] {
             let mut krylov = SparseSolver::new(n, &entries);
             krylov.set_blocks(2, (0..n).collect());
-            let linear = LinearSolver::Krylov(Krylov {
+            let linear = LinearSolver::Krylov(KrylovOptions {
                 preconditioner,
                 rtol: 1e-12,
-                ..Krylov::default()
+                ..KrylovOptions::default()
             });
             krylov.configure(&linear, Structure::Field, Solves::OneStep);
             fill(&mut krylov);
@@ -79,9 +79,9 @@ fn krylov_solves_agree_with_the_direct_solve() {
 #[test]
 fn a_singular_matrix_behind_a_failed_krylov_solve_is_a_typed_error() {
     let mut solver = SparseSolver::new(2, &[(0, 1)]);
-    let linear = LinearSolver::Krylov(Krylov {
+    let linear = LinearSolver::Krylov(KrylovOptions {
         preconditioner: Preconditioner::BlockJacobi,
-        ..Krylov::default()
+        ..KrylovOptions::default()
     });
     solver.configure(&linear, Structure::Particles, Solves::OneStep);
     solver.values.fill(1.0);

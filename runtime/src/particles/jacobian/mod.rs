@@ -9,8 +9,9 @@ use std::fmt;
 use nalgebra::SMatrix;
 
 use crate::linalg::dense::finite;
-use crate::linalg::sparse::{Factorizations, SparseSolver};
+use crate::linalg::sparse::SparseSolver;
 use crate::particles::ParticleSystem;
+use crate::stats::LinearWork;
 use crate::{FactorizeError, NewtonMatrix, SolveError};
 
 use assembly::{Slots, pattern};
@@ -94,7 +95,7 @@ impl<const D: usize> ParticleJacobian<D> {
     }
 
     /// How often this Jacobian has factorized.
-    pub fn factorizations(&self) -> Factorizations {
+    pub fn factorizations(&self) -> LinearWork {
         self.solver.counts
     }
 
@@ -132,6 +133,10 @@ impl<const D: usize> ParticleJacobian<D> {
 impl<const D: usize> NewtonMatrix for ParticleJacobian<D> {
     const COSTLY_SOLVES: bool = true;
     const LINKS: bool = true;
+
+    fn work(&self) -> LinearWork {
+        self.solver.counts
+    }
 
     fn configure(&mut self, newton: &crate::NewtonOptions, solves: crate::Solves) {
         self.definite = newton.definite;
