@@ -94,7 +94,7 @@ fn run(dir: &Path) -> odyn::Result<()> {
         ..truth
     };
     let options = FitOptions {
-        method: Method::Rodas5P,
+        integrator: Method::Rodas5P,
         rtol: 1e-8,
         atol: 1e-16,
         log_parameters: true,

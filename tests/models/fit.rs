@@ -220,7 +220,7 @@ fn robertson_rates_are_recovered_by_a_stiff_fit() {
         ..truth
     };
     let options = FitOptions {
-        method: Method::Rodas5P,
+        integrator: Method::Rodas5P,
         rtol: 1e-9,
         atol: 1e-18,
         log_parameters: true,
@@ -362,7 +362,7 @@ fn fits_that_cannot_fit_are_typed_errors() {
             ..FitOptions::default()
         },
         FitOptions {
-            method: Method::Rk4,
+            integrator: Method::Rk4,
             ..FitOptions::default()
         },
         FitOptions {

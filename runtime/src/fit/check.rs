@@ -91,14 +91,14 @@ pub(super) fn check<M: Parameters>(model: &M, data: &[Data], options: &FitOption
 /// Errors: [`Error::InvalidInput`] naming the option: a fixed-step method (a fit has no `dt` to
 /// give it), tolerances that are not finite and positive, no iterations.
 fn check_options(options: &FitOptions) -> Result<()> {
-    if !options.method.is_adaptive() {
+    if !options.integrator.is_adaptive() {
         return Err(Error::invalid(
             "FitOptions::method",
             format!(
                 "{} steps at a fixed dt, which a fit cannot give it; a fit's solves are adaptive, \
                  to rtol and atol: use Dop853 or Tsit5, or Rodas5P, Rosenbrock23 or Bdf for a \
                  stiff model",
-                options.method.name()
+                options.integrator.name()
             ),
         ));
     }

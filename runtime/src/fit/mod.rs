@@ -44,7 +44,7 @@ pub struct Data {
 pub struct FitOptions {
     /// The integrator of the model and its sensitivities (default DOP853; for stiff models
     /// Rodas5P, Rosenbrock23 or BDF, on the augmented Jacobian).
-    pub method: Method,
+    pub integrator: Method,
     /// Its relative and absolute tolerance (default 1e-10, 1e-12: the fit cannot be more
     /// accurate than the solves its residuals come from). The sensitivities ∂y/∂pⱼ are held
     /// to atol/|pⱼ| (CVODES's rule with p̄ = p; `Sensitive::tolerances`).
@@ -68,7 +68,7 @@ pub struct FitOptions {
 impl Default for FitOptions {
     fn default() -> Self {
         FitOptions {
-            method: Method::Dop853,
+            integrator: Method::Dop853,
             rtol: 1e-10,
             atol: 1e-12,
             sensitivities_in_error_test: true,
@@ -284,7 +284,7 @@ where
     );
     let run = sensitive
         .simulate()
-        .integrator(options.method)
+        .integrator(options.integrator)
         .with_tolerances(tolerances)
         .duration(end)
         .save_at(times)

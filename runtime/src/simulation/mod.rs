@@ -70,7 +70,7 @@ impl<'m, M: Model> Simulation<'m, M> {
             (None, None) => (None, false),
         };
         let options = RunOptions {
-            method: M::DEFAULT_METHOD,
+            integrator: M::DEFAULT_METHOD,
             stepping,
             ..RunOptions::default()
         };
@@ -87,7 +87,7 @@ impl<'m, M: Model> Simulation<'m, M> {
     /// Uses `method` instead of the attribute's. Choosing an adaptive method drops a `dt` that
     /// came from the attribute (the run then uses tolerances); an explicit `.dt(..)` stays.
     pub fn integrator(mut self, method: Method) -> Self {
-        self.options.method = method;
+        self.options.integrator = method;
         if method.is_adaptive() && self.attribute_dt {
             self.options.stepping = None;
             self.attribute_dt = false;
@@ -268,7 +268,7 @@ impl<'m, M: Model> Simulation<'m, M> {
     /// How a run with `method` steps: the options' stepping, less the attribute's `dt` when the
     /// method is adaptive and was not the options' own (as [`Simulation::integrator`] drops it).
     fn stepping_for(&self, method: Method) -> Option<&Stepping> {
-        if method != self.options.method && method.is_adaptive() && self.attribute_dt {
+        if method != self.options.integrator && method.is_adaptive() && self.attribute_dt {
             None
         } else {
             self.options.stepping.as_ref()

@@ -20,7 +20,7 @@ pub enum Length {
 #[derive(Clone, Debug, PartialEq)]
 pub struct RunOptions {
     /// The integrator. Default: the model's `#[system(integrator = ...)]`, else [`Method::Rk4`].
-    pub method: Method,
+    pub integrator: Method,
     /// Fixed dt or tolerances. Default: the attribute's `rtol`/`atol`, else its `dt`; with
     /// neither, adaptive methods use the default [`Tolerances`] and fixed-step methods need a
     /// `.dt(..)`.
@@ -64,7 +64,7 @@ pub struct RunOptions {
 impl Default for RunOptions {
     fn default() -> Self {
         RunOptions {
-            method: Method::Rk4,
+            integrator: Method::Rk4,
             stepping: None,
             length: None,
             t0: 0.0,

@@ -39,7 +39,7 @@ macro_rules! dispatch {
         impl<M: Model> Simulation<'_, M> {
             /// [`Simulation::run_partial`] on the current stack, with the method of the options.
             pub(super) fn run_here(&self) -> Result<(Trajectory<M::State>, Option<Error>)> {
-                match self.options.method {
+                match self.options.integrator {
                     $(Method::$variant => <method::$variant as Sealed>::run(self),)*
                 }
             }
