@@ -270,6 +270,28 @@ mod tests {
         );
     }
 
+    /// A model with `#[param]`s: its Jacobian and its ∂f/∂p come from the one lowering of the
+    /// force (a copy each).
+    #[test]
+    fn parameters_expansion() {
+        snapshot(
+            "parameters",
+            quote! {
+                [integrator = Rodas5P]
+                pub struct Decay {
+                    #[state] pub y: f64, #[state] pub z: f64,
+                    #[param] pub k: f64, #[param] pub c: f64,
+                }
+                impl Decay {
+                    fn derivative(&self, t: f64) -> DecayState {
+                        let rate = if self.c > 0.0 { self.k * self.y } else { self.k };
+                        DecayState { y: -rate + (self.c * t).sin(), z: rate - self.c * self.z * self.z }
+                    }
+                }
+            },
+        );
+    }
+
     #[test]
     fn generic_expansion() {
         snapshot(

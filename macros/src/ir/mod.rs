@@ -104,7 +104,7 @@ impl Node {
 }
 
 /// The arena.
-#[derive(Default, Debug)]
+#[derive(Clone, Default, Debug)]
 pub(crate) struct Graph {
     nodes: Vec<Node>,
     index: HashMap<Node, ExprId>,

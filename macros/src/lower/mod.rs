@@ -57,7 +57,9 @@ use scope::Binding;
 /// rather than risking the compiler's stack (a 1000-deep expression once crashed rustc here).
 pub(crate) const MAX_DEPTH: u32 = 128;
 
-/// A lowered force function.
+/// A lowered force function: made once per model, and copied for each derivative generated
+/// from it (∂f/∂y with ∂f/∂t, ∂f/∂p), each of which adds its own nodes to its copy.
+#[derive(Clone)]
 pub(crate) struct Lowered {
     pub(crate) graph: Graph,
     /// f(t, y) component by component, in state layout order.
@@ -73,6 +75,7 @@ pub(crate) struct Lowered {
 }
 
 /// One item of the prologue.
+#[derive(Clone)]
 pub(crate) enum Prologue {
     /// A state-independent statement of the user's, kept so opaque values can name its locals.
     Stmt(Box<Stmt>),
@@ -87,6 +90,7 @@ pub(crate) enum Prologue {
 }
 
 /// A branch of the prologue.
+#[derive(Clone)]
 pub(crate) struct Branch {
     /// The selector variable: set to the index of the arm that ran (none for
     /// [`BranchKind::Every`], whose arms all run).
@@ -98,6 +102,7 @@ pub(crate) struct Branch {
 }
 
 /// How a branch chooses its arm.
+#[derive(Clone)]
 pub(crate) enum BranchKind {
     /// `if c₀ {…} else if c₁ {…} else {…}`: the conditions, one fewer than the arms (the last
     /// arm is the `else`, empty when the user wrote none).

@@ -201,16 +201,10 @@ impl FrontEnd for Kind {
                 ),
             );
         }
-        // ∂f/∂p from a second lowering of the force: the Jacobian consumes the first.
+        // ∂f/∂p from a copy of the one lowered force (the Jacobian differentiates the other).
         let parameters = match (&lowered, &functions.force) {
-            (Some(_), Some(force)) if !params.is_empty() => {
-                match lower::lower(&model, &helpers, &force.original) {
-                    Ok(again) => parameters::parameters(&model, &params, again, force, imp, errors),
-                    Err(error) => {
-                        errors.push(error);
-                        TokenStream::new()
-                    }
-                }
+            (Some(lowered), Some(force)) if !params.is_empty() => {
+                parameters::parameters(&model, &params, lowered.clone(), force, imp, errors)
             }
             _ => TokenStream::new(),
         };
