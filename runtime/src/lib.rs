@@ -59,7 +59,7 @@ pub use linalg::{
 };
 pub use method::{Method, MethodInfo};
 pub use model::dual::Dual;
-pub use model::{Jacobian, Mass, Model, Parameters, SecondOrder, State, Unavailable, consistent};
+pub use model::{Jacobian, Mass, Model, Parameters, SecondOrder, State, consistent};
 pub use nalgebra;
 /// The `rand` crate, for ensemble members' generators ([`ensemble::MemberRng`] implements its
 /// `Rng`).
@@ -97,9 +97,9 @@ pub mod __private {
     pub mod grid {
         pub use crate::grid::glue::*;
     }
-    pub use crate::model::Sealed;
     pub use crate::model::differences::central_differences;
     pub use crate::model::dual::{DualCast, Seeded, Tangent, ToDual};
+    pub use crate::model::{Sealed, Unavailable};
 
     /// `value`, of `like`'s type: the variable of a loop `#[system]` unrolls in a Jacobian's
     /// prologue, typed like the loop's run-time end.

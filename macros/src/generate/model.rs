@@ -137,7 +137,7 @@ fn optional_self(
         )
     } else {
         (
-            quote!(::odyn::Unavailable<Self>),
+            quote!(::odyn::__private::Unavailable<Self>),
             quote! {
                 #[inline(always)]
                 fn #method(&self) -> ::core::option::Option<&#assoc> {

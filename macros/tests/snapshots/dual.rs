@@ -37,7 +37,7 @@ impl Tabled {
 #[automatically_derived]
 impl ::odyn::Model for Tabled {
     type State = TabledState;
-    type SecondOrder = ::odyn::Unavailable<Self>;
+    type SecondOrder = ::odyn::__private::Unavailable<Self>;
     const NAME: &'static str = "Tabled";
     const DEFAULT_METHOD: ::odyn::Method = ::odyn::Method::Rk4;
     const DEFAULT_DT: ::core::option::Option<f64> = ::core::option::Option::None;

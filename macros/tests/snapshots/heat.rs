@@ -111,7 +111,7 @@ impl ::odyn::Jacobian for Heat {
 #[automatically_derived]
 impl ::odyn::Model for Heat {
     type State = HeatState;
-    type SecondOrder = ::odyn::Unavailable<Self>;
+    type SecondOrder = ::odyn::__private::Unavailable<Self>;
     const NAME: &'static str = "Heat";
     const DEFAULT_METHOD: ::odyn::Method = ::odyn::Method::ImplicitEuler;
     const DEFAULT_DT: ::core::option::Option<f64> = ::core::option::Option::Some({

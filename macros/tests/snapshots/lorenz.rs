@@ -35,7 +35,7 @@ impl Lorenz {
 #[automatically_derived]
 impl ::odyn::Model for Lorenz {
     type State = LorenzState;
-    type SecondOrder = ::odyn::Unavailable<Self>;
+    type SecondOrder = ::odyn::__private::Unavailable<Self>;
     const NAME: &'static str = "Lorenz";
     const DEFAULT_METHOD: ::odyn::Method = ::odyn::Method::Rk4;
     const DEFAULT_DT: ::core::option::Option<f64> = ::core::option::Option::None;

@@ -29,7 +29,7 @@ impl Decay {
 #[automatically_derived]
 impl ::odyn::Model for Decay {
     type State = DecayState;
-    type SecondOrder = ::odyn::Unavailable<Self>;
+    type SecondOrder = ::odyn::__private::Unavailable<Self>;
     const NAME: &'static str = "Decay";
     const DEFAULT_METHOD: ::odyn::Method = ::odyn::Method::Rodas5P;
     const DEFAULT_DT: ::core::option::Option<f64> = ::core::option::Option::None;

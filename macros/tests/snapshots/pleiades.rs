@@ -340,7 +340,7 @@ impl ::odyn::Model for Pleiades {
     fn as_second_order(&self) -> ::core::option::Option<&Self> {
         ::core::option::Option::Some(self)
     }
-    type Jacobian = ::odyn::Unavailable<Self>;
+    type Jacobian = ::odyn::__private::Unavailable<Self>;
     #[inline(always)]
     fn as_jacobian(&self) -> ::core::option::Option<&Self::Jacobian> {
         ::core::option::Option::None

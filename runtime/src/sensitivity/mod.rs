@@ -30,7 +30,8 @@ pub use state::SensitivityState;
 
 use nalgebra::DMatrix;
 
-use crate::{DenseMatrix, Jacobian, Method, Model, Parameters, State, Tolerances, Unavailable};
+use crate::model::Unavailable;
+use crate::{DenseMatrix, Jacobian, Method, Model, Parameters, State, Tolerances};
 
 /// What a [`Sensitive`] model evaluates into, allocated once: the state, f, J and ∂f/∂p, and a
 /// second J and ∂f/∂p for the augmented Jacobian's differences.
