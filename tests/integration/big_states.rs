@@ -58,14 +58,17 @@ fn megabyte_states_do_not_overflow_the_stack() {
         .stack_size(8 << 20)
         .spawn(move || {
             let model = decay();
-            let run = model.simulate().steps(10).run().unwrap();
+            let run = model
+                .simulate()
+                .steps(10)
+                .run_with::<odyn::method::Rk4>()
+                .unwrap();
             check(&run.samples.last().unwrap().state, &recurrence, 1e-13);
             let run = model
                 .simulate()
-                .integrator(Method::Dop853)
                 .tolerances(1e-10, 1e-12)
                 .duration(1.0)
-                .run()
+                .run_with::<odyn::method::Dop853>()
                 .unwrap();
             check(&run.samples.last().unwrap().state, &|l: f64| l.exp(), 1e-7);
             check(&stepped(&model), &recurrence, 1e-13);

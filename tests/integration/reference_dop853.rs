@@ -89,12 +89,11 @@ fn arenstorf_steps_match_scipy() {
     for row in &ARENSTORF {
         let run = model
             .simulate()
-            .integrator(Method::Dop853)
             .tolerances(row.tol, row.tol)
             .adaptive(scipy_control(row.h0))
             .duration(Arenstorf::PERIOD)
             .record_every(u64::MAX)
-            .run()
+            .run_with::<odyn::method::Dop853>()
             .unwrap();
         let s = run.last().state;
         let error = common::max_abs_difference(&[s.y1, s.y2, s.v1, s.v2], &reference);

@@ -188,11 +188,10 @@ fn an_infinite_divergence_limit_still_stops_an_infinite_state() {
     let model = Riccati { y: 1.0 };
     let error = model
         .simulate()
-        .integrator(Method::Rk4)
         .dt(0.1)
         .steps(40)
         .divergence_limit(f64::INFINITY)
-        .run()
+        .run_with::<odyn::method::Rk4>()
         .unwrap_err();
     match &error {
         Error::Diverged { value, .. } => assert!(!value.is_finite(), "{error}"),
