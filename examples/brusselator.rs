@@ -158,7 +158,7 @@ fn main() -> odyn::Result<()> {
             s.steps, s.jacobian_evaluations, s.factorizations, s.linear_solves
         );
     };
-    let (auto, seconds) = run(LinearSolver::Auto)?;
+    let (auto, seconds) = run(LinearSolver::default())?;
     report("Auto (the default)", &auto, seconds);
     let (krylov, seconds) = run(LinearSolver::Krylov(KrylovOptions::default()))?;
     report("block-Jacobi BiCGSTAB", &krylov, seconds);

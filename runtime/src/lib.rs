@@ -53,7 +53,7 @@ pub use error::{Error, NewtonFailure, Rejection, Result};
 pub use fingerprint::Fingerprint;
 pub use integrators::Integrator;
 pub use linalg::{
-    DenseMatrix, FactorizeError, FaerDense, KrylovOptions, LinearSolver, LinkLaplacian,
+    AutoPolicy, DenseMatrix, FactorizeError, FaerDense, KrylovOptions, LinearSolver, LinkLaplacian,
     NewtonMatrix, NewtonOptions, ParticleSolve, Preconditioner, QuasiNewtonOptions, SolveError,
     Solves,
 };

@@ -118,7 +118,7 @@ pub struct KrylovWork {
     /// breakdown).
     pub fallbacks: u64,
     /// 1 when [`crate::LinearSolver::Auto`] moved from block Jacobi to Fourier for this run (0 again
-    /// when it tried Fourier and gave it back, [`crate::LinearSolver::tries_fourier_after`]).
+    /// when it tried Fourier and gave it back, [`crate::AutoPolicy::fourier_iteration_cost`]).
     pub switched_to_fourier: u64,
     /// 1 when [`crate::LinearSolver::Auto`] moved from block Jacobi or Fourier to multigrid for this
     /// run.

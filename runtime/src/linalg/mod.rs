@@ -13,7 +13,7 @@ pub(crate) mod sparse;
 pub(crate) mod spd;
 
 pub use dense::{DenseMatrix, FactorizeError, FaerDense, NewtonMatrix, SolveError};
-pub use krylov::{KrylovOptions, LinearSolver, Preconditioner, Solves};
+pub use krylov::{AutoPolicy, KrylovOptions, LinearSolver, Preconditioner, Solves};
 pub use laplacian::LinkLaplacian;
 pub use newton::{NewtonOptions, ParticleSolve, QuasiNewtonOptions};
 

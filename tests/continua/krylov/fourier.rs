@@ -43,7 +43,7 @@ fn fourier_solves_a_uniform_grid_in_one_iteration() {
 
 /// `Auto`'s trial of Fourier on a periodic grid is decided by its first solve's cost: on
 /// Pearson's Gray–Scott at 64² with cells 0.3× as wide, h = 10, block Jacobi needs 18 iterations
-/// a linearized solve (to 1e-8) on average, more than `tries_fourier_after` (4.3), and Fourier
+/// a linearized solve (to 1e-8) on average, more than `AutoPolicy::fourier_iteration_cost` (4.3), and Fourier
 /// about 7, each costing 0.33·log₂ 8192 = 4.3 block-Jacobi iterations: tried, and given back to
 /// block Jacobi for the rest of the run (its solves never need twice as many; 10 steps,
 /// measured with the sweep that chose the case).
@@ -60,7 +60,7 @@ fn auto_gives_fourier_back_when_its_solve_costs_more() {
         counts_of(&model, 10.0, &newton)
     };
     let block_jacobi = LinearSolver::Krylov(KrylovOptions::default());
-    let (auto, block_jacobi) = (counts(LinearSolver::Auto), counts(block_jacobi));
+    let (auto, block_jacobi) = (counts(LinearSolver::default()), counts(block_jacobi));
     let (a, b) = (auto.krylov, block_jacobi.krylov);
     assert_eq!(a.solves, b.solves);
     // One solve was Fourier's (fewer iterations than block Jacobi's), and it was given back.
@@ -141,7 +141,7 @@ fn auto_tries_fourier_again_as_the_problem_stiffens() {
         d: 0.1,
     };
     let steps = 30;
-    let auto = counts_per_step(&model, LinearSolver::Auto, steps);
+    let auto = counts_per_step(&model, LinearSolver::default(), steps);
     let block_jacobi = counts_per_step(
         &model,
         LinearSolver::Krylov(KrylovOptions::default()),
@@ -157,7 +157,7 @@ fn auto_tries_fourier_again_as_the_problem_stiffens() {
         auto[steps - 1]
     );
     let last = |c: &[KrylovWork]| c[steps - 1].iterations - c[steps - 2].iterations;
-    let cost = LinearSolver::fourier_iteration_cost(n * n);
+    let cost = odyn::AutoPolicy::default().fourier_iteration_cost(n * n);
     assert!(
         last(&auto) as f64 * cost < last(&block_jacobi) as f64,
         "the last step: {} Fourier iterations against {} block-Jacobi ones",

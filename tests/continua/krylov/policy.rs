@@ -3,7 +3,8 @@
 
 use odyn::grid::Boundary;
 use odyn::integrators::ImplicitEuler;
-use odyn::{KrylovOptions, LinearSolver, NewtonOptions};
+use odyn::prelude::*;
+use odyn::{AutoPolicy, KrylovOptions, LinearSolver, NewtonOptions};
 
 use super::{counts_of, stepped, with};
 use crate::grid::{GrayScott, gray_scott};
@@ -12,7 +13,7 @@ use crate::particles::cloth;
 #[test]
 fn auto_chooses_krylov_for_big_grids_only() {
     let auto = NewtonOptions::default();
-    assert_eq!(auto.linear, LinearSolver::Auto);
+    assert_eq!(auto.linear, LinearSolver::Auto(odyn::AutoPolicy::default()));
     // 22² cells × 2 fields = 968 unknowns: below the threshold, direct.
     let small: GrayScott = gray_scott(22, Boundary::Periodic);
     let counts = counts_of(&small, 1.0, &auto);
@@ -50,17 +51,17 @@ fn auto_chooses_krylov_for_big_grids_only() {
     };
     // Periodic: to Fourier, which needs no more than 50 and never factorizes.
     assert_eq!(moves(23, Boundary::Periodic, 4e-4), (1, 0, 0, 0, 0));
-    // Zero-flux edges (no Fourier) below `MULTIGRID_FROM`: Auto gives Krylov up and factorizes
+    // Zero-flux edges (no Fourier) below `AutoPolicy::multigrid_from`: Auto gives Krylov up and factorizes
     // from then on.
     let (fourier, multigrid, direct, factorizations, _) = moves(23, Boundary::Neumann, 4e-4);
     assert_eq!((fourier, multigrid, direct), (0, 0, 1));
     assert!(factorizations > 0);
-    // 64² cells (8 192 unknowns, `MULTIGRID_FROM`), zero-flux: on with multigrid, which needs
+    // 64² cells (8 192 unknowns, `AutoPolicy::multigrid_from`), zero-flux: on with multigrid, which needs
     // no more than 50 iterations, and never factorizes.
     assert_eq!(moves(64, Boundary::Neumann, 4e-4), (0, 1, 0, 0, 0));
     // Cells 5× coarser than that (h·D_u/Δx² = 5): block Jacobi takes 26 iterations a solve on
     // the periodic grid, 31 with zero-flux edges (10 steps, measured), more than
-    // `tries_fourier_after` but within `AUTO_DIRECT_ABOVE`. The periodic grid moves to Fourier
+    // `AutoPolicy::fourier_iteration_cost` but within `AutoPolicy::direct_above`. The periodic grid moves to Fourier
     // (about 5 a solve then); the other keeps block Jacobi, which still pays there.
     assert_eq!(moves(23, Boundary::Periodic, 2e-3), (1, 0, 0, 0, 0));
     assert_eq!(moves(23, Boundary::Neumann, 2e-3), (0, 0, 0, 0, 0));
@@ -68,6 +69,55 @@ fn auto_chooses_krylov_for_big_grids_only() {
     let cloth = cloth(20, 1e3, 0.0, 0.1);
     let counts = counts_of(&cloth, 1.0 / 60.0, &auto);
     assert_eq!(counts.krylov.solves, 0, "{counts:?}");
+}
+
+/// `AutoPolicy`'s thresholds move `Auto`'s choices: the 968-unknown grid that is direct by
+/// default goes Krylov from `krylov_from` = 900; the 1 058-unknown one stays direct with
+/// `krylov_from` = `usize::MAX`; the coarse zero-flux grid (block Jacobi at 31 iterations a
+/// solve, within the default 50) gives Krylov up with `direct_above` = 20. A Fourier cost that is
+/// not finite and positive is refused before the run, naming the field.
+#[test]
+fn the_auto_policy_moves_its_thresholds() {
+    let auto = |policy: AutoPolicy| NewtonOptions {
+        linear: LinearSolver::Auto(policy),
+        ..NewtonOptions::default()
+    };
+    let small: GrayScott = gray_scott(22, Boundary::Periodic);
+    let early = auto(AutoPolicy {
+        krylov_from: 900,
+        ..AutoPolicy::default()
+    });
+    assert!(counts_of(&small, 1.0, &early).krylov.solves >= 10);
+    let big: GrayScott = gray_scott(23, Boundary::Periodic);
+    let never = auto(AutoPolicy {
+        krylov_from: usize::MAX,
+        ..AutoPolicy::default()
+    });
+    let counts = counts_of(&big, 1.0, &never);
+    assert_eq!(counts.krylov.solves, 0, "{counts:?}");
+    let mut coarse: GrayScott = gray_scott(23, Boundary::Neumann);
+    coarse.dx = 2e-3;
+    let impatient = NewtonOptions {
+        linearized: true,
+        ..auto(AutoPolicy {
+            direct_above: 20,
+            ..AutoPolicy::default()
+        })
+    };
+    let counts = counts_of(&coarse, 1.0, &impatient);
+    assert_eq!(counts.krylov.switched_to_direct, 1, "{counts:?}");
+    for cost in [f64::NAN, 0.0, -0.33, f64::INFINITY] {
+        let bad = auto(AutoPolicy {
+            fourier_cost_per_log2: cost,
+            ..AutoPolicy::default()
+        });
+        match big.simulate().newton(bad).dt(1.0).steps(1).run() {
+            Err(odyn::Error::InvalidInput { field, .. }) => {
+                assert_eq!(field, "AutoPolicy::fourier_cost_per_log2")
+            }
+            other => panic!("{cost}: expected InvalidInput, got {other:?}"),
+        }
+    }
 }
 
 #[test]

@@ -18,23 +18,22 @@ pub(crate) use solve::{FourierTrial, KrylovSolver, NoConvergence};
 /// h²k/m ≈ 6·10³ at 32²) block-Jacobi CG needs hundreds of iterations and the direct solve wins
 /// (the guide's *Linear solvers* chapter; measured in `BENCHMARKS.md`). Set it with
 /// [`crate::NewtonOptions::linear`].
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub enum LinearSolver {
     /// [`KrylovOptions::default()`] (block Jacobi) for field models of at least
-    /// [`LinearSolver::FIELD_KRYLOV_FROM`] unknowns, [`LinearSolver::Direct`] otherwise —
-    /// particle models included, for the reason above. On a periodic grid a slow block-Jacobi
-    /// solve ([`LinearSolver::tries_fourier_after`]) has the next solve tried with
-    /// [`Preconditioner::Fourier`], which stays for the run if that solve cost less
-    /// ([`crate::KrylovWork::switched_to_fourier`]). A field model whose Krylov solve needs
-    /// more than [`LinearSolver::AUTO_DIRECT_ABOVE`] iterations goes on, for the rest of the
-    /// run, with [`Preconditioner::Fourier`] on a periodic grid, else (or when Fourier too needs more) with
-    /// [`Preconditioner::Multigrid`] from [`LinearSolver::MULTIGRID_FROM`] unknowns
+    /// [`AutoPolicy::krylov_from`] unknowns, [`LinearSolver::Direct`] otherwise — particle
+    /// models included, for the reason above. On a periodic grid a slow block-Jacobi solve (more
+    /// iterations than one Fourier iteration costs, [`AutoPolicy::fourier_iteration_cost`]) has
+    /// the next solve tried with [`Preconditioner::Fourier`], which stays for the run if that
+    /// solve cost less ([`crate::KrylovWork::switched_to_fourier`]). A field model whose Krylov
+    /// solve needs more than [`AutoPolicy::direct_above`] iterations goes on, for the rest of the
+    /// run, with [`Preconditioner::Fourier`] on a periodic grid, else (or when Fourier too needs
+    /// more) with [`Preconditioner::Multigrid`] from [`AutoPolicy::multigrid_from`] unknowns
     /// ([`crate::KrylovWork::switched_to_multigrid`]), else with the direct solver
-    /// ([`crate::KrylovWork::switched_to_direct`]), as it does when multigrid too needs more. The
-    /// default.
-    #[default]
-    Auto,
+    /// ([`crate::KrylovWork::switched_to_direct`]), as it does when multigrid too needs more.
+    /// The default, with [`AutoPolicy::default()`].
+    Auto(AutoPolicy),
     /// Sparse Cholesky when the matrix is symmetric positive definite, else LU (faer).
     Direct,
     /// A preconditioned Krylov method: conjugate gradient when the matrix is symmetric,
@@ -50,54 +49,87 @@ pub(crate) enum Structure {
     Field,
 }
 
-impl LinearSolver {
-    /// Where [`LinearSolver::Auto`] switches a field model to Krylov iterations: 1 024
-    /// unknowns. From there block-Jacobi BiCGSTAB beats the sparse LU on Gray–Scott at Pearson's
-    /// set-up (`benches/gray_scott.rs`, `run_direct`/`run_krylov`).
-    pub const FIELD_KRYLOV_FROM: usize = 1024;
-
-    /// Iterations of one solve above which [`LinearSolver::Auto`] gives up block Jacobi for
-    /// the run (for multigrid from [`LinearSolver::MULTIGRID_FROM`] unknowns, else for the
-    /// direct solver), and multigrid for the direct solver: 50, well above the 6–30 iterations
-    /// of the solves where Krylov pays (Gray–Scott at Pearson's set-up, 64² to 256²).
-    pub const AUTO_DIRECT_ABOVE: usize = 50;
-
-    /// When [`LinearSolver::Auto`] tries [`Preconditioner::Fourier`] on a field model's
-    /// periodic grid: once a block-Jacobi solve takes more iterations than one Fourier
-    /// iteration costs ([`LinearSolver::fourier_iteration_cost`]: a Fourier solve of one
-    /// iteration would have cost less), and again each time block Jacobi needs twice the
-    /// iterations of the solve before the last trial Fourier lost. A trial's Fourier solve
-    /// decides: Fourier stays for the run unless its iterations, at that cost each, cost more than
-    /// the block-Jacobi solve before it. On the 2-D Brusselator this matches Fourier chosen by
-    /// hand; on Gray–Scott at Pearson's set-up Fourier is tried and given back. A model whose
-    /// diffusion grows in time is given it back twice and keeps it the third time
-    /// (`tests/continua/krylov/fourier.rs`, `auto_tries_fourier_again_as_the_problem_stiffens`).
-    pub fn tries_fourier_after(n: usize) -> f64 {
-        Self::fourier_iteration_cost(n)
+impl Default for LinearSolver {
+    /// [`LinearSolver::Auto`] with [`AutoPolicy::default()`].
+    fn default() -> Self {
+        LinearSolver::Auto(AutoPolicy::default())
     }
+}
 
+/// The thresholds of [`LinearSolver::Auto`]'s choices, each a measured default; the fields
+/// are plain so that a run can move them (a test of where `Auto` switches, a model whose
+/// matrices are known to favour one side).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AutoPolicy {
+    /// Unknowns from which a field model's solves are Krylov iterations (default 1 024). From
+    /// there block-Jacobi BiCGSTAB beats the sparse LU on Gray–Scott at Pearson's set-up
+    /// (`benches/gray_scott.rs`, `run_direct`/`run_krylov`). 0 makes every field model's solves
+    /// Krylov ones, `usize::MAX` none.
+    pub krylov_from: usize,
+    /// Iterations of one solve above which `Auto` gives up block Jacobi for the run (for
+    /// Fourier or multigrid, else for the direct solver), and multigrid or Fourier for the
+    /// direct solver (default 50, well above the 6–30 iterations of the solves where Krylov
+    /// pays: Gray–Scott at Pearson's set-up, 64² to 256²).
+    pub direct_above: usize,
+    /// Unknowns from which `Auto` answers block Jacobi's slow convergence with multigrid rather
+    /// than a direct solve (default 8 192). Below it the sparse LU and multigrid draw on the
+    /// Brusselator under BDF; above it multigrid wins, by about 2× at 64² and 128² cells.
+    pub multigrid_from: usize,
     /// What one iteration preconditioned by [`Preconditioner::Fourier`] costs, in iterations
-    /// preconditioned by block Jacobi, on a system of `n` unknowns: 0.33·log₂ n — two
-    /// transforms of each field per application against a few flops per unknown: a coarse
-    /// model, which measurements on Pearson's Gray–Scott (32² to 256² cells) scatter about.
-    pub fn fourier_iteration_cost(n: usize) -> f64 {
-        0.33 * (n.max(2) as f64).log2()
+    /// preconditioned by block Jacobi, per log₂ of the unknowns (default 0.33: two transforms
+    /// of each field per application against a few flops per unknown; a coarse model, which
+    /// measurements on Pearson's Gray–Scott, 32² to 256² cells, scatter about). Finite and
+    /// positive. `Auto` tries Fourier on a periodic grid once a block-Jacobi solve takes more
+    /// iterations than one Fourier iteration costs, and again each time block Jacobi needs twice
+    /// the iterations of the solve before the last trial Fourier lost; a trial's Fourier solve
+    /// decides: Fourier stays for the run unless its iterations, at that cost each, cost more
+    /// than the block-Jacobi solve before it. On the 2-D Brusselator this matches Fourier chosen
+    /// by hand; on Gray–Scott at Pearson's set-up Fourier is tried and given back; a model whose
+    /// diffusion grows in time is given it back twice and keeps it the third time
+    /// (`tests/continua/krylov/fourier.rs`).
+    pub fourier_cost_per_log2: f64,
+}
+
+impl Default for AutoPolicy {
+    fn default() -> Self {
+        AutoPolicy {
+            krylov_from: 1024,
+            direct_above: 50,
+            multigrid_from: 8192,
+            fourier_cost_per_log2: 0.33,
+        }
+    }
+}
+
+impl AutoPolicy {
+    /// What one Fourier-preconditioned iteration costs, in block-Jacobi iterations, on a system
+    /// of `n` unknowns: [`AutoPolicy::fourier_cost_per_log2`]·log₂ n.
+    pub fn fourier_iteration_cost(&self, n: usize) -> f64 {
+        self.fourier_cost_per_log2 * (n.max(2) as f64).log2()
     }
 
-    /// Unknowns from which [`LinearSolver::Auto`] answers block Jacobi's slow convergence with
-    /// multigrid rather than a direct solve: 8 192. Below it the sparse LU and multigrid draw on
-    /// the Brusselator under BDF; above it multigrid wins, by about 2× at 64² and 128² cells.
-    pub const MULTIGRID_FROM: usize = 8192;
+    fn check(&self) -> crate::Result<()> {
+        let cost = self.fourier_cost_per_log2;
+        if !(cost.is_finite() && cost > 0.0) {
+            return Err(crate::Error::invalid(
+                "AutoPolicy::fourier_cost_per_log2",
+                format!("must be finite and positive, got {cost:?}"),
+            ));
+        }
+        Ok(())
+    }
+}
 
+impl LinearSolver {
     /// The Krylov options for a system of `n` unknowns of a model of kind `structure`, None
     /// for a direct solve.
     pub(crate) fn krylov_for(&self, n: usize, structure: Structure) -> Option<KrylovSolver> {
         match *self {
-            LinearSolver::Auto
-                if structure == Structure::Field && n >= LinearSolver::FIELD_KRYLOV_FROM =>
+            LinearSolver::Auto(policy)
+                if structure == Structure::Field && n >= policy.krylov_from =>
             {
                 let mut solver = KrylovSolver::new(KrylovOptions::default(), n);
-                solver.direct_above = Some(LinearSolver::AUTO_DIRECT_ABOVE);
+                solver.policy = Some(policy);
                 Some(solver)
             }
             LinearSolver::Krylov(krylov) => Some(KrylovSolver::new(krylov, n)),
@@ -109,7 +141,8 @@ impl LinearSolver {
     pub(crate) fn check(&self) -> crate::Result<()> {
         match self {
             LinearSolver::Krylov(krylov) => krylov.check(),
-            _ => Ok(()),
+            LinearSolver::Auto(policy) => policy.check(),
+            LinearSolver::Direct => Ok(()),
         }
     }
 }

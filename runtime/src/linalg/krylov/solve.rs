@@ -31,8 +31,9 @@ pub(crate) struct KrylovSolver {
     stack: MemBuffer,
     /// The last solve took more than `refresh_above` iterations.
     pub(crate) refresh: bool,
-    /// Give up Krylov for the run after a solve of more iterations (set by `Auto`).
-    pub(crate) direct_above: Option<usize>,
+    /// `Auto`'s thresholds, when `Auto` chose these solves: it then gives up a preconditioner
+    /// for the run after a solve of more than `direct_above` iterations.
+    pub(crate) policy: Option<super::AutoPolicy>,
     /// Iterations of the last solve.
     pub(crate) last_iterations: usize,
     /// Where `Auto`'s trial of the Fourier preconditioner stands.
@@ -72,7 +73,7 @@ impl KrylovSolver {
             scratch: StackReq::EMPTY,
             stack: MemBuffer::new(StackReq::EMPTY),
             refresh: false,
-            direct_above: None,
+            policy: None,
             last_iterations: 0,
             fourier_trial: FourierTrial::Untried,
             solves: Solves::OneStep,
@@ -222,7 +223,7 @@ impl Clone for KrylovSolver {
             scratch: self.scratch,
             stack: MemBuffer::new(self.scratch),
             refresh: self.refresh,
-            direct_above: self.direct_above,
+            policy: self.policy,
             last_iterations: self.last_iterations,
             fourier_trial: self.fourier_trial,
             solves: self.solves,

@@ -5,7 +5,7 @@ use faer::sparse::linalg::cholesky::LltRef;
 use faer::sparse::linalg::lu::LuRef;
 
 use super::{Factored, Products, SparseSolver, StencilMatrix};
-use crate::linalg::krylov::{FourierTrial, LinearSolver, NoConvergence, Preconditioner};
+use crate::linalg::krylov::{FourierTrial, NoConvergence, Preconditioner};
 use crate::linalg::multigrid::{Multigrid, MultigridRef};
 use crate::linalg::precond::{Factors, FourierRef, Ilu0Ref};
 
@@ -68,9 +68,10 @@ impl SparseSolver {
             }
             _ => Err(NoConvergence),
         };
-        if let Some(limit) = krylov.direct_above
+        if let Some(policy) = krylov.policy
             && outcome.is_ok()
         {
+            let limit = policy.direct_above;
             let (from, iterations) = (krylov.options.preconditioner, krylov.last_iterations);
             let trial = krylov.fourier_trial;
             if let FourierTrial::Trying(_) = trial {
@@ -80,16 +81,16 @@ impl SparseSolver {
             // one Fourier iteration would, and again once block Jacobi needs twice the
             // iterations of a trial Fourier lost.
             let try_fourier = match trial {
-                FourierTrial::Untried => iterations as f64 > LinearSolver::tries_fourier_after(n),
+                FourierTrial::Untried => iterations as f64 > policy.fourier_iteration_cost(n),
                 FourierTrial::GivenBack(before) => iterations > 2 * before,
                 FourierTrial::Trying(_) | FourierTrial::Kept => false,
             };
             if iterations > limit {
                 // `Auto`: this matrix is too ill-conditioned for the preconditioner to pay.
-                self.give_up(from, stencil);
+                self.give_up(from, stencil, policy.multigrid_from);
             } else if let FourierTrial::Trying(block_jacobi) = trial
                 && from == Preconditioner::Fourier
-                && iterations as f64 * LinearSolver::fourier_iteration_cost(n) > block_jacobi as f64
+                && iterations as f64 * policy.fourier_iteration_cost(n) > block_jacobi as f64
                 && self.jacobi.update(&self.values).is_ok()
                 && let Some(krylov) = &mut self.krylov
             {
@@ -126,13 +127,18 @@ impl SparseSolver {
     /// goes on from block Jacobi with Fourier, a big matrix with multigrid (from block Jacobi
     /// or Fourier), anything else (or a preconditioner that cannot be built) with the direct
     /// solver, for the rest of the run.
-    fn give_up(&mut self, from: Preconditioner, stencil: Option<&StencilMatrix>) {
+    fn give_up(
+        &mut self,
+        from: Preconditioner,
+        stencil: Option<&StencilMatrix>,
+        multigrid_from: usize,
+    ) {
         let n = self.rhs.len();
         if from == Preconditioner::BlockJacobi && self.move_to_fourier(stencil) {
             return;
         }
         if matches!(from, Preconditioner::BlockJacobi | Preconditioner::Fourier)
-            && n >= LinearSolver::MULTIGRID_FROM
+            && n >= multigrid_from
         {
             let (size, index) = &self.blocks;
             if self.multigrid.is_none() {
