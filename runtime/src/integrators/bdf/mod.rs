@@ -143,6 +143,9 @@ pub struct Bdf<M: Jacobian> {
     /// Room for the rounding of a Newton update of a mass-matrix step (filled on the first
     /// failing iteration only).
     rounding: Vec<f64>,
+    /// What the matrix's solves are configured for: loose under CVODE's Newton test (adaptive
+    /// runs of particle and field models), else to Newton's own forcing term.
+    solves: crate::Solves,
 }
 
 impl<M: Jacobian> crate::integrators::sealed::Sealed for Bdf<M> {}
@@ -198,6 +201,7 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
             scale: y0.try_clone()?,
             mass: crate::model::mass_of(model, y0)?,
             rounding: Vec::new(),
+            solves,
         };
         bdf.start_history(model, t0, y0, stats);
         Ok(bdf)
@@ -211,6 +215,20 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
         self.rejected = false;
         self.change = None;
         self.adaptive = s.tolerances.is_some();
+        // CVODE's test, and its loose solves, only in adaptive runs: a fixed-step run stops
+        // Newton by SciPy's test at `NewtonOptions::tol`, which solves to `bdf_rtol` (0.05)
+        // would end far from the implicit solution (1e-4 relatively on a 2² Gray–Scott grid).
+        // `prepare` configured the adaptive case; a fixed-step run's first attempt reconfigures.
+        let solves = if self.adaptive && Self::cvode_test(&self.newton) {
+            crate::Solves::LooseNewton
+        } else {
+            crate::Solves::Newton
+        };
+        if solves != self.solves {
+            self.jacobian.configure(&self.newton, solves);
+            self.solves = solves;
+            self.factored = false;
+        }
         // Proposed should this attempt fail: SciPy halves a step whose Newton iteration fails.
         self.next = Some(0.5 * h);
         // A fixed-step run's steps t₀ + (n + 1)·dt − (t₀ + n·dt) differ from dt by the rounding
