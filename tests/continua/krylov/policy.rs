@@ -214,3 +214,29 @@ fn a_krylov_solve_that_cannot_converge_falls_back_to_the_direct_solve() {
         stepped::<GrayScott, ImplicitEuler<_>>(&model, 10.0, 10, &with(LinearSolver::Direct));
     assert_eq!(x, y);
 }
+
+/// A run stopped part-way (its step budget spent) still reports the linear work it did: the
+/// partial trajectory's `stats.linear` counts the Krylov solves `Auto` made on a 1 058-unknown
+/// grid, one or more per Newton iteration of each attempted step.
+#[test]
+fn a_partial_run_reports_its_linear_work() {
+    let model: GrayScott = gray_scott(23, Boundary::Periodic);
+    let (trajectory, failure) = model
+        .simulate()
+        .integrator(Method::Bdf)
+        .tolerances(1e-6, 1e-9)
+        .adaptive(odyn::AdaptiveOptions {
+            max_steps: 5,
+            ..odyn::AdaptiveOptions::default()
+        })
+        .duration(1e3)
+        .run_partial()
+        .unwrap();
+    assert!(
+        matches!(failure, Some(odyn::Error::MaxSteps { .. })),
+        "{failure:?}"
+    );
+    let stats = trajectory.stats;
+    assert!(stats.linear.krylov.solves >= stats.steps, "{stats}");
+    assert_eq!(stats.linear.krylov.solves, stats.linear_solves, "{stats}");
+}
