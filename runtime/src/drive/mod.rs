@@ -99,8 +99,6 @@ pub(crate) struct Driver<'a, 'm, M: Model, I> {
 }
 
 impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
-    /// Prepares the method on a started track ([`Track::new`] checked the state and the model
-    /// and recorded the initial sample).
     /// The track, its [`Stats::linear`] read from the method's Newton matrix: what the run
     /// leaves once it has stopped.
     pub(crate) fn into_track(mut self) -> Track<'a, 'm, M> {
@@ -108,6 +106,8 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
         self.track
     }
 
+    /// Prepares the method on a started track ([`Track::new`] checked the state and the model
+    /// and recorded the initial sample).
     pub(crate) fn on(mut track: Track<'a, 'm, M>, newton: &NewtonOptions) -> Result<Self> {
         let integrator = I::prepare(track.model, track.t0, &track.y, newton, &mut track.stats)?;
         Ok(Driver { integrator, track })

@@ -66,13 +66,13 @@ impl<M: Jacobian, T: RosenbrockTableau, const K: usize> crate::integrators::seal
 }
 
 impl<M: Jacobian, T: RosenbrockTableau, const K: usize> Integrator<M> for Rosenbrock<M, T, K> {
-    fn linear_work(&self) -> crate::LinearWork {
-        crate::NewtonMatrix::work(&self.linear.jacobian)
-    }
-
     const METHOD: Method = T::METHOD;
     const CONTROLLER: Controller = T::CONTROLLER;
     const DENSE_DEGREE: usize = T::DENSE_DEGREE;
+
+    fn linear_work(&self) -> crate::LinearWork {
+        crate::NewtonMatrix::work(&self.linear.jacobian)
+    }
 
     fn prepare(
         model: &M,

@@ -26,7 +26,6 @@ use nalgebra::SVector;
 
 use crate::{Error, Model, Result, State};
 
-/// Also at the crate root, where it belongs: grids return it too.
 /// Renamed [`crate::LinearWork`], a section of [`crate::Stats`], at the crate root.
 #[deprecated(
     since = "0.1.0",

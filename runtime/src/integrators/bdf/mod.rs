@@ -84,7 +84,8 @@ use crate::{Error, Jacobian, Method, NewtonMatrix, NewtonOptions, Result, State,
 /// **Fixed-step runs** have no error estimate to choose the order by: the order rises by one
 /// after every k + 1 steps, to 2 (the A-stable orders) unless [`Bdf::set_max_order`] says
 /// otherwise, and Newton follows [`NewtonOptions`] (`tol` on ‖Δ‖ weighted by 1 + |y|,
-/// `max_iterations`); a failing solve is retried as two half steps by the driver. Steps that differ
+/// `max_iterations`), its updates solved to Newton's forcing term (`KrylovOptions::newton_rtol`)
+/// rather than CVODE's looser one; a failing solve is retried as two half steps by the driver. Steps that differ
 /// from dt only by the rounding of t₀ + n·dt count as equal.
 ///
 /// - **Order** 1–5 (2 at a fixed step, so [`Method::order`] is 2).
@@ -151,13 +152,13 @@ pub struct Bdf<M: Jacobian> {
 impl<M: Jacobian> crate::integrators::sealed::Sealed for Bdf<M> {}
 
 impl<M: Jacobian> Integrator<M> for Bdf<M> {
-    fn linear_work(&self) -> crate::LinearWork {
-        crate::NewtonMatrix::work(&self.jacobian)
-    }
-
     const METHOD: Method = Method::Bdf;
     const DENSE_DEGREE: usize = MAX_ORDER;
     const START_ORDER: u32 = 1;
+
+    fn linear_work(&self) -> crate::LinearWork {
+        crate::NewtonMatrix::work(&self.jacobian)
+    }
 
     /// Evaluates f(t₀, y₀) for D and J at (t₀, y₀), as SciPy does on creation.
     fn prepare(
@@ -168,12 +169,8 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
         stats: &mut Stats,
     ) -> Result<Self> {
         let mut jacobian = model.jacobian_matrix(y0);
-        // CVODE's Newton test where solves are the cost (`attempt`), with solves to match.
-        let solves = if Self::cvode_test(newton) {
-            crate::Solves::LooseNewton
-        } else {
-            crate::Solves::Newton
-        };
+        // Configured for an adaptive run; a fixed-step run's first attempt reconfigures.
+        let solves = Self::solves(newton, true);
         jacobian.configure(newton, solves);
         model.jacobian(t0, y0, &mut jacobian);
         stats.jacobian_evaluations += 1;
@@ -215,15 +212,7 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
         self.rejected = false;
         self.change = None;
         self.adaptive = s.tolerances.is_some();
-        // CVODE's test, and its loose solves, only in adaptive runs: a fixed-step run stops
-        // Newton by SciPy's test at `NewtonOptions::tol`, which solves to `bdf_rtol` (0.05)
-        // would end far from the implicit solution (1e-4 relatively on a 2² Gray–Scott grid).
-        // `prepare` configured the adaptive case; a fixed-step run's first attempt reconfigures.
-        let solves = if self.adaptive && Self::cvode_test(&self.newton) {
-            crate::Solves::LooseNewton
-        } else {
-            crate::Solves::Newton
-        };
+        let solves = Self::solves(&self.newton, self.adaptive);
         if solves != self.solves {
             self.jacobian.configure(&self.newton, solves);
             self.solves = solves;

@@ -32,6 +32,19 @@ impl<M: Jacobian> Bdf<M> {
         newton.refactor_ratio > 0.0 && <M::Matrix as NewtonMatrix>::COSTLY_SOLVES
     }
 
+    /// What the matrix's solves are for in a run with `newton`: loose ([`crate::Solves::LooseNewton`],
+    /// `KrylovOptions::bdf_rtol`) where Newton stops by CVODE's test, which only adaptive runs
+    /// use; else to Newton's forcing term. A fixed-step run stops Newton by SciPy's test at
+    /// `NewtonOptions::tol`, which updates solved to 0.05 would end far from the implicit
+    /// solution (1e-4 relatively on a 2² Gray–Scott grid, `tests/continua/krylov/policy.rs`).
+    pub(super) fn solves(newton: &NewtonOptions, adaptive: bool) -> crate::Solves {
+        if adaptive && Self::cvode_test(newton) {
+            crate::Solves::LooseNewton
+        } else {
+            crate::Solves::Newton
+        }
+    }
+
     /// Weighs the components for this step's norms (atol + rtol·|yₙ₊₁⁽⁰⁾| to tolerances, 1 + |y⁽⁰⁾|
     /// at a fixed step), from the predictor in `self.predict`, and says when Newton converges
     /// at order `k`: CVODE's test or SciPy's (see [`Bdf::cvode_test`]), or the fixed-step run's

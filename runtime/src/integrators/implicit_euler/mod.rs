@@ -63,11 +63,11 @@ pub struct ImplicitEuler<M: Jacobian> {
 impl<M: Jacobian> crate::integrators::sealed::Sealed for ImplicitEuler<M> {}
 
 impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
+    const METHOD: Method = Method::ImplicitEuler;
+
     fn linear_work(&self) -> crate::LinearWork {
         crate::NewtonMatrix::work(&self.jacobian)
     }
-
-    const METHOD: Method = Method::ImplicitEuler;
 
     fn prepare(
         model: &M,

@@ -71,7 +71,6 @@ impl SparseSolver {
         if let Some(policy) = krylov.policy
             && outcome.is_ok()
         {
-            let limit = policy.direct_above;
             let (from, iterations) = (krylov.options.preconditioner, krylov.last_iterations);
             let trial = krylov.fourier_trial;
             if let FourierTrial::Trying(_) = trial {
@@ -85,7 +84,7 @@ impl SparseSolver {
                 FourierTrial::GivenBack(before) => iterations > 2 * before,
                 FourierTrial::Trying(_) | FourierTrial::Kept => false,
             };
-            if iterations > limit {
+            if iterations > policy.direct_above {
                 // `Auto`: this matrix is too ill-conditioned for the preconditioner to pay.
                 self.give_up(from, stencil, policy.multigrid_from);
             } else if let FourierTrial::Trying(block_jacobi) = trial
