@@ -13,6 +13,7 @@
 //!   [`Pollu`], [`Orego`]) with their references.
 //! - [`dae`] — differential–algebraic problems: [`RobertsonDae`], the test set's [`ChemAkzo`]
 //!   and [`Transamp`], the [`CartesianPendulum`], with their references.
+//! - [`rope`] — a [`RodRope`] of rigid rods, a differential–algebraic field model.
 //! - [`cloth`] — the Baraff–Witkin [`Cloth`] and the [`Sheet`] that builds it.
 //! - [`fields`] — Gray–Scott reaction–diffusion, [`GrayScott`].
 //! - [`fluids`] — the [`dam_break`] of Martin & Moyce for SPH and FLIP ([`flip_dam_break`]), and
@@ -34,6 +35,7 @@ pub mod hybrid;
 pub mod orbits;
 pub mod oscillators;
 pub mod pendulums;
+pub mod rope;
 pub mod solar_system;
 pub mod stiff;
 
@@ -46,5 +48,6 @@ pub use fluids::{MARTIN_MOYCE, dam_break, flip_dam_break};
 pub use orbits::*;
 pub use oscillators::*;
 pub use pendulums::*;
+pub use rope::RodRope;
 pub use solar_system::*;
 pub use stiff::*;

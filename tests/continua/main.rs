@@ -17,5 +17,6 @@ mod krylov;
 mod mpm;
 mod particles;
 mod quasi_newton;
+mod rope_dae;
 mod sph;
 mod xpbd;

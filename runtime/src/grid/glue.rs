@@ -4,7 +4,7 @@
 
 use super::stencil::{boundaries, coefficient_at, each_cell_into, for_each_cell, geometry, place};
 use super::{Grid, GridJacobian, GridState, GridSystem, Place, Stencil};
-use crate::{Error, Model, Result};
+use crate::{Error, Mass, Model, NewtonOptions, Result};
 
 /// The stencil of a coefficient grid (a parameter `Grid` a `#[cell]` method reads through a
 /// `Stencil`) at the cell of `at`, through the grid's own boundary. Generated code calls it;
@@ -142,4 +142,41 @@ pub fn check<M: GridSystem<F>, const F: usize>(model: &M, state: &GridState) -> 
 #[inline]
 pub fn state(grids: &[&Grid], names: &'static [&'static str]) -> GridState {
     GridState::from_grids(grids, names)
+}
+
+/// The state's components of the `#[algebraic]` fields (field-major: field f's cell k is
+/// component f·nx·ny + k).
+fn algebraic_components<M: GridSystem<F>, const F: usize>(state: &GridState) -> Vec<usize> {
+    let cells = state.nx * state.ny;
+    M::ALGEBRAIC_FIELDS
+        .iter()
+        .flat_map(|&f| f * cells..(f + 1) * cells)
+        .collect()
+}
+
+/// [`Model::mass`] of a field model with `#[algebraic]` fields: the identity with zeros at
+/// their cells.
+///
+/// Errors: [`Error::BadModel`] when the state is not as large as the model's fields.
+pub fn mass<M: GridSystem<F>, const F: usize>(state: &GridState) -> Result<Mass> {
+    Mass::identity(
+        M::NAME,
+        state.values.len(),
+        &algebraic_components::<M, F>(state),
+    )
+}
+
+/// [`Model::consistent`] of a field model with `#[algebraic]` fields: Newton on their cells'
+/// residuals, the other fields held ([`crate::consistent`]).
+///
+/// Errors: [`Error::InconsistentStart`].
+pub fn consistent<M: GridSystem<F> + crate::Jacobian, const F: usize>(
+    model: &M,
+    t: f64,
+    y: &mut GridState,
+    newton: &NewtonOptions,
+) -> Result<()> {
+    let _ = newton;
+    let algebraic = algebraic_components::<M, F>(y);
+    crate::model::consistent::consistent_components(model, t, y, &algebraic)
 }

@@ -240,8 +240,42 @@ impl NewtonMatrix for GridJacobian {
         GridJacobian::factorize(self)
     }
 
+    /// Assembles M − c·J and factorizes it directly: the Krylov solves' matrix-free products
+    /// and preconditioners are built for I − c·J, so a field model with algebraic fields solves
+    /// by sparse LU whatever [`crate::LinearSolver`] the run chose.
+    fn factorize_mass(
+        &mut self,
+        c: f64,
+        mass: &[(usize, usize, f64)],
+        _: &mut (),
+    ) -> Result<(), FactorizeError> {
+        self.c = c;
+        for (w, j) in self.solver.values.iter_mut().zip(&self.jacobian) {
+            *w = -c * j;
+        }
+        for &(row, column, m) in mass {
+            let slot = match row == column {
+                true => self.diagonal[row],
+                false => self.solver.slot(row, column),
+            };
+            self.solver.values[slot] += m;
+        }
+        self.solver.factorize_direct_only()
+    }
+
     fn solve(&mut self, _: &mut (), b: &mut [f64]) -> Result<(), SolveError> {
         self.substitute(b)
+    }
+
+    fn entries_among(&self, components: &[usize], out: &mut Vec<(usize, usize, f64)>) {
+        let matrix = SparseColMatRef::new(self.solver.matrix().symbolic(), &self.jacobian);
+        for (b, &column) in components.iter().enumerate() {
+            for (row, &value) in matrix.row_idx_of_col(column).zip(matrix.val_of_col(column)) {
+                if let Ok(a) = components.binary_search(&row) {
+                    out.push((a, b, value));
+                }
+            }
+        }
     }
 
     fn non_finite_entry(&self) -> Option<(usize, usize, f64)> {

@@ -246,6 +246,10 @@ pub trait GridSystem<const F: usize>: Model<State = GridState> {
     /// [`GridSystem::cell_jacobian`] writes them (empty with `jacobian = false`).
     const BLOCKS: &'static [Block];
 
+    /// The `#[algebraic]` fields, by their index in [`GridSystem::FIELDS`]: their rows of the
+    /// `#[cell]` method are residuals 0 = g rather than rates (empty for an ODE).
+    const ALGEBRAIC_FIELDS: &'static [usize] = &[];
+
     /// The model's grids, in declaration order.
     fn grids(&self) -> [&Grid; F];
 

@@ -3,6 +3,7 @@
 
 use nalgebra::{DMatrix, DVector};
 
+use crate::linalg::sparse::SparseSolver;
 use crate::{Error, Jacobian, NewtonMatrix, NewtonOptions, Result, State};
 
 /// Iterations at most: the iteration converges quadratically from a start in reach, and each
@@ -11,6 +12,10 @@ use crate::{Error, Jacobian, NewtonMatrix, NewtonOptions, Result, State};
 const ITERATIONS: usize = 50;
 /// Halvings of one Newton update while it does not reduce ‖g‖.
 const HALVINGS: usize = 30;
+/// Algebraic components up to which ∂g/∂z is solved dense (LU with partial pivoting, which names
+/// the column where it is singular); beyond, sparse (a field model's algebraic grids: 65 536
+/// components on a 256² grid would be a 34 GB dense block).
+const DENSE_UP_TO: usize = 256;
 
 /// Solves g(t, y, z) = 0 for the algebraic components z of `y` (`M::ALGEBRAIC`), the
 /// differential ones held, as IDA's `IDACalcIC` with `IDA_YA_YDP_INIT` does: Newton on the
@@ -34,7 +39,17 @@ pub fn consistent<M: Jacobian>(
     newton: &NewtonOptions,
 ) -> Result<()> {
     let _ = newton;
-    let algebraic = M::ALGEBRAIC;
+    consistent_components(model, t, y, M::ALGEBRAIC)
+}
+
+/// [`consistent`] for the algebraic components `algebraic` (sorted, in the state's layout): a
+/// field model's, which depend on its grids' size.
+pub(crate) fn consistent_components<M: Jacobian>(
+    model: &M,
+    t: f64,
+    y: &mut M::State,
+    algebraic: &[usize],
+) -> Result<()> {
     let k = algebraic.len();
     if k == 0 {
         return Ok(());
@@ -42,7 +57,8 @@ pub fn consistent<M: Jacobian>(
     let mut f = y.try_clone()?;
     let mut trial = y.try_clone()?;
     let mut jacobian = model.jacobian_matrix(y);
-    let mut block = DMatrix::<f64>::zeros(k, k);
+    let mut block = Block::new(k);
+    let mut entries = Vec::new();
     let mut g = DVector::<f64>::zeros(k);
     let inconsistent = |y: &M::State, g: &DVector<f64>, column: usize, reason: &'static str| {
         let (row, value) = largest(g);
@@ -54,7 +70,7 @@ pub fn consistent<M: Jacobian>(
             reason,
         }
     };
-    residual(model, t, y, &mut f, &mut g);
+    residual(model, t, y, algebraic, &mut f, &mut g);
     for _ in 0..ITERATIONS {
         if !g.iter().all(|r| r.is_finite()) {
             let (row, _) = largest(&g);
@@ -64,17 +80,14 @@ pub fn consistent<M: Jacobian>(
             return Ok(());
         }
         model.jacobian(t, y, &mut jacobian);
-        for (a, &i) in algebraic.iter().enumerate() {
-            for (b, &j) in algebraic.iter().enumerate() {
-                block[(a, b)] = jacobian.dense_entry(i, j).unwrap_or(f64::NAN);
-            }
+        entries.clear();
+        jacobian.entries_among(algebraic, &mut entries);
+        if let Some(&(bad, _, _)) = entries.iter().find(|e| !e.2.is_finite()) {
+            return Err(inconsistent(y, &g, bad, "∂g/∂z is not finite there"));
         }
-        if let Some(bad) = block.iter().position(|v| !v.is_finite()) {
-            return Err(inconsistent(y, &g, bad / k, "∂g/∂z is not finite there"));
-        }
-        let lu = block.clone().lu();
-        let u = lu.u();
-        if let Some(column) = (0..k).find(|&i| u[(i, i)] == 0.0) {
+        let mut update = -&g;
+        if let Err(column) = block.solve(&entries, update.as_mut_slice()) {
+            let column = column.unwrap_or_else(|| largest(&g).0);
             return Err(inconsistent(
                 y,
                 &g,
@@ -83,9 +96,6 @@ pub fn consistent<M: Jacobian>(
                  more, or a constraint on the differential components alone)",
             ));
         }
-        let Some(update) = lu.solve(&(-&g)) else {
-            return Err(inconsistent(y, &g, 0, "∂g/∂z is singular"));
-        };
         // Damped: halve the update while it does not reduce the largest residual.
         let before = largest(&g).1;
         let mut scale = 1.0;
@@ -96,7 +106,7 @@ pub fn consistent<M: Jacobian>(
             for (a, &i) in algebraic.iter().enumerate() {
                 trial.as_mut_slice()[i] += scale * update[a];
             }
-            residual(model, t, &trial, &mut f, &mut g_trial);
+            residual(model, t, &trial, algebraic, &mut f, &mut g_trial);
             if largest(&g_trial).1 < before {
                 reduced = true;
                 break;
@@ -142,11 +152,92 @@ pub fn consistent<M: Jacobian>(
     ))
 }
 
-/// gᵢ = f(t, y) at the algebraic components.
-fn residual<M: Jacobian>(model: &M, t: f64, y: &M::State, f: &mut M::State, g: &mut DVector<f64>) {
+/// gᵢ = f(t, y) at the `algebraic` components.
+fn residual<M: Jacobian>(
+    model: &M,
+    t: f64,
+    y: &M::State,
+    algebraic: &[usize],
+    f: &mut M::State,
+    g: &mut DVector<f64>,
+) {
     model.derivative(t, y, f);
-    for (a, &i) in M::ALGEBRAIC.iter().enumerate() {
+    for (a, &i) in algebraic.iter().enumerate() {
         g[a] = f.as_slice()[i];
+    }
+}
+
+/// The k × k block ∂g/∂z and its solve: dense up to [`DENSE_UP_TO`] components, sparse (its
+/// pattern taken from the first evaluation's entries) beyond.
+enum Block {
+    Dense(DMatrix<f64>),
+    Sparse(Option<Box<SparseSolver>>),
+}
+
+impl Block {
+    fn new(k: usize) -> Self {
+        match k <= DENSE_UP_TO {
+            true => Block::Dense(DMatrix::zeros(k, k)),
+            false => Block::Sparse(None),
+        }
+    }
+
+    /// Solves ∂g/∂z·x = b in place, the block given by its `entries` (row, column, value) in
+    /// the algebraic components' order. Errors: the block is singular, with the column of the
+    /// zero pivot when the dense solve finds one.
+    fn solve(
+        &mut self,
+        entries: &[(usize, usize, f64)],
+        b: &mut [f64],
+    ) -> Result<(), Option<usize>> {
+        let k = b.len();
+        match self {
+            Block::Dense(block) => {
+                block.fill(0.0);
+                for &(i, j, v) in entries {
+                    block[(i, j)] += v;
+                }
+                let lu = block.clone().lu();
+                let u = lu.u();
+                if let Some(column) = (0..k).find(|&i| u[(i, i)] == 0.0) {
+                    return Err(Some(column));
+                }
+                let mut x = DVector::from_column_slice(b);
+                if !lu.solve_mut(&mut x) {
+                    return Err(None);
+                }
+                b.copy_from_slice(x.as_slice());
+            }
+            Block::Sparse(solver) => {
+                // The pattern of the first evaluation: the generated Jacobian's structure,
+                // which later evaluations share (an entry outside it would be a new one).
+                let solver = solver.get_or_insert_with(|| {
+                    let pattern: Vec<(usize, usize)> =
+                        entries.iter().map(|&(i, j, _)| (i, j)).collect();
+                    Box::new(SparseSolver::new(k, &pattern))
+                });
+                solver.values.fill(0.0);
+                for &(i, j, v) in entries {
+                    let slot = solver.slot(i, j);
+                    solver.values[slot] += v;
+                }
+                // A singular block names its first column without a non-zero (a component no
+                // equation reads), if it has one.
+                let empty_column =
+                    || (0..k).find(|&j| entries.iter().all(|&(_, c, v)| c != j || v == 0.0));
+                solver.factorize().map_err(|_| empty_column())?;
+                solver.rhs.copy_from_slice(b);
+                solver.substitute().map_err(|_| empty_column())?;
+                b.copy_from_slice(&solver.rhs);
+                if !b.iter().all(|x| x.is_finite()) {
+                    return Err(empty_column());
+                }
+            }
+        }
+        match b.iter().all(|x| x.is_finite()) {
+            true => Ok(()),
+            false => Err(None),
+        }
     }
 }
 

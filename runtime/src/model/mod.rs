@@ -4,7 +4,7 @@
 //! also [`SecondOrder`], q̈ = a(t, q, q̇): its state lays out every position, then every velocity,
 //! so the split methods see the two halves of [`State::as_slice`].
 
-mod consistent;
+pub(crate) mod consistent;
 pub mod differences;
 pub mod dual;
 pub mod flat;

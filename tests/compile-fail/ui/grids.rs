@@ -336,3 +336,50 @@ mod place_argument_misnamed {
 }
 
 fn main() {}
+
+mod algebraic_grid_without_field {
+    use odyn::grid::{Grid, Stencil};
+    use odyn::system;
+
+    #[system]
+    struct Balance {
+        #[field]
+        u: Grid,
+        #[algebraic]
+        z: Grid,
+    }
+
+    #[system]
+    impl Balance {
+        #[cell]
+        fn rate(&self, u: Stencil) -> f64 {
+            -u.c
+        }
+    }
+
+    fn main() {}
+}
+
+mod algebraic_grid_without_jacobian {
+    use odyn::grid::{Grid, Stencil};
+    use odyn::system;
+
+    #[system(jacobian = false)]
+    struct Balance {
+        #[field]
+        u: Grid,
+        #[field]
+        #[algebraic]
+        z: Grid,
+    }
+
+    #[system]
+    impl Balance {
+        #[cell]
+        fn rate(&self, u: Stencil, z: Stencil) -> [f64; 2] {
+            [z.c - u.c, z.c - 2.0 * u.c]
+        }
+    }
+
+    fn main() {}
+}

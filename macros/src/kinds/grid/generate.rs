@@ -123,8 +123,32 @@ pub(super) fn impls(
             TokenStream::new(),
         ),
     };
+    let algebraic = fields
+        .algebraic
+        .iter()
+        .map(|&f| Literal::usize_unsuffixed(f));
+    let algebraic_fields = (!fields.algebraic.is_empty())
+        .then(|| quote!(const ALGEBRAIC_FIELDS: &'static [usize] = &[#(#algebraic),*];));
+    // A field model with `#[algebraic]` fields is M·y′ = f, M zero at their cells.
+    let dae_items = (!fields.algebraic.is_empty()).then(|| {
+        quote! {
+            const MASS_MATRIX: bool = true;
+            fn mass(&self, state: &#state) -> ::odyn::Result<::odyn::Mass> {
+                ::odyn::__private::grid::mass::<Self, #count>(state)
+            }
+            fn consistent(
+                &self,
+                t: f64,
+                y: &mut #state,
+                newton: &::odyn::NewtonOptions,
+            ) -> ::odyn::Result<()> {
+                ::odyn::__private::grid::consistent::<Self, #count>(self, t, y, newton)
+            }
+        }
+    });
     let model_impl = ModelImpl {
         methods: quote! {
+            #dae_items
             fn state(&self) -> #state {
                 ::odyn::__private::grid::state(&[#(&self.#grids),*], &[#(#names),*])
             }
@@ -155,6 +179,7 @@ pub(super) fn impls(
         impl ::odyn::grid::GridSystem<#count> for #self_ty {
             const FIELDS: [&'static str; #count] = [#(#names),*];
             const BLOCKS: &'static [::odyn::grid::Block] = &[#(#blocks),*];
+            #algebraic_fields
             #[inline(always)]
             fn grids(&self) -> [&::odyn::grid::Grid; #count] {
                 [#(&self.#grids),*]

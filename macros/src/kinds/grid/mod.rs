@@ -34,6 +34,9 @@ pub(crate) struct Fields<'a> {
     pub(crate) fields: Vec<&'a Ident>,
     /// The other `Grid` fields: coefficient grids, parameters read through a stencil.
     pub(crate) coefficients: Vec<&'a Ident>,
+    /// The `#[algebraic]` fields, by index in [`Fields::fields`]: their rows of the cell method
+    /// are residuals 0 = g, and the model is M·y′ = f with M zero in their rows.
+    pub(crate) algebraic: Vec<usize>,
 }
 
 impl Fields<'_> {
@@ -70,6 +73,7 @@ pub(crate) fn is_grid_model(item: &ItemStruct) -> bool {
 pub(crate) fn parse_struct<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Option<Fields<'a>> {
     let mut fields = Vec::new();
     let mut coefficients = Vec::new();
+    let mut algebraic = Vec::new();
     for field in &item.fields {
         // Refused before the front-end with its own error (`kinds::expand_struct`).
         let ident = field.ident.as_ref()?;
@@ -83,12 +87,23 @@ pub(crate) fn parse_struct<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Opt
                 );
             }
         }
+        let algebraic_attr = attribute(&field.attrs, &["algebraic"]);
         let Some(attr) = attribute(&field.attrs, &["field"]) else {
-            if names_type(&field.ty, "Grid") {
+            if let Some(attr) = algebraic_attr {
+                errors.at(
+                    attr,
+                    "an algebraic grid is a field of the state: write `#[field] #[algebraic]` \
+                     (its rows of the `#[cell]` method are residuals 0 = g)",
+                );
+            } else if names_type(&field.ty, "Grid") {
                 coefficients.push(ident);
             }
             continue;
         };
+        if let Some(attr) = algebraic_attr {
+            no_arguments(attr, "`#[algebraic]` takes no arguments", errors);
+            algebraic.push(fields.len());
+        }
         no_arguments(
             attr,
             "`#[field]` takes no arguments; the boundary is part of the grid: \
@@ -108,6 +123,7 @@ pub(crate) fn parse_struct<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Opt
         item,
         fields,
         coefficients,
+        algebraic,
     })
 }
 
@@ -139,8 +155,19 @@ impl FrontEnd for Kind {
     }
 
     /// The struct half: the state type, and what the model asks of an integrator, when accepted.
-    fn expand_struct(&self, _: &Args, item: &ItemStruct, errors: &mut Errors) -> Option<Struct> {
+    fn expand_struct(&self, args: &Args, item: &ItemStruct, errors: &mut Errors) -> Option<Struct> {
         let fields = parse_struct(item, errors)?;
+        if let (Some(no_jacobian), Some(&first)) = (args.jacobian.off(), fields.algebraic.first()) {
+            errors.at(
+                no_jacobian,
+                format_args!(
+                    "`jacobian = false` leaves `#[algebraic]` `{}` without the Jacobian its \
+                     consistent initial value and the DAE methods (Rodas5P, Rosenbrock23, Bdf, \
+                     ImplicitEuler) solve with; remove it",
+                    fields.fields[first]
+                ),
+            );
+        }
         Some(Struct {
             state: state(&fields),
             first_order: Some(FirstOrder {

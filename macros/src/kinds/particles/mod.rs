@@ -94,6 +94,20 @@ pub(crate) fn parse_struct<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Opt
             );
             continue;
         }
+        if let Some(attr) = attribute(&field.attrs, &["algebraic", "field"]) {
+            let name = attr.path().get_ident().map(Ident::to_string);
+            errors.at(
+                attr,
+                format_args!(
+                    "`#[{}]` is not a particle model's attribute: a particle model has \
+                     `#[position]`, `#[velocity]`, `#[mass]` and `#[pinned]` fields and its \
+                     forces in `#[pair]`/`#[particle]` kernels (algebraic components are for \
+                     fixed-size and field models, grids for field models)",
+                    name.unwrap_or_default()
+                ),
+            );
+            continue;
+        }
         let Some(attr) = attribute(&field.attrs, &FIELD_ATTRIBUTES) else {
             continue;
         };

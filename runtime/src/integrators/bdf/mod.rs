@@ -52,7 +52,8 @@ use crate::{Error, Jacobian, Method, NewtonMatrix, NewtonOptions, Result, State,
 /// - **Reuse**: the LU of I − c·J is kept while c = h/αₖ stays within
 ///   [`NewtonOptions::refactor_ratio`] (default 0.3) of the c it was made with, each Newton
 ///   update then scaled by 2/(1 + c/c_old) (CVODE's rule: Hindmarsh et al., "SUNDIALS", ACM
-///   TOMS 31 (2005), §2.1, and `cvode_ls.c`); with a ratio of 0, SciPy's rule: kept across every
+///   TOMS 31 (2005), §2.1, and `cvode_ls.c`); with a ratio of 0, and always for a model with
+///   a mass matrix (the rule is for I − c·J; see `Bdf::refactor_ratio`), SciPy's rule: kept across every
 ///   step that neither changes h nor the order, and after a step rejected by its error estimate
 ///   (the fixed point d does not depend on the iteration matrix, only the rate does). J is
 ///   re-evaluated only when Newton fails with a J older than the current step; if it fails
@@ -228,7 +229,7 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
             self.spacing = h;
             self.equal_steps = 0;
             // SciPy's rule; with a refactor ratio, c decides below.
-            self.factored &= keep_lu || self.newton.refactor_ratio > 0.0;
+            self.factored &= keep_lu || Self::refactor_ratio(&self.newton) > 0.0;
         }
         // Predictor Σⱼ₌₀ᵏ ∇ʲyₙ and ψ = Σⱼ₌₁ᵏ γⱼ∇ʲyₙ/αₖ.
         let (predict, psi) = (self.predict.as_mut_slice(), self.psi.as_mut_slice());
@@ -243,7 +244,7 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
         for q in psi.iter_mut() {
             *q /= ALPHA[k];
         }
-        let ratio = self.newton.refactor_ratio;
+        let ratio = Self::refactor_ratio(&self.newton);
         let test = self.weigh(s.tolerances, k);
         let c = h / ALPHA[k];
         // CVODE's rule holds after a rejection too (SciPy's keeps the LU however far c moved).
@@ -355,7 +356,7 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
                 // a refactor ratio, if c changed by more).
                 self.order = order;
                 self.equal_steps = 0;
-                self.factored &= self.newton.refactor_ratio > 0.0;
+                self.factored &= Self::refactor_ratio(&self.newton) > 0.0;
             }
             None => {
                 // A fixed-step run raises the order as the history allows.
@@ -363,7 +364,7 @@ impl<M: Jacobian> Integrator<M> for Bdf<M> {
                 if !self.adaptive && self.equal_steps > k && k < cap {
                     self.order = k + 1;
                     self.equal_steps = 0;
-                    self.factored &= self.newton.refactor_ratio > 0.0;
+                    self.factored &= Self::refactor_ratio(&self.newton) > 0.0;
                 }
             }
         }

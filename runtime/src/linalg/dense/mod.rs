@@ -50,8 +50,8 @@ pub trait NewtonMatrix: Clone + fmt::Debug {
     /// its non-zero entries (row, column, value) ([`crate::Mass::entries`]), and factorizes it
     /// into `factors`, as [`NewtonMatrix::factorize`] does W = I − c·J.
     ///
-    /// Dense matrices implement it; the default (particle and field Jacobians, whose models have
-    /// no mass matrix) reports the matrix singular.
+    /// Dense matrices and field models' Jacobians implement it; the default (particle
+    /// Jacobians, whose models have no mass matrix) reports the matrix singular.
     ///
     /// Errors: [`FactorizeError::Singular`] when W is singular.
     fn factorize_mass(
@@ -64,11 +64,29 @@ pub trait NewtonMatrix: Clone + fmt::Debug {
         Err(FactorizeError::Singular)
     }
 
-    /// Entry (row, column) of J as last written, for a dense matrix; `None` for sparse ones. The
-    /// consistent initialization of a differential–algebraic model reads its algebraic block.
+    /// Entry (row, column) of J as last written, for a dense matrix; `None` for sparse ones.
+    /// BDF reads it to bound the rounding of a mass-matrix model's Newton residual.
     fn dense_entry(&self, row: usize, column: usize) -> Option<f64> {
         let _ = (row, column);
         None
+    }
+
+    /// Appends to `out` the entries of J as last written whose row and column are both among
+    /// `components` (sorted, in the state's layout), as (row's position in `components`,
+    /// column's position, value); a sparse matrix gives every structural entry, zero or not. The
+    /// consistent initialization of a differential–algebraic model solves with this block,
+    /// ∂g/∂z ([`crate::consistent`]). The default reads [`NewtonMatrix::dense_entry`] and gives
+    /// nothing for a matrix without it.
+    fn entries_among(&self, components: &[usize], out: &mut Vec<(usize, usize, f64)>) {
+        for (a, &i) in components.iter().enumerate() {
+            for (b, &j) in components.iter().enumerate() {
+                match self.dense_entry(i, j) {
+                    Some(value) if value != 0.0 => out.push((a, b, value)),
+                    Some(_) => {}
+                    None => return,
+                }
+            }
+        }
     }
 
     /// Solves W·x = b in place with the last factorization.

@@ -272,6 +272,15 @@ impl SparseSolver {
         Ok(())
     }
 
+    /// Factorizes the values directly whatever the run configured: the next solves substitute
+    /// in the factors (a mass-matrix system, which the Krylov products do not know).
+    ///
+    /// Errors: [`FactorizeError::Singular`].
+    pub(crate) fn factorize_direct_only(&mut self) -> Result<(), FactorizeError> {
+        self.iterative = false;
+        self.factorize_direct()
+    }
+
     /// Solves the matrix against [`SparseSolver::rhs`], in place: by the Krylov method when
     /// the last factorization prepared one (redone directly if it fails), else by
     /// substitution in the direct factors.
