@@ -1,11 +1,13 @@
-//! A rope two ways: rigid links solved by XPBD (`odyn::xpbd`: position-based dynamics with
-//! substeps, Macklin et al. 2016 and 2019), and the same rope as stiff springs stepped by
-//! implicit Euler.
+//! A rope three ways: rigid links solved by XPBD (`odyn::xpbd`: position-based dynamics with
+//! substeps, Macklin et al. 2016 and 2019), the same rope as stiff springs stepped by implicit
+//! Euler, and as rigid rods whose forces are algebraic components (a differential–algebraic
+//! field model, `scenes::RodRope`) under Rodas5P.
 //!
 //! 40 particles, 2 m long, 0.2 kg, pinned at one end, released horizontal under gravity, 4 s at
 //! dt = 1/60 s. The XPBD rope keeps its length by projecting every link back to its rest length
 //! (`--substeps` substeps of `--iterations` sweeps per frame); the spring rope (k = 10⁴ N/m per
-//! link, so ω·dt ≈ 100) is stable only because implicit Euler is.
+//! link, so ω·dt ≈ 100) is stable only because implicit Euler is; the rod rope keeps its length
+//! to the tolerance (`--rtol`, adaptive steps, saved at the frames).
 //!
 //! `cargo run --release --example rope` writes `out/rope/rope.csv`
 //! (`method,step,t,tip_x,tip_y,stretch,energy`), `out/rope/rope.png` (the two ropes at several
@@ -20,6 +22,7 @@ use odyn::particles::Spring;
 use odyn::plot::{Chart, Series, View, views};
 use odyn::prelude::*;
 use odyn::xpbd::{Constraint, Xpbd, XpbdOptions};
+use scenes::RodRope;
 
 /// A rope of stiff springs under gravity.
 #[system(integrator = ImplicitEuler, dt = 1.0 / 60.0)]
@@ -99,6 +102,9 @@ struct Cli {
     /// XPBD constraint sweeps per substep.
     #[arg(long, default_value_t = 1)]
     iterations: u32,
+    /// Relative tolerance of the rod rope (its absolute tolerance is 1e-2 of it, in m).
+    #[arg(long, default_value_t = 1e-6)]
+    rtol: f64,
     /// Simulated seconds.
     #[arg(long, default_value_t = 4.0)]
     duration: f64,
@@ -179,6 +185,39 @@ fn xpbd_rope(n: usize, substeps: u32, iterations: u32, steps: u64) -> odyn::Resu
     Ok(frames)
 }
 
+/// The rope as rigid rods (`scenes::RodRope`: a DAE whose rod forces are algebraic) under
+/// Rodas5P at `rtol`, saved at every frame; the pinned end prepended to each frame's positions.
+fn rod_rope(n: usize, rtol: f64, duration: f64) -> odyn::Result<(Vec<Frame>, odyn::Stats)> {
+    let rest = LENGTH / (n - 1) as f64;
+    let rope = RodRope::straight(n - 1, MASS / n as f64, rest, std::f64::consts::FRAC_PI_2)?;
+    let steps = (duration / DT).round() as u64;
+    let frames: Vec<f64> = (0..=steps).map(|i| i as f64 * DT).collect();
+    let run = rope
+        .simulate()
+        .integrator(Method::Rodas5P)
+        .tolerances(rtol, 1e-2 * rtol)
+        .save_at(&frames)
+        .duration(duration)
+        .run()?;
+    let frames = run
+        .samples
+        .iter()
+        .enumerate()
+        .map(|(step, s)| {
+            let (x, y) = (s.state.field(0), s.state.field(1));
+            let mut points = vec![Vector2::zeros()];
+            points.extend(x.iter().zip(y).map(|(&x, &y)| Vector2::new(x, y)));
+            Frame {
+                step: step as u64,
+                t: s.t,
+                x: points,
+                energy: rope.energy(&s.state),
+            }
+        })
+        .collect();
+    Ok((frames, run.stats))
+}
+
 fn rope(n: usize, k: f64) -> Rope {
     let x: Vec<_> = (0..n)
         .map(|i| Vector2::new(i as f64 * LENGTH / (n - 1) as f64, 0.0))
@@ -254,6 +293,18 @@ fn run(cli: Cli) -> odyn::Result<()> {
         springs[0].energy,
         springs[springs.len() - 1].energy,
     );
+    let started = std::time::Instant::now();
+    let (rods, stats) = rod_rope(n, cli.rtol, cli.duration)?;
+    println!(
+        "  rigid rods (DAE), Rodas5P at rtol {:e}: max stretch {:.2e}, energy {:.4} -> {:.4} J \
+         ({} steps, {:.2} s)",
+        cli.rtol,
+        rods.iter().map(|f| stretch(&f.x, rest)).fold(0.0, f64::max),
+        rods[0].energy,
+        rods[rods.len() - 1].energy,
+        stats.steps,
+        started.elapsed().as_secs_f64(),
+    );
     let explicit = model
         .simulate()
         .integrator(Method::VelocityVerlet)
@@ -270,6 +321,7 @@ fn run(cli: Cli) -> odyn::Result<()> {
     let ropes = [
         ("xpbd_constraints", &verlet),
         ("implicit_springs", &springs),
+        ("dae_rods", &rods),
     ];
     let mut rows = Vec::new();
     for (name, frames) in ropes {
@@ -317,19 +369,21 @@ fn run(cli: Cli) -> odyn::Result<()> {
         &[
             panel("rigid links, XPBD", &verlet),
             panel("stiff springs, implicit Euler", &springs),
+            panel("rigid rods (DAE), Rodas5P", &rods),
         ],
-        (1300, 650),
+        (1800, 650),
     )?;
     let series = |label: &str, frames: &[Frame], value: &dyn Fn(&Frame) -> f64| {
         Series::line(label, frames.iter().map(|f| (f.t, value(f))).collect())
     };
     Chart {
-        title: "Rope energy (J): XPBD and implicit Euler".into(),
+        title: "Rope energy (J): XPBD, implicit Euler, rods as a DAE".into(),
         x_label: "t (s)".into(),
         y_label: "kinetic + potential energy (J)".into(),
         series: vec![
             series("rigid links, XPBD", &verlet, &|f| f.energy),
             series("stiff springs, implicit Euler", &springs, &|f| f.energy),
+            series("rigid rods (DAE), Rodas5P", &rods, &|f| f.energy),
         ],
         ..Chart::default()
     }

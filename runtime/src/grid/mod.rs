@@ -34,6 +34,11 @@
 //! in space may also be a `Grid` field of the model without `#[field]` (a parameter grid of the
 //! fields' size, with its own boundary), read through a `Stencil` argument named like it: its
 //! values enter the rate but are not differentiated.
+//!
+//! A `#[field]` also marked `#[algebraic]` is an algebraic grid ([`GridSystem::ALGEBRAIC_FIELDS`]):
+//! its rows of the `#[cell]` method are residuals 0 = g, and the model is M·y′ = f with M the
+//! identity but zero at its cells. The methods that take a mass matrix factorize M − c·J
+//! directly ([`GridJacobian`]), after a consistent start ([`crate::consistent`]).
 
 pub(crate) mod glue;
 mod jacobian;
