@@ -16,7 +16,7 @@
 //!
 //! and the time of each step.
 //!
-//! `cargo run --release --example cloth_solves [-- --sizes 32,64]` (about a minute at 32²; the
+//! `cargo run --release --example cloth_solves [-- --sizes 32,64 --qn-iterations 8]` (about a minute at 32²; the
 //! converged step from the buckling cloth at 0.5 s takes most of it, and minutes at 64²)
 
 use std::process::ExitCode;
@@ -39,6 +39,9 @@ struct Cli {
     /// Checkpoint times (s), comma-separated and increasing.
     #[arg(long, value_delimiter = ',', default_value = "0.5,1,2,5")]
     checkpoints: Vec<f64>,
+    /// The quasi-Newton solve's iterations per step (`QuasiNewtonOptions::max_iterations`).
+    #[arg(long, default_value_t = QuasiNewtonOptions::default().max_iterations)]
+    qn_iterations: u32,
 }
 
 const H: f64 = 1.0 / 60.0;
@@ -59,7 +62,11 @@ fn run(cli: Cli) -> odyn::Result<()> {
     );
     for &n in &cli.sizes {
         let cloth = Sheet::falling(n).build().0;
-        for point in checkpoints(&cloth, &cli.checkpoints)? {
+        let budget = QuasiNewtonOptions {
+            max_iterations: cli.qn_iterations,
+            ..QuasiNewtonOptions::default()
+        };
+        for point in checkpoints(&cloth, &cli.checkpoints, budget)? {
             let (t, state) = (point.t, &point.state);
             // Where Newton cannot take the step whole (a buckling cloth), the quasi-Newton solve
             // run to convergence gives the same implicit Euler step.
@@ -102,7 +109,11 @@ struct Checkpoint {
 /// The reference run (the one-step Baraff–Witkin form on the definite matrix) at the checkpoint
 /// times, each with the quasi-Newton step from it (its matrix factorized before the clock
 /// starts, as it is once per run).
-fn checkpoints(cloth: &Cloth, times: &[f64]) -> odyn::Result<Vec<Checkpoint>> {
+fn checkpoints(
+    cloth: &Cloth,
+    times: &[f64],
+    budget: QuasiNewtonOptions,
+) -> odyn::Result<Vec<Checkpoint>> {
     let mut reference = Stepper::<Cloth, ImplicitEuler<Cloth>>::with_newton(
         cloth,
         cloth.state(),
@@ -110,7 +121,7 @@ fn checkpoints(cloth: &Cloth, times: &[f64]) -> odyn::Result<Vec<Checkpoint>> {
         H,
         &baraff_witkin(),
     )?;
-    let newton = quasi_newton(QuasiNewtonOptions::default());
+    let newton = quasi_newton(budget);
     let mut fast =
         Stepper::<Cloth, ImplicitEuler<Cloth>>::with_newton(cloth, cloth.state(), 0.0, H, &newton)?;
     fast.step()?;

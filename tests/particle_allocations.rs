@@ -77,7 +77,11 @@ fn stepping_a_particle_model_allocates_nothing() {
         fixed: vec![0],
         x,
     };
-    let newton = NewtonOptions::default();
+    // Full Newton (the default, `ParticleSolve::Auto`, is the Baraff–Witkin step below).
+    let newton = NewtonOptions {
+        particle_solve: ParticleSolve::Newton,
+        ..NewtonOptions::default()
+    };
     let counts = [
         (
             "explicit Euler",
@@ -106,12 +110,16 @@ fn stepping_a_particle_model_allocates_nothing() {
             allocations::<ImplicitEuler<_>>(&model, &NewtonOptions::linearized()),
         ),
         (
+            "implicit Euler, the default (Baraff–Witkin on the definite matrix)",
+            allocations::<ImplicitEuler<_>>(&model, &NewtonOptions::default()),
+        ),
+        (
             "implicit Euler, Krylov solves",
             allocations::<ImplicitEuler<_>>(
                 &model,
                 &NewtonOptions {
                     linear: LinearSolver::Krylov(KrylovOptions::default()),
-                    ..NewtonOptions::default()
+                    ..newton
                 },
             ),
         ),
