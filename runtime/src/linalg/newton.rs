@@ -55,8 +55,8 @@ pub struct NewtonOptions {
 pub enum ParticleSolve {
     /// The Baraff–Witkin step: one Newton iteration on the definite Newton matrix
     /// ([`NewtonOptions::linearized`] and [`NewtonOptions::definite`] both on), one Cholesky
-    /// factorization a step. Full Newton on a stiff cloth refactorizes 12–30 times a step and
-    /// fails outright where the cloth buckles; the quasi-Newton solve at its default budget is
+    /// factorization a step. Full Newton on a stiff cloth refactorizes 12–30 times a step,
+    /// halving the step where the cloth buckles; the quasi-Newton solve at its default budget is
     /// faster but not as close to the converged implicit Euler step as this one (the particles
     /// chapter of the guide has the measurements). The default.
     #[default]
