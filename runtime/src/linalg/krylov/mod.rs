@@ -3,10 +3,12 @@
 //! on faer's conjugate gradient (`faer::matrix_free`) and our BiCGSTAB (`bicgstab.rs`), in
 //! `solve.rs`.
 
+mod auto;
 mod bicgstab;
 mod solve;
 
-pub(crate) use solve::{FourierTrial, KrylovSolver, NoConvergence};
+pub(crate) use auto::{AutoState, Move};
+pub(crate) use solve::{KrylovSolver, NoConvergence};
 
 /// How implicit methods (implicit Euler, Rosenbrock23, Rodas5P, BDF) solve the sparse linear
 /// systems of particle and field models; dense models always factorize.
@@ -129,7 +131,7 @@ impl LinearSolver {
                 if structure == Structure::Field && n >= policy.krylov_from =>
             {
                 let mut solver = KrylovSolver::new(KrylovOptions::default(), n);
-                solver.policy = Some(policy);
+                solver.auto = Some(AutoState::new(policy));
                 Some(solver)
             }
             LinearSolver::Krylov(krylov) => Some(KrylovSolver::new(krylov, n)),

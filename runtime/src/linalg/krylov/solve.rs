@@ -31,30 +31,12 @@ pub(crate) struct KrylovSolver {
     stack: MemBuffer,
     /// The last solve took more than `refresh_above` iterations.
     pub(crate) refresh: bool,
-    /// `Auto`'s thresholds, when `Auto` chose these solves: it then gives up a preconditioner
-    /// for the run after a solve of more than `direct_above` iterations.
-    pub(crate) policy: Option<super::AutoPolicy>,
+    /// `Auto`'s thresholds and state, when `Auto` chose these solves.
+    pub(crate) auto: Option<super::AutoState>,
     /// Iterations of the last solve.
     pub(crate) last_iterations: usize,
-    /// Where `Auto`'s trial of the Fourier preconditioner stands.
-    pub(crate) fourier_trial: FourierTrial,
     /// What the solves are for: where they stop.
     pub(crate) solves: Solves,
-}
-
-/// `Auto`'s trials of [`Preconditioner::Fourier`] on a periodic grid after a slow block-Jacobi
-/// solve: each trial's Fourier solve decides whether it stays.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum FourierTrial {
-    /// Not tried yet.
-    Untried,
-    /// The next solve is Fourier's, after a block-Jacobi solve of this many iterations.
-    Trying(usize),
-    /// Tried and given back after a block-Jacobi solve of this many iterations: tried again
-    /// once block Jacobi needs twice as many (the problem has stiffened since).
-    GivenBack(usize),
-    /// Tried and kept for the run.
-    Kept,
 }
 
 /// A Krylov solve that did not converge within `max_iterations`, broke down, or ended on a
@@ -73,9 +55,8 @@ impl KrylovSolver {
             scratch: StackReq::EMPTY,
             stack: MemBuffer::new(StackReq::EMPTY),
             refresh: false,
-            policy: None,
+            auto: None,
             last_iterations: 0,
-            fourier_trial: FourierTrial::Untried,
             solves: Solves::OneStep,
         }
     }
@@ -223,9 +204,8 @@ impl Clone for KrylovSolver {
             scratch: self.scratch,
             stack: MemBuffer::new(self.scratch),
             refresh: self.refresh,
-            policy: self.policy,
+            auto: self.auto,
             last_iterations: self.last_iterations,
-            fourier_trial: self.fourier_trial,
             solves: self.solves,
         }
     }

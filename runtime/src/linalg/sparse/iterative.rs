@@ -1,11 +1,13 @@
-//! The Krylov solve of a sparse Newton matrix with the run's preconditioner, and `Auto`'s move
-//! to Fourier, multigrid or the direct solver when a preconditioner converges too slowly.
+//! The Krylov solve of a sparse Newton matrix with the run's preconditioner, and the moves
+//! `Auto`'s state ([`AutoState`], `linalg/krylov/auto.rs`) decides on: to Fourier, back to
+//! block Jacobi, or to multigrid or the direct solver when a preconditioner converges too
+//! slowly.
 
 use faer::sparse::linalg::cholesky::LltRef;
 use faer::sparse::linalg::lu::LuRef;
 
 use super::{Factored, Products, SparseSolver, StencilMatrix};
-use crate::linalg::krylov::{FourierTrial, NoConvergence, Preconditioner};
+use crate::linalg::krylov::{AutoState, Move, NoConvergence, Preconditioner};
 use crate::linalg::multigrid::{Multigrid, MultigridRef};
 use crate::linalg::precond::{Factors, FourierRef, Ilu0Ref};
 
@@ -68,43 +70,31 @@ impl SparseSolver {
             }
             _ => Err(NoConvergence),
         };
-        if let Some(policy) = krylov.policy
-            && outcome.is_ok()
+        if outcome.is_ok()
+            && let Some(auto) = &mut krylov.auto
         {
-            let (from, iterations) = (krylov.options.preconditioner, krylov.last_iterations);
-            let trial = krylov.fourier_trial;
-            if let FourierTrial::Trying(_) = trial {
-                krylov.fourier_trial = FourierTrial::Kept;
-            }
-            // `Auto` tries Fourier on a periodic grid once a block-Jacobi solve costs more than
-            // one Fourier iteration would, and again once block Jacobi needs twice the
-            // iterations of a trial Fourier lost.
-            let try_fourier = match trial {
-                FourierTrial::Untried => iterations as f64 > policy.fourier_iteration_cost(n),
-                FourierTrial::GivenBack(before) => iterations > 2 * before,
-                FourierTrial::Trying(_) | FourierTrial::Kept => false,
-            };
-            if iterations > policy.direct_above {
-                // `Auto`: this matrix is too ill-conditioned for the preconditioner to pay.
-                self.give_up(from, stencil, policy.multigrid_from);
-            } else if let FourierTrial::Trying(block_jacobi) = trial
-                && from == Preconditioner::Fourier
-                && iterations as f64 * policy.fourier_iteration_cost(n) > block_jacobi as f64
-                && self.jacobi.update(&self.values).is_ok()
-                && let Some(krylov) = &mut self.krylov
-            {
-                // `Auto`: Fourier's solve cost more than block Jacobi's; back, its blocks those
-                // of the current matrix.
-                krylov.fourier_trial = FourierTrial::GivenBack(block_jacobi);
-                self.switch(Preconditioner::BlockJacobi);
-                self.counts.krylov.switched_to_fourier = 0;
-            } else if from == Preconditioner::BlockJacobi
-                && try_fourier
-                && self.move_to_fourier(stencil)
-                && let Some(krylov) = &mut self.krylov
-            {
-                // `Auto` on a periodic grid: Fourier is tried on the next solve.
-                krylov.fourier_trial = FourierTrial::Trying(iterations);
+            let from = krylov.options.preconditioner;
+            let iterations = krylov.last_iterations;
+            let multigrid_from = auto.policy.multigrid_from;
+            match auto.after(from, iterations, n) {
+                Move::Stay => {}
+                // This matrix is too ill-conditioned for the preconditioner to pay.
+                Move::GiveUp => self.give_up(from, stencil, multigrid_from),
+                // Fourier's solve cost more than block Jacobi's: back, its blocks those of the
+                // current matrix.
+                Move::BackToBlockJacobi(block_jacobi) => {
+                    if self.jacobi.update(&self.values).is_ok() {
+                        self.switch(Preconditioner::BlockJacobi);
+                        self.counts.krylov.switched_to_fourier = 0;
+                        self.auto(|auto| auto.given_back(block_jacobi));
+                    }
+                }
+                // A periodic grid: Fourier is tried on the next solve.
+                Move::TryFourier => {
+                    if self.move_to_fourier(stencil) {
+                        self.auto(|auto| auto.trying(iterations));
+                    }
+                }
             }
         }
         outcome
@@ -156,6 +146,13 @@ impl SparseSolver {
         }
         self.krylov = None;
         self.counts.krylov.switched_to_direct = 1;
+    }
+
+    /// Tells `Auto`'s state, if the run has one, what the solver did.
+    fn auto(&mut self, tell: impl FnOnce(&mut AutoState)) {
+        if let Some(auto) = self.krylov.as_mut().and_then(|k| k.auto.as_mut()) {
+            tell(auto);
+        }
     }
 
     /// The run's Krylov solves go on with `preconditioner`, built for the current values.
