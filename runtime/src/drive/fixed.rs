@@ -140,6 +140,13 @@ fn advance_to<'a, 'm, M: Model + 'm>(
     }
     while let Some(&(end, depth)) = d.track().pending.last() {
         let h = end - d.track().t;
+        if h == 0.0 {
+            // Already there: a change event on a grid time returns here to finish the grid
+            // step it ended. A step of length 0 is nothing to take (and M − 0·J, a DAE's
+            // singular mass matrix, nothing to solve with).
+            d.track().pending.pop();
+            continue;
+        }
         match d.step(h, end)? {
             Ok(flow) => {
                 d.track().pending.pop();

@@ -20,8 +20,8 @@ const DENSE_UP_TO: usize = 256;
 /// Solves g(t, y, z) = 0 for the algebraic components z of `y` (`M::ALGEBRAIC`), the
 /// differential ones held, as IDA's `IDACalcIC` with `IDA_YA_YDP_INIT` does: Newton on the
 /// block ∂g/∂z of the generated Jacobian, each update halved while it does not reduce the
-/// largest |gᵢ| (at most 30 times), until the update is below 10⁻¹⁰ of max(|zᵢ|, ‖y‖∞) (a start that
-/// already satisfies g moves by rounding only). The drivers call it before the first step
+/// largest |gᵢ| (at most 30 times), until the update is below 10⁻¹⁰ of max(|zᵢ|, 10⁻⁶·‖y‖∞) (a
+/// start that already satisfies g moves by rounding only). The drivers call it before the first step
 /// ([`crate::Model::consistent`]) and after an event that changes the state.
 ///
 /// `newton` is unused for now: the iteration's own limits are fixed (50 iterations), so a
@@ -71,13 +71,12 @@ pub(crate) fn consistent_components<M: Jacobian>(
         }
     };
     residual(model, t, y, algebraic, &mut f, &mut g);
-    for _ in 0..ITERATIONS {
+    let singular = "∂g/∂z is singular: the equation does not determine the component (index 2 \
+                    or more, or a constraint on the differential components alone)";
+    for iteration in 0..ITERATIONS {
         if !g.iter().all(|r| r.is_finite()) {
             let (row, _) = largest(&g);
             return Err(inconsistent(y, &g, row, "a residual is not finite there"));
-        }
-        if g.iter().all(|&r| r == 0.0) {
-            return Ok(());
         }
         model.jacobian(t, y, &mut jacobian);
         entries.clear();
@@ -85,16 +84,30 @@ pub(crate) fn consistent_components<M: Jacobian>(
         if let Some(&(bad, _, _)) = entries.iter().find(|e| !e.2.is_finite()) {
             return Err(inconsistent(y, &g, bad, "∂g/∂z is not finite there"));
         }
+        if iteration == 0 {
+            // ∂g/∂z must be regular at the start, consistent or not: else no step can be
+            // solved with M − c·J. Probed by a solve with every right-hand side 1, which a
+            // matrix singular to rounding blows up (its LU's last pivot is rounding noise).
+            let mut probe = vec![1.0; k];
+            let largest_entry = entries.iter().fold(0.0, |m: f64, e| m.max(e.2.abs()));
+            let growth = match block.solve(&entries, &mut probe) {
+                Ok(()) => probe.iter().fold(0.0, |m: f64, x| m.max(x.abs())) * largest_entry,
+                Err(column) => {
+                    let column = column.unwrap_or_else(|| largest(&g).0);
+                    return Err(inconsistent(y, &g, column, singular));
+                }
+            };
+            if growth > 1e14 {
+                return Err(inconsistent(y, &g, largest(&g).0, singular));
+            }
+        }
+        if g.iter().all(|&r| r == 0.0) {
+            return Ok(());
+        }
         let mut update = -&g;
         if let Err(column) = block.solve(&entries, update.as_mut_slice()) {
             let column = column.unwrap_or_else(|| largest(&g).0);
-            return Err(inconsistent(
-                y,
-                &g,
-                column,
-                "∂g/∂z is singular: the equation does not determine the component (index 2 or \
-                 more, or a constraint on the differential components alone)",
-            ));
+            return Err(inconsistent(y, &g, column, singular));
         }
         // Damped: halve the update while it does not reduce the largest residual.
         let before = largest(&g).1;
@@ -113,20 +126,23 @@ pub(crate) fn consistent_components<M: Jacobian>(
             }
             scale *= 0.5;
         }
-        // The update relative to the component, or to the state's largest component for one
-        // near zero.
+        // The largest update relative to a scale of its component: `floor` of the state's
+        // largest component at least.
         let whole = y.as_slice().iter().fold(0.0, |m: f64, v| m.max(v.abs()));
-        let step = algebraic
-            .iter()
-            .enumerate()
-            .map(|(a, &i)| {
-                let scale = y.as_slice()[i].abs().max(whole).max(f64::MIN_POSITIVE);
-                (update[a] / scale).abs()
-            })
-            .fold(0.0, f64::max);
+        let step = |floor: f64| {
+            algebraic
+                .iter()
+                .enumerate()
+                .map(|(a, &i)| {
+                    let scale = y.as_slice()[i].abs().max(floor).max(f64::MIN_POSITIVE);
+                    (update[a] / scale).abs()
+                })
+                .fold(0.0, f64::max)
+        };
         if !reduced {
-            // At the rounding of g: the full update is below the resolution of z.
-            if step <= 1e-10 {
+            // At the rounding of g: the full update is below the resolution of z, whose
+            // values are computed from the whole state's.
+            if step(whole) <= 1e-10 {
                 return Ok(());
             }
             let (row, _) = largest(&g);
@@ -137,9 +153,14 @@ pub(crate) fn consistent_components<M: Jacobian>(
                 "Newton's updates do not reduce the residual (no solution near the start)",
             ));
         }
+        // Converged: the update is small against the component itself, or against a
+        // millionth of the state's largest for a component near 0 — never against the largest
+        // alone, which a huge differential component elsewhere (1e12) would make every update
+        // look converged.
+        let converged = scale == 1.0 && step(1e-6 * whole) <= 1e-10;
         y.clone_from(&trial);
         g.copy_from(&g_trial);
-        if scale == 1.0 && step <= 1e-10 {
+        if converged {
             return Ok(());
         }
     }
