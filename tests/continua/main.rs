@@ -16,6 +16,7 @@ mod grid;
 mod krylov;
 mod mpm;
 mod particles;
+mod probe_dae_grid;
 mod quasi_newton;
 mod rope_dae;
 mod sph;
