@@ -10,13 +10,13 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod dae_grid;
 mod flip;
 mod fluids;
 mod grid;
 mod krylov;
 mod mpm;
 mod particles;
-mod probe_dae_grid;
 mod quasi_newton;
 mod rope_dae;
 mod sph;
