@@ -188,13 +188,10 @@ pub(crate) fn boundaries() -> [Boundary; 4] {
 }
 
 /// Runs `model` to t = 1 with `method`: adaptive at (1e-8, 1e-10), or 1 000 fixed steps.
-pub(crate) fn to_one<M: Simulate>(
+pub(crate) fn to_one<M: Simulate + odyn::Model>(
     model: &M,
     method: Method,
-) -> odyn::Result<odyn::Trajectory<M::State>>
-where
-    M: odyn::Model,
-{
+) -> odyn::Result<odyn::Trajectory<M::State>> {
     let s = model.simulate().integrator(method);
     if method.is_adaptive() {
         s.tolerances(1e-8, 1e-10).duration(1.0).run()

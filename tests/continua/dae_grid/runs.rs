@@ -68,7 +68,7 @@ fn linear_solvers_agree() {
                 ..AutoPolicy::default()
             }),
         ] {
-            let other = end(linear.clone());
+            let other = end(linear);
             let d = direct
                 .iter()
                 .zip(&other)
