@@ -70,13 +70,12 @@ use crate::{Error, Jacobian, Method, NewtonMatrix, NewtonOptions, Result, State,
 ///   same interpolating polynomial (`change_d`: D ← (R·U)ᵀ·D).
 /// - **Dense output**: that polynomial on the last step, Σⱼ₌₀ᵏ ∇ʲyₙ₊₁·pⱼ(θ) with
 ///   pⱼ(θ) = Πₘ₌₀ʲ⁻¹ (θ − 1 + m)/(m + 1) (SciPy's `BdfDenseOutput`), of degree k.
-/// - **Start and events**: order 1 from D = (y₀, h·f(t₀, y₀)); an event that changes the state
-///   starts it again there.
-/// - **Mass matrix** (a differential–algebraic model, M·y′ = f): the step solves
-///   M(d + ψ) = c·f(tₙ₊₁, y⁽⁰⁾ + d), Newton with M − c·J, as `ode15s` does (Shampine, Reichelt &
-///   Kierzenka, "Solving index-1 DAEs in MATLAB and Simulink", SIAM Review 41 (1999) 538–552);
-///   the error estimate and the order selection are the ODE's, over every component. The start
-///   takes h·f(t₀, y₀) for h·y′₀ only in rows where M is the identity's, and 0 elsewhere.
+/// - **Start and events**: order 1 from D = (y₀, h·f(t₀, y₀)), again after an event that
+///   changes the state.
+/// - **Mass matrix** (a DAE, M·y′ = f): M(d + ψ) = c·f(tₙ₊₁, y⁽⁰⁾ + d), Newton with M − c·J,
+///   as `ode15s` (Shampine, Reichelt & Kierzenka, SIAM Review 41 (1999) 538–552); the ODE's
+///   error estimate and order selection over every component; the start takes h·f(t₀, y₀) for
+///   h·y′₀ in rows where M is the identity's, 0 elsewhere.
 ///
 /// The method chooses its own step sizes ([`Integrator::next_step`]; a
 /// [`crate::AdaptiveOptions::controller`] is not used); the adaptive driver still caps them at
@@ -86,8 +85,8 @@ use crate::{Error, Jacobian, Method, NewtonMatrix, NewtonOptions, Result, State,
 /// after every k + 1 steps, to 2 (the A-stable orders) unless [`Bdf::set_max_order`] says
 /// otherwise, and Newton follows [`NewtonOptions`] (`tol` on ‖Δ‖ weighted by 1 + |y|,
 /// `max_iterations`), its updates solved to Newton's forcing term (`KrylovOptions::newton_rtol`)
-/// rather than CVODE's looser one; a failing solve is retried as two half steps by the driver. Steps that differ
-/// from dt only by the rounding of t₀ + n·dt count as equal.
+/// rather than CVODE's looser one; a failing solve is retried as two half steps by the
+/// driver. Steps that differ from dt only by the rounding of t₀ + n·dt count as equal.
 ///
 /// - **Order** 1–5 (2 at a fixed step, so [`Method::order`] is 2).
 /// - **Stability**: A-stable at orders 1 and 2, A(α)-stable above; the adaptive order selection
