@@ -39,16 +39,13 @@ use crate::{Error, Jacobian, Method, NewtonMatrix, NewtonOptions, Result, State,
 /// - **Newton**, norms weighted by atol + rtol·|yₙ₊₁⁽⁰⁾| (so 1 is the error tolerance), SciPy's
 ///   test: at most 4 iterations, converged when rate/(1 − rate)·‖Δ‖ < tol, tol = max(10ε/rtol,
 ///   min(0.03, √rtol)) (rate the ratio of successive ‖Δ‖), abandoned when the rate reaches 1 or
-///   cannot reach tol in the iterations left. Where a solve is the cost — the sparse systems
-///   of particle and field models ([`NewtonMatrix::COSTLY_SOLVES`]) — and `refactor_ratio` is
-///   not 0, CVODE's test (Hindmarsh et al. 2005, §2.1; `cvNlsConvTest`) instead: at most 3
-///   iterations, converged when ‖Δ‖·min(1, R) ≤ 0.1/(κₖγₖ + 1/(k + 1)) — the correction's
-///   remaining error at most a tenth of the error test's allowance — with R the rate of
-///   convergence (max(0.3·R, ‖Δ‖/‖Δ_prev‖), 1 at the first iteration of each step), abandoned
-///   when ‖Δ‖ more than doubles. SciPy's tol is 300–1 000 times tighter at rtol 1e-6 and
-///   always takes two iterations. On the sparse systems CVODE's test halves the solves at
-///   equal error; on small dense systems it takes more steps for fewer evaluations and does not
-///   pay, so dense models keep SciPy's (the measurements are in `BENCHMARKS.md`).
+///   cannot reach tol in the iterations left. Where a solve is the cost (the sparse systems of
+///   particle and field models, [`NewtonMatrix::COSTLY_SOLVES`]) and CVODE's rules are on (see
+///   Reuse), CVODE's test (Hindmarsh et al. 2005, §2.1; `cvNlsConvTest`): at most 3
+///   iterations, converged when ‖Δ‖·min(1, R) ≤ 0.1/(κₖγₖ + 1/(k + 1)), R the rate
+///   (max(0.3·R, ‖Δ‖/‖Δ_prev‖), 1 at a step's first iteration), abandoned when ‖Δ‖ more than
+///   doubles. It halves the sparse systems' solves at equal error (SciPy's tol is 300–1 000
+///   times tighter at rtol 1e-6); on small dense systems it does not pay (`BENCHMARKS.md`).
 /// - **Reuse**: the LU of I − c·J is kept while c = h/αₖ stays within
 ///   [`NewtonOptions::refactor_ratio`] (default 0.3) of the c it was made with, each Newton
 ///   update then scaled by 2/(1 + c/c_old) (CVODE's rule: Hindmarsh et al., "SUNDIALS", ACM
