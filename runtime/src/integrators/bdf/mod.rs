@@ -67,8 +67,7 @@ use crate::{Error, Jacobian, Method, NewtonMatrix, NewtonOptions, Result, State,
 ///   same interpolating polynomial (`change_d`: D ← (R·U)ᵀ·D).
 /// - **Dense output**: that polynomial on the last step, Σⱼ₌₀ᵏ ∇ʲyₙ₊₁·pⱼ(θ) with
 ///   pⱼ(θ) = Πₘ₌₀ʲ⁻¹ (θ − 1 + m)/(m + 1) (SciPy's `BdfDenseOutput`), of degree k.
-/// - **Start and events**: order 1 from D = (y₀, h·f(t₀, y₀)), again after an event that
-///   changes the state.
+/// - **Start and events**: order 1 from D = (y₀, h·f(t₀, y₀)), again after a change event.
 /// - **Mass matrix** (a DAE, M·y′ = f): M(d + ψ) = c·f(tₙ₊₁, y⁽⁰⁾ + d), Newton with M − c·J,
 ///   as `ode15s` (Shampine, Reichelt & Kierzenka, SIAM Review 41 (1999) 538–552); the ODE's
 ///   error estimate and order selection over every component; the start takes h·f(t₀, y₀) for
