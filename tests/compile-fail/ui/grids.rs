@@ -383,3 +383,26 @@ mod algebraic_grid_without_jacobian {
 
     fn main() {}
 }
+
+mod algebraic_parameter_in_field_model {
+    use odyn::grid::{Grid, Stencil};
+    use odyn::system;
+
+    #[system]
+    struct Balance {
+        #[field]
+        u: Grid,
+        #[algebraic]
+        k: f64,
+    }
+
+    #[system]
+    impl Balance {
+        #[cell]
+        fn rate(&self, u: Stencil) -> f64 {
+            -self.k * u.c
+        }
+    }
+
+    fn main() {}
+}

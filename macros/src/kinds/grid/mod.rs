@@ -90,11 +90,19 @@ pub(crate) fn parse_struct<'a>(item: &'a ItemStruct, errors: &mut Errors) -> Opt
         let algebraic_attr = attribute(&field.attrs, &["algebraic"]);
         let Some(attr) = attribute(&field.attrs, &["field"]) else {
             if let Some(attr) = algebraic_attr {
-                errors.at(
-                    attr,
-                    "an algebraic grid is a field of the state: write `#[field] #[algebraic]` \
-                     (its rows of the `#[cell]` method are residuals 0 = g)",
-                );
+                let message = match names_type(&field.ty, "Grid") {
+                    true => {
+                        "an algebraic grid is a field of the state: write \
+                             `#[field] #[algebraic]` (its rows of the `#[cell]` method are \
+                             residuals 0 = g)"
+                    }
+                    false => {
+                        "`#[algebraic]` in a field model marks a `#[field]` grid whose rows \
+                              of the `#[cell]` method are residuals 0 = g; this field is not a \
+                              grid but a parameter"
+                    }
+                };
+                errors.at(attr, message);
             } else if names_type(&field.ty, "Grid") {
                 coefficients.push(ident);
             }
