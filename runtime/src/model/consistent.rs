@@ -84,22 +84,13 @@ pub(crate) fn consistent_components<M: Jacobian>(
         if let Some(&(bad, _, _)) = entries.iter().find(|e| !e.2.is_finite()) {
             return Err(inconsistent(y, &g, bad, "∂g/∂z is not finite there"));
         }
-        if iteration == 0 {
+        if iteration == 0
+            && let Err(column) = regular(&mut block, &entries, k)
+        {
             // ∂g/∂z must be regular at the start, consistent or not: else no step can be
-            // solved with M − c·J. Probed by a solve with every right-hand side 1, which a
-            // matrix singular to rounding blows up (its LU's last pivot is rounding noise).
-            let mut probe = vec![1.0; k];
-            let largest_entry = entries.iter().fold(0.0, |m: f64, e| m.max(e.2.abs()));
-            let growth = match block.solve(&entries, &mut probe) {
-                Ok(()) => probe.iter().fold(0.0, |m: f64, x| m.max(x.abs())) * largest_entry,
-                Err(column) => {
-                    let column = column.unwrap_or_else(|| largest(&g).0);
-                    return Err(inconsistent(y, &g, column, singular));
-                }
-            };
-            if growth > 1e14 {
-                return Err(inconsistent(y, &g, largest(&g).0, singular));
-            }
+            // solved with M − c·J.
+            let column = column.unwrap_or_else(|| largest(&g).0);
+            return Err(inconsistent(y, &g, column, singular));
         }
         if g.iter().all(|&r| r == 0.0) {
             return Ok(());
@@ -171,6 +162,45 @@ pub(crate) fn consistent_components<M: Jacobian>(
         row,
         "Newton did not converge in 50 iterations",
     ))
+}
+
+/// Whether the k × k block of `entries` is regular: solved, equilibrated (each row, then each
+/// column, divided by its largest |entry|), with every right-hand side 1, a block singular to
+/// rounding blows the solution past 10¹⁴ (its LU's last pivot is rounding noise), while
+/// equations or components in units far apart (a row of 1e-15 F beside rows of order 1) do not.
+///
+/// Errors: singular, with the column of a zero pivot or of no non-zero entry when known.
+fn regular(
+    block: &mut Block,
+    entries: &[(usize, usize, f64)],
+    k: usize,
+) -> Result<(), Option<usize>> {
+    let mut rows = vec![0.0f64; k];
+    for &(i, _, v) in entries {
+        rows[i] = rows[i].max(v.abs());
+    }
+    let mut columns = vec![0.0f64; k];
+    for &(i, j, v) in entries {
+        if rows[i] > 0.0 {
+            columns[j] = columns[j].max((v / rows[i]).abs());
+        }
+    }
+    if let Some(j) = columns.iter().position(|&c| c == 0.0) {
+        return Err(Some(j));
+    }
+    if rows.contains(&0.0) {
+        return Err(None);
+    }
+    let scaled: Vec<(usize, usize, f64)> = entries
+        .iter()
+        .map(|&(i, j, v)| (i, j, v / rows[i] / columns[j]))
+        .collect();
+    let mut probe = vec![1.0; k];
+    block.solve(&scaled, &mut probe)?;
+    match probe.iter().fold(0.0, |m: f64, x| m.max(x.abs())) <= 1e14 {
+        true => Ok(()),
+        false => Err(None),
+    }
 }
 
 /// gᵢ = f(t, y) at the `algebraic` components.

@@ -320,3 +320,56 @@ fn hostile_inputs_are_typed_errors() {
     assert!(y.iter().all(|v| v.is_finite()), "{y:?}");
     assert!((y.iter().sum::<f64>() - 1.0).abs() < 1e-12, "{y:?}");
 }
+
+/// Two algebraic equations in units far apart (a row of 1e-15, as a femtofarad capacitance's
+/// current would be, beside a row of order 1) and a differential component of 1e12: the start
+/// is repaired to z₁ = z₂ = 2u (the root), not refused as singular, and the run follows
+/// u = u₀·e⁻ᵗ.
+#[system]
+#[derive(Clone, Copy, Debug)]
+pub struct Scaled {
+    #[state]
+    pub u: f64,
+    #[state]
+    pub big: f64,
+    #[algebraic]
+    pub z: [f64; 2],
+}
+
+#[system]
+impl Scaled {
+    fn derivative(&self) -> ScaledState {
+        ScaledState {
+            u: -self.u,
+            big: 0.0,
+            z: [1e-15 * (self.z[0] - 2.0 * self.u), self.z[1] - self.z[0]],
+        }
+    }
+}
+
+#[test]
+fn equations_in_units_far_apart_are_not_singular() {
+    let model = Scaled {
+        u: 1.5,
+        big: 1e12,
+        z: [0.0, 7.0],
+    };
+    let run = model
+        .simulate()
+        .integrator(Method::Rodas5P)
+        .tolerances(1e-10, 1e-12)
+        .duration(1.0)
+        .run()
+        .unwrap();
+    let first = run.first().state;
+    assert!(
+        (first.z[0] - 3.0).abs() < 1e-12 && (first.z[1] - 3.0).abs() < 1e-12,
+        "{first:?}"
+    );
+    let end = run.last().state;
+    let exact = 1.5 * (-1.0f64).exp();
+    assert!(
+        (end.u - exact).abs() < 1e-9 && (end.z[1] - 2.0 * exact).abs() < 1e-8,
+        "{end:?}"
+    );
+}
