@@ -125,11 +125,17 @@ fn run(cli: Cli) -> odyn::Result<()> {
     let mut plans: Vec<(String, String, Method, NewtonOptions)> = Method::ALL
         .iter()
         .filter(|m| !m.is_adaptive())
-        .map(|&m| (m.name().to_owned(), m.label().to_owned(), m, full))
+        .map(|&m| {
+            let label = match m {
+                Method::ImplicitEuler => "implicit Euler, full Newton (tol 1e-6)".to_owned(),
+                _ => m.label().to_owned(),
+            };
+            (m.name().to_owned(), label, m, full)
+        })
         .collect();
     plans.push((
         "implicit_euler_linearized".into(),
-        "implicit Euler, one Newton step (Baraff–Witkin)".into(),
+        "implicit Euler, one Newton step (Baraff–Witkin, the default)".into(),
         Method::ImplicitEuler,
         NewtonOptions {
             linearized: true,
