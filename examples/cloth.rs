@@ -107,14 +107,14 @@ fn run(cli: Cli) -> odyn::Result<()> {
     // Big cloths record every few steps to keep memory bounded (the CSV says which steps).
     let record_every = if n <= 64 { 1 } else { 5 };
     // Definite Newton matrices: compressed springs' negative stiffness projected away, so
-    // Cholesky always applies and the one-step form cannot gain energy (see NewtonOptions).
+    // Cholesky always applies and the one-step form gains no energy from them (see
+    // NewtonOptions::definite).
     let definite = NewtonOptions {
         definite: true,
         particle_solve: ParticleSolve::Newton,
         ..NewtonOptions::default()
     };
-    // Full Newton on the exact Jacobian, to 1e-6 relative (micrometres on a metre of cloth);
-    // the default on a particle model is the Baraff–Witkin step, the plan after these.
+    // Full Newton on the exact Jacobian, to 1e-6 relative (micrometres on a metre of cloth).
     let full = NewtonOptions {
         tol: 1e-6,
         particle_solve: ParticleSolve::Newton,
@@ -135,7 +135,7 @@ fn run(cli: Cli) -> odyn::Result<()> {
         .collect();
     plans.push((
         "implicit_euler_linearized".into(),
-        "implicit Euler, one Newton step (Baraff–Witkin, the default)".into(),
+        "implicit Euler, one Newton step (Baraff–Witkin)".into(),
         Method::ImplicitEuler,
         NewtonOptions {
             linearized: true,

@@ -270,8 +270,8 @@ fn the_particle_lu_path_allocates_per_run_not_per_step() {
         let sim = model
             .simulate()
             .integrator(method)
-            // Full Newton, whose damped matrices are unsymmetric: the LU path (the default on
-            // a particle model is the Baraff–Witkin step on the definite matrix).
+            // Full Newton (the default, said explicitly), whose damped matrices are
+            // unsymmetric: the LU path.
             .newton(NewtonOptions {
                 particle_solve: ParticleSolve::Newton,
                 ..NewtonOptions::default()

@@ -77,7 +77,7 @@ fn stepping_a_particle_model_allocates_nothing() {
         fixed: vec![0],
         x,
     };
-    // Full Newton (the default, `ParticleSolve::Auto`, is the Baraff–Witkin step below).
+    // Full Newton, said explicitly (`ParticleSolve::Auto`, the default, is the same).
     let newton = NewtonOptions {
         particle_solve: ParticleSolve::Newton,
         ..NewtonOptions::default()
@@ -110,7 +110,7 @@ fn stepping_a_particle_model_allocates_nothing() {
             allocations::<ImplicitEuler<_>>(&model, &NewtonOptions::linearized()),
         ),
         (
-            "implicit Euler, the default (Baraff–Witkin on the definite matrix)",
+            "implicit Euler, the default options",
             allocations::<ImplicitEuler<_>>(&model, &NewtonOptions::default()),
         ),
         (

@@ -227,7 +227,7 @@ fn the_symbolic_factorization_is_computed_once_per_run() {
     // springs, isotropic drag): one symbolic Cholesky for the run, one numeric factorization per
     // Newton iteration, no LU.
     let undamped = cloth(5, 1e4, 0.0, 0.1);
-    // Full Newton, as configured (the default on a particle model is the Baraff–Witkin step).
+    // Full Newton, as configured (the default, said explicitly).
     let full = NewtonOptions {
         particle_solve: ParticleSolve::Newton,
         ..NewtonOptions::default()

@@ -31,7 +31,10 @@ pub struct NewtonOptions {
     /// stiffness −k(L/|d| − 1), which at cloth stiffness makes M − h²·∂f/∂x indefinite: Newton
     /// then needs many iterations and halvings, and the one-step form can gain energy. The
     /// residual is still the exact one, so full Newton converges to the same implicit Euler
-    /// step (as a quasi-Newton method); the matrix is then always factorized by Cholesky.
+    /// step (as a quasi-Newton method); the matrix is then always factorized by Cholesky. The
+    /// projection drops a block's antisymmetric part and its negative stiffness: with
+    /// `linearized`, a force without symmetric part (a magnetic one) or a repulsion is then
+    /// treated explicitly, and the step can gain energy.
     pub definite: bool,
     /// Particle and field models only: how the sparse linear systems are solved (default
     /// [`crate::LinearSolver::Auto`]: preconditioned Krylov iterations for field models from
@@ -53,12 +56,12 @@ pub struct NewtonOptions {
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[non_exhaustive]
 pub enum ParticleSolve {
-    /// The Baraff–Witkin step: one Newton iteration on the definite Newton matrix
-    /// ([`NewtonOptions::linearized`] and [`NewtonOptions::definite`] both on), one Cholesky
-    /// factorization a step. Full Newton on a stiff cloth refactorizes 12–30 times a step,
-    /// halving the step where the cloth buckles; the quasi-Newton solve at its default budget is
-    /// faster but not as close to the converged implicit Euler step as this one (the particles
-    /// chapter of the guide has the measurements). The default.
+    /// [`ParticleSolve::Newton`]. Neither faster solve is chosen automatically: the
+    /// quasi-Newton solve at its default budget is not as close to the converged implicit Euler
+    /// step as the one-step Baraff–Witkin form, and the Baraff–Witkin form on the definite
+    /// matrix can gain energy where Newton does not (a stiff rope kicked sideways, a force
+    /// without symmetric part such as a magnetic one: the guide's particles chapter has the
+    /// measurements). The default.
     #[default]
     Auto,
     /// Newton's method on the sparse Newton matrix, refactorized every iteration (with
@@ -167,21 +170,6 @@ impl NewtonOptions {
         match self.particle_solve {
             ParticleSolve::QuasiNewton(options) => Some(options),
             ParticleSolve::Newton | ParticleSolve::Auto => None,
-        }
-    }
-
-    /// The options implicit Euler steps a particle model with (`particle` true) or any other
-    /// model: [`ParticleSolve::Auto`] on a particle model is the Baraff–Witkin step, one
-    /// iteration on the definite matrix; everything else is as given.
-    pub(crate) fn resolved(&self, particle: bool) -> Self {
-        match (self.particle_solve, particle) {
-            (ParticleSolve::Auto, true) => NewtonOptions {
-                linearized: true,
-                definite: true,
-                particle_solve: ParticleSolve::Newton,
-                ..*self
-            },
-            _ => *self,
         }
     }
 

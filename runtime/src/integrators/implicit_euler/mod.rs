@@ -76,7 +76,6 @@ impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
         newton: &NewtonOptions,
         stats: &mut Stats,
     ) -> Result<Self> {
-        let newton = &newton.resolved(<M::Matrix as NewtonMatrix>::LINKS);
         let mut jacobian = model.jacobian_matrix(y0);
         let mut quasi_newton = None;
         if let Some(options) = newton.quasi_newton() {
