@@ -17,6 +17,7 @@ mod grid;
 mod krylov;
 mod mpm;
 mod particles;
+mod probe_particle_default;
 mod quasi_newton;
 mod rope_dae;
 mod sph;
