@@ -67,6 +67,10 @@ pub enum NewtonFailure {
     Singular,
     /// The model's derivative or Jacobian returned NaN or infinity at an iterate.
     NotFinite,
+    /// The model's values were finite but the Newton update was not: the solve overflowed (the
+    /// model's scales, such as a mass of 1e-300 beside a stiffness of 100, span more than f64
+    /// holds) or met a singular matrix its factorization did not see.
+    UpdateNotFinite,
 }
 
 impl NewtonFailure {
@@ -89,6 +93,11 @@ impl NewtonFailure {
             ),
             NewtonFailure::NotFinite => "the model's derivative or Jacobian returned NaN or \
                 infinity at an iterate; check its parameters and state"
+                .to_owned(),
+            NewtonFailure::UpdateNotFinite => "the model's values were finite but the Newton \
+                update was not: the linear solve overflowed or its matrix is singular; check \
+                that the model's scales (masses against stiffnesses, say) are within f64's \
+                range of each other, or reduce dt"
                 .to_owned(),
         }
     }

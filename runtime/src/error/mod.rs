@@ -327,7 +327,8 @@ impl Error {
                     cause: NewtonFailure::Iterations
                         | NewtonFailure::Diverging
                         | NewtonFailure::Singular
-                        | NewtonFailure::NotFinite,
+                        | NewtonFailure::NotFinite
+                        | NewtonFailure::UpdateNotFinite,
                     ..
                 }
             )

@@ -218,10 +218,12 @@ impl<M: Jacobian> Integrator<M> for ImplicitEuler<M> {
                 }
                 let finite_rhs = rhs.iter().all(|x| x.is_finite());
                 let residual = self.residual(model, t1, h, s.y, y);
-                let cause = if residual.is_finite() && finite_rhs {
-                    NewtonFailure::Singular
-                } else {
-                    NewtonFailure::NotFinite
+                // The right-hand side holds the failed solve's result: finite when the
+                // factorization failed, not when the solve overflowed.
+                let cause = match (residual.is_finite(), finite_rhs) {
+                    (false, _) => NewtonFailure::NotFinite,
+                    (true, true) => NewtonFailure::Singular,
+                    (true, false) => NewtonFailure::UpdateNotFinite,
                 };
                 return Err(fail(iter, residual, cause));
             }
