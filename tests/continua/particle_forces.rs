@@ -1,9 +1,9 @@
-//! Implicit Euler on particle models beyond springs, first written as the probe of a one-step
-//! (Baraff–Witkin) default that was withdrawn after it: the default (`ParticleSolve::Auto`, full
+//! Implicit Euler on particle models beyond springs: the default (`ParticleSolve::Auto`, full
 //! Newton) against theory on forces that are not springs — attraction, repulsion, a magnetic
 //! force, softened gravity, damping — where it never gains energy and damps linear forces by
-//! implicit Euler's factor; extreme stiffnesses, masses and steps; non-finite input and topology
-//! edge cases as typed errors.
+//! implicit Euler's factor; the one-step (Baraff–Witkin) form's energy gain that keeps it from
+//! being the default; extreme stiffnesses, masses and steps; non-finite input and topology edge
+//! cases as typed errors.
 
 use odyn::integrators::ImplicitEuler;
 use odyn::nalgebra::{Vector2, Vector3};
@@ -58,8 +58,7 @@ where
 
 /// Largest |difference| of two states' components.
 fn gap<const D: usize>(a: &ParticleState<D>, b: &ParticleState<D>) -> f64 {
-    let pairs = a.as_slice().iter().zip(b.as_slice());
-    pairs.map(|(p, q)| (p - q).abs()).fold(0.0, f64::max)
+    crate::common::max_abs_difference(a.as_slice(), b.as_slice())
 }
 
 fn bits<const D: usize>(s: &ParticleState<D>) -> Vec<u64> {

@@ -1,6 +1,7 @@
 //! Exact solutions, orders, and the field model against the fixed-size one.
 
 use super::*;
+use crate::common::max_abs_difference;
 
 /// U′ = u on every grid, boundary and implicit method; z = 2u everywhere.
 #[test]
@@ -60,7 +61,7 @@ fn grow_field_equals_fixed() {
         let a = to_one(&field, method).unwrap();
         let b = to_one(&fixed, method).unwrap();
         let (fa, fb) = (a.last().state.field(0).to_vec(), b.last().state.u);
-        let d = (0..3).map(|k| (fa[k] - fb[k]).abs()).fold(0.0, f64::max);
+        let d = max_abs_difference(&fa, &fb);
         eprintln!(
             "{method}: field {:?} fixed {:?} diff {d:.1e}; steps {} / {}",
             fa, fb, a.stats.steps, b.stats.steps

@@ -1,9 +1,8 @@
-//! Field models with `#[algebraic]` fields under hostile input (first written as the probe of
-//! the feature, whose three findings they now hold fixed): exact solutions on every boundary
-//! and implicit method, orders, the field model against the same system written fixed-size
-//! (`exact.rs`); inconsistent, singular and index-2 starts on the dense and the sparse ∂g/∂z
-//! (`starts.rs`); refusals, linear solvers, events, `save_at`, dense output, `Stepper` and
-//! absurd options (`runs.rs`).
+//! Field models with `#[algebraic]` fields under hostile input: exact solutions on every
+//! boundary and implicit method, orders, the field model against the same system written
+//! fixed-size (`exact.rs`); inconsistent, singular and index-2 starts on the dense and the
+//! sparse ∂g/∂z (`starts.rs`); refusals, linear solvers, events, `save_at`, dense output,
+//! `Stepper` and absurd options (`runs.rs`).
 
 use odyn::grid::{Boundary, Grid, Stencil};
 use odyn::prelude::*;
