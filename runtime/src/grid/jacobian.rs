@@ -94,7 +94,7 @@ impl GridJacobian {
             })
             .collect();
         let stencil = StencilMatrix::new(nx, ny, fields, stencil);
-        solver.on_grid(&stencil);
+        solver.on_grid();
         GridJacobian {
             nx,
             ny,

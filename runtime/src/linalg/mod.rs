@@ -1,14 +1,19 @@
-//! The linear algebra of the implicit methods: dense Newton matrices, the sparse direct solver,
-//! Krylov iterations and their preconditioners, Newton's options, and the sparse SPD solver of
-//! the grid fluid.
+//! The linear algebra of the implicit methods: dense Newton matrices, Newton's options, the
+//! sparse SPD solver of the grid fluid, and the sparse solvers of particle and field models.
+//!
+//! The sparse solvers are types behind one trait (`solver.rs`, `LinearSolve`), in a line of
+//! dependencies: `operator` (the products) → `solver` → `direct` (Cholesky, LU) → `precond`
+//! (block Jacobi, ILU(0), Fourier, multigrid) → `krylov` (CG and BiCGSTAB with a
+//! preconditioner) → `sparse` (the policy that chooses one for a run).
 
 pub(crate) mod dense;
+mod direct;
 pub(crate) mod krylov;
 pub(crate) mod laplacian;
-mod multigrid;
 mod newton;
 mod operator;
 mod precond;
+mod solver;
 pub(crate) mod sparse;
 pub(crate) mod spd;
 

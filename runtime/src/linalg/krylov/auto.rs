@@ -1,8 +1,8 @@
 //! [`LinearSolver::Auto`](super::LinearSolver::Auto)'s state over a run: after each converged
 //! Krylov solve, whether to keep the preconditioner, try Fourier on a periodic grid, give a
 //! trial of Fourier back to block Jacobi, or give the preconditioner up. The decision is a pure
-//! function of the policy, the trial's state and the solve's iterations; the sparse solver
-//! carries it out (`linalg/sparse/iterative.rs`), and tells this state when a move it was told
+//! function of the policy, the trial's state and the solve's iterations; the Krylov backend
+//! carries it out (`linalg/krylov/backend.rs`), and tells this state when a move it was told
 //! to make could be made.
 
 use super::{AutoPolicy, Preconditioner};

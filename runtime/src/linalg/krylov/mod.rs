@@ -1,13 +1,16 @@
 //! Krylov solvers for the sparse Newton matrices of particle and field models: how a run
-//! chooses them ([`LinearSolver`], [`KrylovOptions`], [`Preconditioner`]), here, and the solve itself,
+//! chooses them ([`LinearSolver`], [`KrylovOptions`], [`Preconditioner`]), here; the iteration,
 //! on faer's conjugate gradient (`faer::matrix_free`) and our BiCGSTAB (`bicgstab.rs`), in
-//! `solve.rs`.
+//! `solve.rs`; the backend with its preconditioners ([`Krylov`]) in `backend.rs`, and `Auto`'s
+//! state in `auto.rs`.
 
 mod auto;
+mod backend;
 mod bicgstab;
 mod solve;
 
 pub(crate) use auto::{AutoState, Move};
+pub(crate) use backend::{Krylov, Unprepared};
 pub(crate) use solve::{KrylovSolver, NoConvergence};
 
 /// How implicit methods (implicit Euler, Rosenbrock23, Rodas5P, BDF) solve the sparse linear
@@ -123,18 +126,20 @@ impl AutoPolicy {
 }
 
 impl LinearSolver {
-    /// The Krylov options for a system of `n` unknowns of a model of kind `structure`, None
-    /// for a direct solve.
-    pub(crate) fn krylov_for(&self, n: usize, structure: Structure) -> Option<KrylovSolver> {
+    /// The Krylov options for a system of `n` unknowns of a model of kind `structure`, with
+    /// `Auto`'s policy when it chose them; None for a direct solve.
+    pub(crate) fn krylov_for(
+        &self,
+        n: usize,
+        structure: Structure,
+    ) -> Option<(KrylovOptions, Option<AutoPolicy>)> {
         match *self {
             LinearSolver::Auto(policy)
                 if structure == Structure::Field && n >= policy.krylov_from =>
             {
-                let mut solver = KrylovSolver::new(KrylovOptions::default(), n);
-                solver.auto = Some(AutoState::new(policy));
-                Some(solver)
+                Some((KrylovOptions::default(), Some(policy)))
             }
-            LinearSolver::Krylov(krylov) => Some(KrylovSolver::new(krylov, n)),
+            LinearSolver::Krylov(krylov) => Some((krylov, None)),
             _ => None,
         }
     }

@@ -3,16 +3,17 @@
 //! between solves.
 
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::matrix_free::InitialGuessStatus;
 use faer::matrix_free::conjugate_gradient::{
     CgParams, conjugate_gradient, conjugate_gradient_scratch,
 };
-use faer::matrix_free::{InitialGuessStatus, Precond};
 use faer::{MatMut, MatRef, Par};
 
 use super::bicgstab::{Vectors, bicgstab};
 use super::{KrylovOptions, Preconditioner, Solves};
 use crate::linalg::operator::Column;
 use crate::linalg::operator::Products;
+use crate::linalg::precond::Applied;
 use crate::stats::KrylovWork;
 
 /// What a Krylov solve keeps between calls: the options, the previous solution for the warm
@@ -31,8 +32,6 @@ pub(crate) struct KrylovSolver {
     stack: MemBuffer,
     /// The last solve took more than `refresh_above` iterations.
     pub(crate) refresh: bool,
-    /// `Auto`'s thresholds and state, when `Auto` chose these solves.
-    pub(crate) auto: Option<super::AutoState>,
     /// Iterations of the last solve.
     pub(crate) last_iterations: usize,
     /// What the solves are for: where they stop.
@@ -55,7 +54,6 @@ impl KrylovSolver {
             scratch: StackReq::EMPTY,
             stack: MemBuffer::new(StackReq::EMPTY),
             refresh: false,
-            auto: None,
             last_iterations: 0,
             solves: Solves::OneStep,
         }
@@ -66,11 +64,11 @@ impl KrylovSolver {
     /// otherwise.
     ///
     /// Errors: [`NoConvergence`], with `x` holding b again.
-    pub(crate) fn solve<P: Precond<f64> + Column + Copy>(
+    pub(crate) fn solve(
         &mut self,
         a: Products<'_>,
         symmetric: bool,
-        precond: P,
+        precond: Applied<'_>,
         x: &mut [f64],
         counts: &mut KrylovWork,
     ) -> Result<(), NoConvergence> {
@@ -159,7 +157,7 @@ impl KrylovSolver {
     /// Makes the stack big enough for both methods with `precond` (allocates only when a
     /// bigger preconditioner appears: the first LU of a run, or multigrid taking over from block
     /// Jacobi under `Auto`, once).
-    fn reserve<P: Precond<f64> + Column + Copy>(&mut self, a: Products<'_>, precond: P) {
+    fn reserve(&mut self, a: Products<'_>, precond: Applied<'_>) {
         let need =
             conjugate_gradient_scratch(precond, a, 1, Par::Seq).or(Column::scratch(&precond));
         if need.size_bytes() > self.scratch.size_bytes()
@@ -204,7 +202,6 @@ impl Clone for KrylovSolver {
             scratch: self.scratch,
             stack: MemBuffer::new(self.scratch),
             refresh: self.refresh,
-            auto: self.auto,
             last_iterations: self.last_iterations,
             solves: self.solves,
         }

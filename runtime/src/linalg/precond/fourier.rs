@@ -23,8 +23,9 @@ use faer::dyn_stack::{MemStack, StackReq};
 use rustfft::num_complex::Complex;
 use rustfft::{Fft, FftPlanner};
 
-use super::{Column, PrecondError};
+use super::{Column, PrecondError, Preconditioning};
 use crate::linalg::operator::{Edge, StencilBlock, StencilMatrix};
+use crate::linalg::solver::SparseView;
 
 type C = Complex<f64>;
 
@@ -166,18 +167,20 @@ fn invert(a: &mut [C], inverse: &mut [C], f: usize) -> Result<(), PrecondError> 
     Ok(())
 }
 
-/// A [`Fourier`] preconditioner as faer's Krylov solvers take it.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct FourierRef<'a>(pub(crate) &'a Fourier);
+impl Preconditioning for Fourier {
+    fn update_from(&mut self, a: &SparseView<'_>) -> Result<(), PrecondError> {
+        self.update(a.stencil.ok_or(PrecondError::NoStencil)?)
+    }
+}
 
-impl Column for FourierRef<'_> {
+impl Column for Fourier {
     fn n(&self) -> usize {
-        self.0.fields * self.0.nx * self.0.ny
+        self.fields * self.nx * self.ny
     }
 
     fn scratch(&self) -> StackReq {
-        let cells = self.0.nx * self.0.ny;
-        StackReq::new::<C>((self.0.fields + 1) * cells + self.0.fft_scratch)
+        let cells = self.nx * self.ny;
+        StackReq::new::<C>((self.fields + 1) * cells + self.fft_scratch)
     }
 
     fn apply_column(&self, out: &mut [f64], r: &[f64], stack: &mut MemStack) {
@@ -190,7 +193,7 @@ impl Column for FourierRef<'_> {
             ref inverse,
             fft_scratch,
             ..
-        } = *self.0;
+        } = *self;
         let cells = nx * ny;
         let (mut spectra, stack) = stack.make_with(fields * cells, |_| C::default());
         let (mut grid, stack) = stack.make_with(cells, |_| C::default());
@@ -301,10 +304,9 @@ mod tests {
             let mut ax = vec![0.0; n];
             uniform.product(&x, &mut ax, &x);
             let apply = |fourier: &Fourier, r: &[f64]| {
-                let p = FourierRef(fourier);
-                let mut buffer = MemBuffer::new(p.scratch());
+                let mut buffer = MemBuffer::new(fourier.scratch());
                 let mut out = vec![f64::NAN; n];
-                p.apply_column(&mut out, r, MemStack::new(&mut buffer));
+                fourier.apply_column(&mut out, r, MemStack::new(&mut buffer));
                 out
             };
             fourier.update(&uniform).unwrap();

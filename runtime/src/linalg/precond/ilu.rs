@@ -5,7 +5,8 @@ use std::fmt;
 use faer::dyn_stack::{MemStack, StackReq};
 use faer::sparse::SymbolicSparseColMat;
 
-use super::{Column, PrecondError};
+use super::{Column, PrecondError, Preconditioning};
+use crate::linalg::solver::SparseView;
 
 /// ILU(0): A ≈ L·U with L unit lower and U upper triangular, both on A's own pattern (no fill),
 /// computed row by row in the IKJ order of Saad, *Iterative Methods for Sparse Linear
@@ -117,26 +118,28 @@ impl Ilu0 {
     }
 }
 
-/// [`Ilu0`] as a faer operator.
-#[derive(Clone, Copy)]
-pub(crate) struct Ilu0Ref<'a>(pub(crate) &'a Ilu0);
-
-impl fmt::Debug for Ilu0Ref<'_> {
+impl fmt::Debug for Ilu0 {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_struct("Ilu0")
-            .field("n", &self.0.diagonal.len())
+            .field("n", &self.diagonal.len())
             .finish()
     }
 }
 
-impl Column for Ilu0Ref<'_> {
+impl Column for Ilu0 {
     fn n(&self) -> usize {
-        self.0.diagonal.len()
+        self.diagonal.len()
     }
     fn scratch(&self) -> StackReq {
         StackReq::EMPTY
     }
     fn apply_column(&self, out: &mut [f64], r: &[f64], _: &mut MemStack) {
-        self.0.apply(out, r);
+        self.apply(out, r);
+    }
+}
+
+impl Preconditioning for Ilu0 {
+    fn update_from(&mut self, a: &SparseView<'_>) -> Result<(), PrecondError> {
+        self.update(a.values)
     }
 }

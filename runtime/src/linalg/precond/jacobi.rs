@@ -5,7 +5,8 @@ use std::fmt;
 use faer::dyn_stack::{MemStack, StackReq};
 use faer::sparse::SymbolicSparseColMat;
 
-use super::{Column, PrecondError};
+use super::{Column, PrecondError, Preconditioning};
+use crate::linalg::solver::SparseView;
 
 /// Block Jacobi: z = diag(B₁⁻¹, …, B_g⁻¹)·r, with Bₖ the matrix's entries among the unknowns of
 /// group k.
@@ -93,11 +94,6 @@ impl BlockJacobi {
         Ok(())
     }
 
-    /// A view faer's Krylov solvers apply.
-    pub(crate) fn as_precond(&self, n: usize) -> BlockJacobiRef<'_> {
-        BlockJacobiRef { jacobi: self, n }
-    }
-
     fn apply(&self, out: &mut [f64], r: &[f64]) {
         // Blocks of a size known at compile time keep the loops over a block's entries out of
         // the code: on Gray–Scott at 256² (2 × 2 blocks) block Jacobi went from 18 % to 11 % of
@@ -183,31 +179,30 @@ pub(crate) fn invert(b: usize, a: &mut [f64], inverse: &mut [f64]) -> Result<(),
     Ok(())
 }
 
-/// [`BlockJacobi`] as a faer operator.
-#[derive(Clone, Copy)]
-pub(crate) struct BlockJacobiRef<'a> {
-    jacobi: &'a BlockJacobi,
-    n: usize,
-}
-
-impl fmt::Debug for BlockJacobiRef<'_> {
+impl fmt::Debug for BlockJacobi {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_struct("BlockJacobi")
-            .field("n", &self.n)
-            .field("block", &self.jacobi.size)
+            .field("n", &self.index.len())
+            .field("block", &self.size)
             .finish()
     }
 }
 
-impl Column for BlockJacobiRef<'_> {
+impl Column for BlockJacobi {
     fn n(&self) -> usize {
-        self.n
+        self.index.len()
     }
     fn scratch(&self) -> StackReq {
         StackReq::EMPTY
     }
     fn apply_column(&self, out: &mut [f64], r: &[f64], _: &mut MemStack) {
-        self.jacobi.apply(out, r);
+        self.apply(out, r);
+    }
+}
+
+impl Preconditioning for BlockJacobi {
+    fn update_from(&mut self, a: &SparseView<'_>) -> Result<(), PrecondError> {
+        self.update(a.values)
     }
 }
 

@@ -10,27 +10,78 @@
 //! - [`Fourier`]: on a periodic grid, I − c·J with every block averaged over the cells,
 //!   inverted exactly by the two-dimensional Fourier transform: O(N log N) per application,
 //!   exact for constant-coefficient diffusion and a uniform reaction.
-//! - [`Factors`]: the sparse Cholesky or LU factors of an earlier matrix, applied by
-//!   substitution: the strongest preconditioner odyn can offer for a slowly changing matrix,
-//!   refreshed when the Krylov iteration count says the matrix has moved on.
+//! - [`Multigrid`]: smoothed aggregation algebraic multigrid, one V-cycle per application.
+//!
+//! Each is a type that implements [`Preconditioning`]: built from a matrix's values at every
+//! linearisation and applied one column at a time. (The factors of an earlier matrix, the fifth
+//! preconditioner, are the direct solver's: `linalg/direct`.)
 
 use std::fmt;
 
 use faer::dyn_stack::{MemStack, StackReq};
-use faer::sparse::linalg::cholesky::LltRef;
-use faer::sparse::linalg::lu::LuRef;
-use faer::{Conj, MatMut, Par};
 
 mod fourier;
 mod ilu;
 mod jacobi;
+mod multigrid;
 
+use super::direct::Factors;
 pub(crate) use super::operator::{Column, as_precond};
-pub(crate) use fourier::{Fourier, FourierRef};
-
-pub(crate) use ilu::{Ilu0, Ilu0Ref};
-use jacobi::BlockJacobiRef;
+use super::solver::SparseView;
+pub(crate) use fourier::Fourier;
+pub(crate) use ilu::Ilu0;
 pub(crate) use jacobi::{BlockJacobi, invert};
+pub(crate) use multigrid::Multigrid;
+
+/// A preconditioner P ≈ A⁻¹: rebuilt from a matrix's values at every linearisation, applied to
+/// one column at a time ([`Column`]).
+pub(crate) trait Preconditioning: Column + Sync {
+    /// Rebuilds P for `a`'s values (a field model's stencil, for [`Fourier`]).
+    ///
+    /// Errors: [`PrecondError`]; the caller then solves directly, which decides whether the
+    /// matrix is singular.
+    fn update_from(&mut self, a: &SparseView<'_>) -> Result<(), PrecondError>;
+}
+
+/// A preconditioner as faer's Krylov solvers take it: one of the [`Preconditioning`] types, or
+/// the factors of an earlier matrix.
+#[derive(Clone, Copy)]
+pub(crate) enum Applied<'a> {
+    Built(&'a (dyn Column + Sync)),
+    Factors(Factors<'a>),
+}
+
+impl Applied<'_> {
+    fn column(&self) -> &(dyn Column + Sync + '_) {
+        match self {
+            Applied::Built(p) => *p,
+            Applied::Factors(factors) => factors,
+        }
+    }
+}
+
+impl fmt::Debug for Applied<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Applied::Built(p) => f.debug_struct("Preconditioner").field("n", &p.n()).finish(),
+            Applied::Factors(factors) => factors.fmt(f),
+        }
+    }
+}
+
+impl Column for Applied<'_> {
+    fn n(&self) -> usize {
+        self.column().n()
+    }
+    fn scratch(&self) -> StackReq {
+        self.column().scratch()
+    }
+    fn apply_column(&self, out: &mut [f64], r: &[f64], stack: &mut MemStack) {
+        self.column().apply_column(out, r, stack);
+    }
+}
+
+as_precond!(Applied<'_>);
 
 /// Why a preconditioner could not be built from a matrix's values; the sparse solver then
 /// factorizes directly, which decides whether the matrix is singular.
@@ -46,52 +97,6 @@ pub(crate) enum PrecondError {
     /// Multigrid's bound on ρ(D⁻¹A) is zero or not finite: there is no weight to smooth the
     /// prolongator with.
     NoSmoothingWeight,
+    /// The Fourier preconditioner was asked for without the field model's stencil.
+    NoStencil,
 }
-
-/// The sparse factors of an earlier matrix.
-#[derive(Clone, Copy)]
-pub(crate) enum Factors<'a> {
-    Cholesky(LltRef<'a, usize, f64>),
-    Lu(LuRef<'a, usize, f64>),
-}
-
-impl fmt::Debug for Factors<'_> {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let kind = match self {
-            Factors::Cholesky(_) => "Cholesky",
-            Factors::Lu(_) => "LU",
-        };
-        f.debug_struct("Factors").field("kind", &kind).finish()
-    }
-}
-
-impl Column for Factors<'_> {
-    fn n(&self) -> usize {
-        match self {
-            Factors::Cholesky(llt) => llt.symbolic().nrows(),
-            Factors::Lu(lu) => lu.symbolic().nrows(),
-        }
-    }
-    fn scratch(&self) -> StackReq {
-        match self {
-            Factors::Cholesky(llt) => llt.symbolic().solve_in_place_scratch::<f64>(1, Par::Seq),
-            Factors::Lu(lu) => lu.symbolic().solve_in_place_scratch::<f64>(1, Par::Seq),
-        }
-    }
-    fn apply_column(&self, out: &mut [f64], r: &[f64], stack: &mut MemStack) {
-        out.copy_from_slice(r);
-        let n = out.len();
-        let column = MatMut::from_column_major_slice_mut(out, n, 1);
-        match self {
-            Factors::Cholesky(llt) => {
-                llt.solve_in_place_with_conj(Conj::No, column, Par::Seq, stack)
-            }
-            Factors::Lu(lu) => lu.solve_in_place_with_conj(Conj::No, column, Par::Seq, stack),
-        }
-    }
-}
-
-as_precond!(BlockJacobiRef<'_>);
-as_precond!(Factors<'_>);
-as_precond!(Ilu0Ref<'_>);
-as_precond!(FourierRef<'_>);

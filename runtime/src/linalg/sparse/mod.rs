@@ -1,38 +1,31 @@
-//! A sparse square matrix with a fixed pattern and its factorizations: Cholesky (LLᵀ) when the
-//! values are symmetric and positive definite, else LU — the linear algebra of the particle and
-//! grid Newton matrices.
+//! The sparse solver of the particle and grid Newton matrices: a matrix of fixed pattern, its
+//! values and a right-hand side, and the policy that chooses its backend for a run.
 //!
-//! The pattern is given once ([`SparseSolver::new`]), made structurally symmetric, and analysed
-//! symbolically once (AMD ordering, elimination tree); each solve then refills the values,
-//! factorizes numerically and substitutes, with no allocation. When the values are not
-//! symmetric, or Cholesky meets a non-positive pivot, the solve falls back to LU, whose symbolic
-//! analysis is made the first time it is needed and kept.
+//! The pattern is given once ([`SparseSolver::new`]) and made structurally symmetric. Each
+//! factorization hands the values to the run's backend (`linalg/solver.rs`): the
+//! [`Direct`] solve (Cholesky when the values are symmetric and positive definite, else LU), or
+//! a [`Krylov`] solve with its preconditioner, chosen by [`LinearSolver`]. A Krylov solve that
+//! fails is redone by the direct solve, which then decides whether the matrix is singular; a
+//! preconditioner that cannot be built has the direct solve take that factorization.
 
-use std::sync::Arc;
-
-use faer::dyn_stack::{MemBuffer, StackReq};
-use faer::sparse::linalg::cholesky::SymbolicCholesky;
-use faer::sparse::linalg::lu::{NumericLu, SymbolicLu};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 
 use super::dense::{FactorizeError, SolveError};
-use super::krylov::{KrylovSolver, LinearSolver, Preconditioner, Solves, Structure};
-use super::multigrid::Multigrid;
-use super::precond::{BlockJacobi, Fourier, Ilu0};
+use super::direct::Direct;
+use super::krylov::{Krylov, LinearSolver, Solves, Structure, Unprepared};
+use super::solver::{LinearSolve, SparseView};
 use crate::stats::LinearWork;
 
-mod direct;
-mod iterative;
+#[cfg(test)]
+mod backends;
 mod pattern;
 #[cfg(test)]
 mod tests;
 
 pub(crate) use super::operator::{Edge, Products, RowMatrix, StencilBlock, StencilMatrix};
 
-/// A sparse LU: the symbolic analysis (shared by clones) and the numeric factors.
-type SparseLu = (Arc<SymbolicLu<usize>>, NumericLu<usize, f64>);
-
-/// A sparse matrix of fixed pattern, its values, a right-hand side, and its factorizations.
+/// A sparse matrix of fixed pattern, its values, a right-hand side, and its run's backend.
+#[derive(Clone)]
 pub(crate) struct SparseSolver {
     pattern: SymbolicSparseColMat<usize>,
     /// The matrix's values, in the pattern's column-major order (see [`SparseSolver::slot`]).
@@ -41,35 +34,17 @@ pub(crate) struct SparseSolver {
     transpose: Vec<usize>,
     /// The right-hand side [`SparseSolver::substitute`] solves in place.
     pub(crate) rhs: Vec<f64>,
-    /// The symbolic Cholesky analysis, made the first time a direct factorization needs it
-    /// ([`SparseSolver::symbolic_cholesky`]): a run that stays on a Krylov solve never pays for
-    /// it (a 256² Gray–Scott pattern's AMD ordering and analysis took longer than a step).
-    cholesky: Option<Arc<SymbolicCholesky<usize>>>,
-    /// The Cholesky factor's values (empty until the first Cholesky factorization).
-    cholesky_values: Vec<f64>,
-    lu: Option<SparseLu>,
-    scratch: MemBuffer,
     pub(crate) counts: LinearWork,
-    factored: Option<Factored>,
-    /// Factorizations left to go straight to LU after a Cholesky failed.
-    skip_cholesky: u32,
-    /// The Krylov solver, when the run chose one ([`SparseSolver::configure`]).
-    krylov: Option<KrylovSolver>,
-    /// The matrix by rows for the Krylov solver's products, made when a run first asks for them
-    /// (unless the caller brings its own: [`SparseSolver::products_given`]).
+    /// The groups of unknowns ([`SparseSolver::set_blocks`]): their size and the unknowns.
+    blocks: (usize, Vec<usize>),
+    /// The matrix by rows for the Krylov solves' products, made when a run first asks for them
+    /// (unless the caller brings its own: [`SparseSolver::on_grid`]).
     rows: Option<RowMatrix>,
     /// The caller passes the Krylov solves' products to [`SparseSolver::substitute_with`].
     products_given: bool,
-    /// The Fourier preconditioner, when the caller's grid is periodic ([`SparseSolver::on_grid`]).
-    fourier: Option<Fourier>,
-    /// The diagonal blocks block Jacobi inverts (points until [`SparseSolver::set_blocks`]).
-    jacobi: BlockJacobi,
-    /// ILU(0)'s structure and factors, made when a run first asks for them.
-    ilu: Option<Ilu0>,
-    /// The multigrid hierarchy, made when a run first asks for it.
-    multigrid: Option<Multigrid>,
-    /// The groups of unknowns ([`SparseSolver::set_blocks`]): their size and the unknowns.
-    blocks: (usize, Vec<usize>),
+    direct: Direct,
+    /// The Krylov solves, when the run chose them ([`SparseSolver::configure`]).
+    krylov: Option<Box<Krylov>>,
     /// The values were symmetric at the last factorization.
     symmetric: bool,
     /// The last factorization prepared a Krylov solve (else [`SparseSolver::substitute`]
@@ -77,11 +52,23 @@ pub(crate) struct SparseSolver {
     iterative: bool,
 }
 
-/// Which factorization [`SparseSolver::factorize`] made last.
-#[derive(Clone, Copy, Debug)]
-enum Factored {
-    Cholesky,
-    Lu,
+/// The matrix as the backends read it: a macro, so that the view borrows the solver's storage
+/// while its backends are borrowed mutably.
+macro_rules! view {
+    ($solver:expr, $stencil:expr) => {
+        SparseView {
+            pattern: &$solver.pattern,
+            values: &$solver.values,
+            symmetric: $solver.symmetric,
+            products: match ($stencil, &$solver.rows) {
+                (Some(stencil), _) => Some(Products::Stencil(stencil)),
+                (None, Some(rows)) => Some(Products::Rows(rows)),
+                (None, None) => None,
+            },
+            stencil: $stencil,
+            blocks: ($solver.blocks.0, &$solver.blocks.1),
+        }
+    };
 }
 
 impl SparseSolver {
@@ -91,34 +78,24 @@ impl SparseSolver {
     /// The caller guarantees every index is below `n` (checked topology or grid).
     pub(crate) fn new(n: usize, entries: &[(usize, usize)]) -> Self {
         let pattern = pattern::symmetric(n, entries);
-        let mut solver_transpose = vec![0; pattern.compute_nnz()];
+        let mut transpose = vec![0; pattern.compute_nnz()];
         for col in 0..n {
             let start = pattern.col_ptr()[col];
             for (k, &row) in pattern.row_idx_of_col_raw(col).iter().enumerate() {
-                solver_transpose[start + k] = slot_in(&pattern, col, row);
+                transpose[start + k] = slot_in(&pattern, col, row);
             }
         }
-        let jacobi = BlockJacobi::new(1, (0..n).collect(), &pattern);
         SparseSolver {
             values: vec![0.0; pattern.compute_nnz()],
-            cholesky_values: Vec::new(),
-            cholesky: None,
             pattern,
-            transpose: solver_transpose,
+            transpose,
             rhs: vec![0.0; n],
-            lu: None,
-            scratch: MemBuffer::new(StackReq::EMPTY),
             counts: LinearWork::default(),
-            factored: None,
-            skip_cholesky: 0,
-            krylov: None,
+            blocks: (1, (0..n).collect()),
             rows: None,
             products_given: false,
-            fourier: None,
-            ilu: None,
-            multigrid: None,
-            blocks: (1, (0..n).collect()),
-            jacobi,
+            direct: Direct::new(),
+            krylov: None,
             symmetric: false,
             iterative: false,
         }
@@ -127,22 +104,19 @@ impl SparseSolver {
     /// Groups the unknowns into blocks of `size` for block Jacobi: group k is
     /// `index[k·size..(k+1)·size]` (every unknown once).
     pub(crate) fn set_blocks(&mut self, size: usize, index: Vec<usize>) {
-        self.jacobi = BlockJacobi::new(size, index.clone(), &self.pattern);
         self.blocks = (size, index);
     }
 
     /// The matrix is a field model's: the caller passes its stencil to
     /// [`SparseSolver::factorize_with`] and [`SparseSolver::substitute_with`] for the Krylov
     /// solves' products (no matrix by rows is made or filled) and, on a periodic grid, for
-    /// [`Preconditioner::Fourier`].
-    pub(crate) fn on_grid(&mut self, stencil: &StencilMatrix) {
+    /// [`Preconditioner::Fourier`](crate::Preconditioner::Fourier).
+    pub(crate) fn on_grid(&mut self) {
         self.products_given = true;
-        let (nx, ny, fields) = stencil.shape();
-        self.fourier = Fourier::new(nx, ny, fields, stencil.blocks());
     }
 
-    /// Chooses how the systems of this run are solved: direct, or the Krylov method `linear`
-    /// gives for this size (its buffers allocated here).
+    /// Chooses how the systems of this run are solved: directly, or by the Krylov method
+    /// `linear` gives for this size, for what the solves are for (`solves`).
     pub(crate) fn configure(
         &mut self,
         linear: &LinearSolver,
@@ -150,39 +124,14 @@ impl SparseSolver {
         solves: Solves,
     ) {
         let n = self.rhs.len();
-        self.krylov = linear.krylov_for(n, structure);
-        if let Some(krylov) = &mut self.krylov {
-            krylov.solves = solves;
-        }
+        self.krylov = linear
+            .krylov_for(n, structure)
+            .map(|(options, policy)| Box::new(Krylov::new(options, policy, solves, n)));
         if self.krylov.is_some() && self.rows.is_none() && !self.products_given {
             self.rows = RowMatrix::new(&self.pattern);
             if self.rows.is_none() {
                 // Beyond 32-bit indices (2³² entries): a size no Krylov run here has reached.
                 self.krylov = None;
-            }
-        }
-        if let Some(krylov) = &mut self.krylov
-            && krylov.options.preconditioner == Preconditioner::Fourier
-            && self.fourier.is_none()
-        {
-            // Not a periodic grid (see `Preconditioner::Fourier`).
-            krylov.options.preconditioner = Preconditioner::BlockJacobi;
-        }
-        if let Some(krylov) = &self.krylov
-            && krylov.options.preconditioner == Preconditioner::Ilu0
-            && self.ilu.is_none()
-        {
-            self.ilu = Some(Ilu0::new(&self.pattern));
-        }
-        if let Some(krylov) = &mut self.krylov
-            && krylov.options.preconditioner == Preconditioner::Multigrid
-            && self.multigrid.is_none()
-        {
-            let (size, index) = &self.blocks;
-            self.multigrid = Multigrid::new(*size, index.clone(), &self.pattern);
-            if self.multigrid.is_none() {
-                // A matrix that does not coarsen: block Jacobi instead (see `Multigrid`).
-                krylov.options.preconditioner = Preconditioner::BlockJacobi;
             }
         }
     }
@@ -215,9 +164,9 @@ impl SparseSolver {
             .all(|(&a, &t)| (a - self.values[t]).abs() <= tolerance)
     }
 
-    /// Prepares to solve with the values: for a Krylov run, builds the block Jacobi
-    /// preconditioner (or keeps an earlier factorization as the preconditioner until a solve
-    /// asks for a fresh one); otherwise, or when a block is singular, factorizes directly.
+    /// Prepares to solve with the values: builds the Krylov solve's preconditioner (or keeps
+    /// an earlier factorization as the preconditioner until a solve asks for a fresh one), or
+    /// factorizes directly for a direct run or when the preconditioner cannot be built.
     ///
     /// Errors: [`FactorizeError::Singular`].
     pub(crate) fn factorize(&mut self) -> Result<(), FactorizeError> {
@@ -231,45 +180,24 @@ impl SparseSolver {
         stencil: Option<&StencilMatrix>,
     ) -> Result<(), FactorizeError> {
         self.iterative = false;
-        let Some(krylov) = &mut self.krylov else {
-            return self.factorize_direct();
-        };
-        let refresh = std::mem::take(&mut krylov.refresh);
-        let preconditioner = krylov.options.preconditioner;
         self.symmetric = self.is_symmetric();
-        let values = &self.values;
-        if let Some(rows) = &mut self.rows {
-            rows.update(values);
-        }
-        // The preconditioners built from the values: false when one cannot be (a singular
-        // block or pivot, or none made), which the direct factorization then decides.
-        let built = match preconditioner {
-            Preconditioner::BlockJacobi => Some(self.jacobi.update(values).is_ok()),
-            Preconditioner::Ilu0 => {
-                Some(self.ilu.as_mut().is_some_and(|p| p.update(values).is_ok()))
-            }
-            Preconditioner::Multigrid => Some(
-                self.multigrid
-                    .as_mut()
-                    .is_some_and(|p| p.update(values).is_ok()),
-            ),
-            Preconditioner::Fourier => Some(match (&mut self.fourier, stencil) {
-                (Some(fourier), Some(stencil)) => fourier.update(stencil).is_ok(),
-                _ => false,
-            }),
-            Preconditioner::Factorization { .. } => None,
+        let Some(krylov) = &mut self.krylov else {
+            return self
+                .direct
+                .set_linearisation(&view!(self, stencil), &mut self.counts);
         };
-        match built {
-            Some(false) => return self.factorize_direct(),
-            Some(true) => self.counts.krylov.preconditioners += 1,
-            None => {
-                if self.factored.is_none() || refresh {
-                    self.factorize_direct()?;
-                }
-            }
+        if let Some(rows) = &mut self.rows {
+            rows.update(&self.values);
         }
-        self.iterative = true;
-        Ok(())
+        let a = view!(self, stencil);
+        match krylov.set_linearisation(&a, &mut self.counts) {
+            Ok(()) => {
+                self.iterative = true;
+                Ok(())
+            }
+            Err(Unprepared::Unbuilt(_)) => self.direct.set_linearisation(&a, &mut self.counts),
+            Err(Unprepared::Singular) => Err(FactorizeError::Singular),
+        }
     }
 
     /// Factorizes the values directly whatever the run configured: the next solves substitute
@@ -278,7 +206,9 @@ impl SparseSolver {
     /// Errors: [`FactorizeError::Singular`].
     pub(crate) fn factorize_direct_only(&mut self) -> Result<(), FactorizeError> {
         self.iterative = false;
-        self.factorize_direct()
+        self.symmetric = self.is_symmetric();
+        self.direct
+            .set_linearisation(&view!(self, None), &mut self.counts)
     }
 
     /// Solves the matrix against [`SparseSolver::rhs`], in place: by the Krylov method when
@@ -286,8 +216,8 @@ impl SparseSolver {
     /// substitution in the direct factors.
     ///
     /// Errors: [`SolveError::Singular`] when the Krylov solve failed and the direct solve that
-    /// took over found the matrix singular (a zero pivot, or a solution that is not finite);
-    /// the right-hand side's contents are then unspecified.
+    /// took over found the matrix singular (a zero pivot, or a solution that is not finite),
+    /// or when no factorization was made; the right-hand side's contents are then unspecified.
     pub(crate) fn substitute(&mut self) -> Result<(), SolveError> {
         self.substitute_with(None)
     }
@@ -298,24 +228,37 @@ impl SparseSolver {
         &mut self,
         stencil: Option<&StencilMatrix>,
     ) -> Result<(), SolveError> {
-        if self.iterative && self.solve_iteratively(stencil).is_ok() {
-            return Ok(());
-        }
+        let a = view!(self, stencil);
         if self.iterative {
+            if let Some(krylov) = &mut self.krylov
+                && krylov
+                    .solve_in_place(&a, &mut self.rhs, &mut self.counts)
+                    .is_ok()
+            {
+                if krylov.exhausted() {
+                    // `Auto` gave the Krylov solves up: the next factorizations are direct.
+                    self.krylov = None;
+                }
+                return Ok(());
+            }
             // The Krylov solve failed (its right-hand side was finite): the direct solve of the
             // same matrix decides, and a solution that is not finite means W is singular (faer's
             // LU takes a zero pivot and divides by it).
             self.iterative = false;
-            self.factorize_direct()
+            self.direct
+                .set_linearisation(&a, &mut self.counts)
                 .map_err(|FactorizeError::Singular| SolveError::Singular)?;
-            self.substitute_direct();
+            self.direct
+                .solve_in_place(&a, &mut self.rhs, &mut self.counts)
+                .map_err(|_| SolveError::Singular)?;
             return match self.rhs.iter().all(|x| x.is_finite()) {
                 true => Ok(()),
                 false => Err(SolveError::Singular),
             };
         }
-        self.substitute_direct();
-        Ok(())
+        self.direct
+            .solve_in_place(&a, &mut self.rhs, &mut self.counts)
+            .map_err(|_| SolveError::Singular)
     }
 }
 
@@ -326,32 +269,4 @@ fn slot_in(pattern: &SymbolicSparseColMat<usize>, row: usize, col: usize) -> usi
         + rows
             .binary_search(&row)
             .expect("every entry asked for is in the pattern")
-}
-
-impl Clone for SparseSolver {
-    fn clone(&self) -> Self {
-        SparseSolver {
-            pattern: self.pattern.clone(),
-            values: self.values.clone(),
-            transpose: self.transpose.clone(),
-            rhs: self.rhs.clone(),
-            cholesky: self.cholesky.clone(),
-            cholesky_values: self.cholesky_values.clone(),
-            lu: self.lu.clone(),
-            scratch: MemBuffer::new(self.scratch_size()),
-            counts: self.counts,
-            factored: self.factored,
-            skip_cholesky: self.skip_cholesky,
-            krylov: self.krylov.clone(),
-            rows: self.rows.clone(),
-            products_given: self.products_given,
-            fourier: self.fourier.clone(),
-            ilu: self.ilu.clone(),
-            multigrid: self.multigrid.clone(),
-            blocks: self.blocks.clone(),
-            jacobi: self.jacobi.clone(),
-            symmetric: self.symmetric,
-            iterative: self.iterative,
-        }
-    }
 }

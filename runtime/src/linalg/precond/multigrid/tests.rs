@@ -39,10 +39,9 @@ fn grid(n: usize, b: usize, coupling: f64) -> (SymbolicSparseColMat<usize>, Vec<
 }
 
 fn apply(multigrid: &Multigrid, r: &[f64]) -> Vec<f64> {
-    let precond = MultigridRef(multigrid);
-    let mut buffer = MemBuffer::new(precond.scratch());
+    let mut buffer = MemBuffer::new(multigrid.scratch());
     let mut out = vec![0.0; r.len()];
-    precond.apply_column(&mut out, r, MemStack::new(&mut buffer));
+    multigrid.apply_column(&mut out, r, MemStack::new(&mut buffer));
     out
 }
 

@@ -29,8 +29,8 @@ use faer::linalg::lu::partial_pivoting::{factor, solve};
 use faer::sparse::SymbolicSparseColMat;
 use faer::{Mat, Par};
 
-use super::operator::{Column, as_precond};
-use super::precond::PrecondError;
+use super::{Column, PrecondError, Preconditioning};
+use crate::linalg::solver::SparseView;
 use aggregate::aggregate;
 use blocks::Blocks;
 use level::Level;
@@ -258,31 +258,25 @@ impl Clone for Scratch {
     }
 }
 
-/// [`Multigrid`] as a faer operator.
-#[derive(Clone, Copy)]
-pub(crate) struct MultigridRef<'a>(pub(crate) &'a Multigrid);
-
-impl fmt::Debug for MultigridRef<'_> {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        self.0.fmt(f)
-    }
-}
-
-impl Column for MultigridRef<'_> {
+impl Column for Multigrid {
     fn n(&self) -> usize {
-        self.0.index.len()
+        self.index.len()
     }
     fn scratch(&self) -> StackReq {
-        let n = self.0.coarsest.rows() * self.0.b;
-        StackReq::new::<f64>(self.0.work_len()).and(solve::solve_in_place_scratch::<usize, f64>(
+        let n = self.coarsest.rows() * self.b;
+        StackReq::new::<f64>(self.work_len()).and(solve::solve_in_place_scratch::<usize, f64>(
             n,
             1,
             Par::Seq,
         ))
     }
     fn apply_column(&self, out: &mut [f64], r: &[f64], stack: &mut MemStack) {
-        self.0.apply(out, r, stack);
+        self.apply(out, r, stack);
     }
 }
 
-as_precond!(MultigridRef<'_>);
+impl Preconditioning for Multigrid {
+    fn update_from(&mut self, a: &SparseView<'_>) -> Result<(), PrecondError> {
+        self.update(a.values)
+    }
+}
