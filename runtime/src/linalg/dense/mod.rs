@@ -331,7 +331,15 @@ macro_rules! dense_matrix {
 
             #[inline]
             fn non_finite_entry(&self) -> Option<(usize, usize, f64)> {
-                if self.iter().all(|x| x.is_finite()) {
+                // An integer reduction over the stored entries, which vectorizes: a scalar scan
+                // that stops at the first (`iter().all(is_finite)`) cost POLLU's 20 × 20
+                // Rosenbrock23 step 0.45 µs of its 2.3 µs, this one 0.1 µs (peers bench `stiff`).
+                const EXPONENT: u64 = 0x7ff0_0000_0000_0000;
+                let non_finite = self
+                    .as_slice()
+                    .iter()
+                    .fold(0u64, |n, x| n | u64::from(x.to_bits() & EXPONENT == EXPONENT));
+                if non_finite == 0 {
                     return None;
                 }
                 first_non_finite($n, |row, column| self[(row, column)])

@@ -66,3 +66,34 @@ fn a_singular_small_matrix_is_reported() {
         Err(FactorizeError::Singular)
     );
 }
+
+/// The non-finite entry of a fixed-size Jacobian, found by a vectorized reduction first: none
+/// among extreme finite values (±1.797e308, subnormals, −0), and NaN, +∞ or −∞ named at its
+/// (row, column) wherever it sits, against the scalar scan by columns.
+fn non_finite_at_every_position<const N: usize>()
+where
+    nalgebra::SMatrix<f64, N, N>: NewtonMatrix,
+{
+    let extreme = [f64::MAX, -f64::MAX, 5e-324, -0.0, 1.0];
+    let finite = nalgebra::SMatrix::<f64, N, N>::from_fn(|r, c| extreme[(r * N + c) % 5]);
+    assert_eq!(finite.non_finite_entry(), None);
+    for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+        for row in 0..N {
+            for column in 0..N {
+                let mut j = finite;
+                j[(row, column)] = bad;
+                let (r, c, value) = j.non_finite_entry().expect("found");
+                assert_eq!((r, c), (row, column));
+                assert_eq!(value.to_bits(), bad.to_bits());
+            }
+        }
+    }
+}
+
+#[test]
+fn non_finite_jacobian_entries_are_found_wherever_they_are() {
+    non_finite_at_every_position::<1>();
+    non_finite_at_every_position::<3>();
+    non_finite_at_every_position::<7>();
+    non_finite_at_every_position::<20>();
+}
