@@ -1,9 +1,10 @@
 //! Krylov solves of the sparse Newton matrices (`odyn::LinearSolver`): each against the direct
 //! solve on cloth and Gray–Scott matrices (relative residual and solution difference), whole
 //! runs of every implicit method against the direct runs, the automatic choice, fallbacks and
-//! option errors.
+//! option errors, and every solver under hostile input (`hostile.rs`).
 
 mod fourier;
+mod hostile;
 mod policy;
 mod runs;
 mod solves;
