@@ -10,9 +10,9 @@ use faer::sparse::linalg::cholesky::{
     CholeskySymbolicParams, LltRef, SymbolicCholesky, SymmetricOrdering,
     factorize_symbolic_cholesky,
 };
-use faer::{Conj, MatMut, Par, Side};
+use faer::{Par, Side};
 
-use super::NoFactors;
+use super::{Factors, NoFactors};
 use crate::linalg::solver::{LinearSolve, SparseView};
 use crate::stats::LinearWork;
 
@@ -123,13 +123,8 @@ impl LinearSolve for SparseCholesky {
         let (Some(symbolic), true) = (&self.symbolic, self.factored) else {
             return Err(NoFactors);
         };
-        let n = x.len();
-        LltRef::new(symbolic, &self.values).solve_in_place_with_conj(
-            Conj::No,
-            MatMut::from_column_major_slice_mut(x, n, 1),
-            Par::Seq,
-            MemStack::new(&mut self.scratch),
-        );
+        Factors::Cholesky(LltRef::new(symbolic, &self.values))
+            .substitute(x, MemStack::new(&mut self.scratch));
         Ok(())
     }
 }

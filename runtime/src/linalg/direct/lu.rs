@@ -3,26 +3,26 @@
 
 use std::sync::Arc;
 
+use faer::Par;
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::sparse::SparseColMatRef;
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::linalg::lu::{
     LuRef, LuSymbolicParams, NumericLu, SymbolicLu, factorize_symbolic_lu,
 };
-use faer::{Conj, MatMut, Par};
 
-use super::NoFactors;
+use super::{Factors, NoFactors};
 use crate::linalg::dense::FactorizeError;
 use crate::linalg::solver::{LinearSolve, SparseView};
 use crate::stats::LinearWork;
 
 /// The symbolic analysis (shared by clones) and the numeric factors.
-type Factors = (Arc<SymbolicLu<usize>>, NumericLu<usize, f64>);
+type LuFactors = (Arc<SymbolicLu<usize>>, NumericLu<usize, f64>);
 
 /// The sparse factorization P·A·Q = L·U, its symbolic analysis made the first time it is needed
 /// and shared by clones.
 pub(crate) struct SparseLu {
-    factors: Option<Factors>,
+    factors: Option<LuFactors>,
     scratch: MemBuffer,
     /// The last factorization succeeded.
     factored: bool,
@@ -106,13 +106,8 @@ impl LinearSolve for SparseLu {
         let (Some((symbolic, numeric)), true) = (&self.factors, self.factored) else {
             return Err(NoFactors);
         };
-        let n = x.len();
-        LuRef::new_unchecked(symbolic, numeric).solve_in_place_with_conj(
-            Conj::No,
-            MatMut::from_column_major_slice_mut(x, n, 1),
-            Par::Seq,
-            MemStack::new(&mut self.scratch),
-        );
+        Factors::Lu(LuRef::new_unchecked(symbolic, numeric))
+            .substitute(x, MemStack::new(&mut self.scratch));
         Ok(())
     }
 }

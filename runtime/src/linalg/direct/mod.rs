@@ -119,6 +119,20 @@ pub(crate) enum Factors<'a> {
     Lu(LuRef<'a, usize, f64>),
 }
 
+impl Factors<'_> {
+    /// Solves A·x = b by substitution in the factors, b given in `x`.
+    pub(crate) fn substitute(&self, x: &mut [f64], stack: &mut MemStack) {
+        let n = x.len();
+        let column = MatMut::from_column_major_slice_mut(x, n, 1);
+        match self {
+            Factors::Cholesky(llt) => {
+                llt.solve_in_place_with_conj(Conj::No, column, Par::Seq, stack)
+            }
+            Factors::Lu(lu) => lu.solve_in_place_with_conj(Conj::No, column, Par::Seq, stack),
+        }
+    }
+}
+
 impl fmt::Debug for Factors<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let kind = match self {
@@ -144,13 +158,6 @@ impl Column for Factors<'_> {
     }
     fn apply_column(&self, out: &mut [f64], r: &[f64], stack: &mut MemStack) {
         out.copy_from_slice(r);
-        let n = out.len();
-        let column = MatMut::from_column_major_slice_mut(out, n, 1);
-        match self {
-            Factors::Cholesky(llt) => {
-                llt.solve_in_place_with_conj(Conj::No, column, Par::Seq, stack)
-            }
-            Factors::Lu(lu) => lu.solve_in_place_with_conj(Conj::No, column, Par::Seq, stack),
-        }
+        self.substitute(out, stack);
     }
 }
