@@ -13,6 +13,8 @@
 //! - (c) the quasi-Newton step's convergence ratio (g(ṽ) − g(v*)) / (g(v⁰) − g(v*)) of the
 //!   implicit Euler objective g(v) = ½‖v − vₙ‖²_M + E(xₙ + h·v) + ½h·c_drag·‖v‖², and the
 //!   iterations that take it to 10⁻³;
+//! - the plain `ImplicitEuler` step (`NewtonOptions::default()`: full Newton, halving a step it
+//!   cannot take whole), its distance from the converged step and its time;
 //!
 //! and the time of each step.
 //!
@@ -58,7 +60,7 @@ fn main() -> ExitCode {
 
 fn run(cli: Cli) -> odyn::Result<()> {
     println!(
-        "size  t(s)   BW→IE (m)  QN→IE (m)  QN accel res (m/s²)  QN ratio  IE ms  BW ms  QN ms  QN iters"
+        "size  t(s)   BW→IE (m)  QN→IE (m)  QN accel res (m/s²)  QN ratio  IE ms  BW ms  QN ms  QN iters  default→IE (m)  default ms"
     );
     for &n in &cli.sizes {
         let cloth = Sheet::falling(n).build().0;
@@ -78,18 +80,21 @@ fn run(cli: Cli) -> odyn::Result<()> {
                 ),
             };
             let (bw, bw_ms) = step(&cloth, state, t, baraff_witkin())?;
+            // The plain `ImplicitEuler` step: NewtonOptions::default(), halvings allowed.
+            let (plain, plain_ms) = step(&cloth, state, t, NewtonOptions::default())?;
             let qn = &point.next;
             let objective = |y: &ParticleState<3>| objective(&cloth, state, y);
             let g_star = objective(&converged);
             let ratio = (objective(qn) - g_star) / (objective(&inertial(state)) - g_star);
             println!(
                 "{n:>4}  {t:>4}  {:>9.2e}  {:>9.2e}  {:>19.2e}  {ratio:>8.1e}  \
-                 {ie_ms:>7.1}{by}  {bw_ms:>5.1}  {:>5.2}  {:>8}",
+                 {ie_ms:>7.1}{by}  {bw_ms:>5.1}  {:>5.2}  {:>8}  {:>14.2e}  {plain_ms:>10.1}",
                 distance(&bw, &converged),
                 distance(qn, &converged),
                 acceleration_residual(&cloth, state, qn, t),
                 point.ms,
                 point.iterations,
+                distance(&plain, &converged),
             );
         }
     }
