@@ -75,6 +75,22 @@ impl Krylov {
         }
     }
 
+    /// The solves with new options (what they are for changed: BDF's first attempt), keeping
+    /// the preconditioners made so far, their structures and the last factorization: the
+    /// iteration, the active preconditioner and `Auto`'s state start again.
+    pub(crate) fn reconfigured(
+        self,
+        options: KrylovOptions,
+        policy: Option<AutoPolicy>,
+        solves: Solves,
+        n: usize,
+    ) -> Self {
+        Krylov {
+            preconditioners: self.preconditioners,
+            ..Krylov::new(options, policy, solves, n)
+        }
+    }
+
     /// `Auto` gave the Krylov solves up for the rest of the run: the caller solves directly.
     pub(crate) fn exhausted(&self) -> bool {
         self.exhausted
@@ -82,7 +98,11 @@ impl Krylov {
 
     /// The run's solves go on with `which`, built for the current values: true if it could be.
     fn switch(&mut self, which: Preconditioner, a: &SparseView<'_>, work: &mut LinearWork) -> bool {
-        if self.preconditioners.make(which, a) && self.preconditioners.build(which, a).is_ok() {
+        let built = self
+            .preconditioners
+            .made(which, a)
+            .map(|p| p.update_from(a));
+        if let Some(Ok(())) = built {
             self.active = which;
             work.krylov.preconditioners += 1;
             return true;
@@ -155,19 +175,26 @@ impl Krylov {
 }
 
 impl Preconditioners {
-    /// Makes the structure of `which` for `a`'s pattern if it is not made yet: false when it
-    /// cannot be made (Fourier off a periodic grid, multigrid on a matrix that does not
-    /// coarsen).
-    pub(crate) fn make(&mut self, which: Preconditioner, a: &SparseView<'_>) -> bool {
+    /// Block Jacobi for `a`'s groups of unknowns, made the first time: the preconditioner every
+    /// matrix has.
+    fn block_jacobi(&mut self, a: &SparseView<'_>) -> &mut BlockJacobi {
+        let (size, index) = a.blocks;
+        self.jacobi
+            .get_or_insert_with(|| BlockJacobi::new(size, index.to_vec(), a.pattern))
+    }
+
+    /// The preconditioner `which`, its structure made for `a`'s pattern the first time; `None`
+    /// when it cannot be made (Fourier off a periodic grid, multigrid on a matrix that does not
+    /// coarsen) and for [`Preconditioner::Factorization`], which is the direct solver's.
+    fn made(
+        &mut self,
+        which: Preconditioner,
+        a: &SparseView<'_>,
+    ) -> Option<&mut dyn Preconditioning> {
         let (size, index) = a.blocks;
         match which {
-            Preconditioner::BlockJacobi => {
-                self.jacobi
-                    .get_or_insert_with(|| BlockJacobi::new(size, index.to_vec(), a.pattern));
-            }
-            Preconditioner::Ilu0 => {
-                self.ilu.get_or_insert_with(|| Ilu0::new(a.pattern));
-            }
+            Preconditioner::BlockJacobi => Some(self.block_jacobi(a)),
+            Preconditioner::Ilu0 => Some(self.ilu.get_or_insert_with(|| Ilu0::new(a.pattern))),
             Preconditioner::Fourier => {
                 if self.fourier.is_none() {
                     self.fourier = a.stencil.and_then(|stencil| {
@@ -175,29 +202,16 @@ impl Preconditioners {
                         Fourier::new(nx, ny, fields, stencil.blocks())
                     });
                 }
-                return self.fourier.is_some();
+                self.fourier.as_mut().map(|p| p as _)
             }
             Preconditioner::Multigrid => {
                 if self.multigrid.is_none() {
                     self.multigrid = Multigrid::new(size, index.to_vec(), a.pattern);
                 }
-                return self.multigrid.is_some();
+                self.multigrid.as_mut().map(|p| p as _)
             }
-            Preconditioner::Factorization { .. } => {}
-        }
-        true
-    }
-
-    /// The preconditioner `which`, made and built for `a`'s values.
-    fn build(&mut self, which: Preconditioner, a: &SparseView<'_>) -> Result<(), PrecondError> {
-        let built: Option<&mut dyn Preconditioning> = match which {
-            Preconditioner::BlockJacobi => self.jacobi.as_mut().map(|p| p as _),
-            Preconditioner::Ilu0 => self.ilu.as_mut().map(|p| p as _),
-            Preconditioner::Fourier => self.fourier.as_mut().map(|p| p as _),
-            Preconditioner::Multigrid => self.multigrid.as_mut().map(|p| p as _),
             Preconditioner::Factorization { .. } => None,
-        };
-        built.ok_or(PrecondError::NoStencil)?.update_from(a)
+        }
     }
 
     /// The active preconditioner, as the iteration applies it.
@@ -239,13 +253,14 @@ impl LinearSolve for Krylov {
             }
             return Ok(());
         }
-        if !self.preconditioners.make(self.active, a) {
-            self.active = Preconditioner::BlockJacobi;
-            self.preconditioners.make(self.active, a);
-        }
-        self.preconditioners
-            .build(self.active, a)
-            .map_err(Unprepared::Unbuilt)?;
+        let built = match self.preconditioners.made(self.active, a) {
+            Some(preconditioner) => preconditioner.update_from(a),
+            None => {
+                self.active = Preconditioner::BlockJacobi;
+                self.preconditioners.block_jacobi(a).update_from(a)
+            }
+        };
+        built.map_err(Unprepared::Unbuilt)?;
         work.krylov.preconditioners += 1;
         Ok(())
     }

@@ -124,9 +124,16 @@ impl SparseSolver {
         solves: Solves,
     ) {
         let n = self.rhs.len();
-        self.krylov = linear
-            .krylov_for(n, structure)
-            .map(|(options, policy)| Box::new(Krylov::new(options, policy, solves, n)));
+        // A solver configured again (BDF's first attempt) keeps its preconditioners' structures.
+        self.krylov = match (linear.krylov_for(n, structure), self.krylov.take()) {
+            (Some((options, policy)), Some(old)) => {
+                Some(Box::new(old.reconfigured(options, policy, solves, n)))
+            }
+            (Some((options, policy)), None) => {
+                Some(Box::new(Krylov::new(options, policy, solves, n)))
+            }
+            (None, _) => None,
+        };
         if self.krylov.is_some() && self.rows.is_none() && !self.products_given {
             self.rows = RowMatrix::new(&self.pattern);
             if self.rows.is_none() {

@@ -5,12 +5,8 @@ use super::*;
 use crate::linalg::krylov::{Solves, Structure};
 use crate::{KrylovOptions, LinearSolver, Preconditioner};
 
-/// A 2-D Laplacian-like SPD matrix, and an unsymmetric one, solved directly and by each
-/// Krylov configuration: same answer to the Krylov tolerance.
-#[test]
-fn krylov_solves_agree_with_the_direct_solve() {
-    let m = 12;
-    let n = m * m;
+/// The couplings of an m × m grid's five-point stencil, each once (row < column).
+fn five_point(m: usize) -> Vec<(usize, usize)> {
     let mut entries = Vec::new();
     for i in 0..m {
         for j in 0..m {
@@ -23,18 +19,33 @@ fn krylov_solves_agree_with_the_direct_solve() {
             }
         }
     }
+    entries
+}
+
+/// −1 + `skew` above the diagonal and −1 − `skew` below it at every coupling, and a diagonal of
+/// 4.5 to 5.1: strictly diagonally dominant for |skew| ≤ 1 (a row's couplings sum to 4 in
+/// magnitude), so regular, and positive definite when `skew` is 0.
+fn fill(s: &mut SparseSolver, entries: &[(usize, usize)], skew: f64) {
+    for &(r, c) in entries {
+        let (a, b) = (s.slot(r, c), s.slot(c, r));
+        s.values[a] = -1.0 + skew;
+        s.values[b] = -1.0 - skew;
+    }
+    for i in 0..s.rhs.len() {
+        let d = s.slot(i, i);
+        s.values[d] = 4.5 + (i % 7) as f64 * 0.1;
+    }
+}
+
+/// A 2-D Laplacian-like SPD matrix, and an unsymmetric one, solved directly and by each
+/// Krylov configuration: same answer to the Krylov tolerance.
+#[test]
+fn krylov_solves_agree_with_the_direct_solve() {
+    let m = 12;
+    let n = m * m;
+    let entries = five_point(m);
     for skew in [0.0, 0.3] {
-        let fill = |s: &mut SparseSolver| {
-            for &(r, c) in &entries {
-                let (a, b) = (s.slot(r, c), s.slot(c, r));
-                s.values[a] = -1.0 + skew;
-                s.values[b] = -1.0 - skew;
-            }
-            for i in 0..n {
-                let d = s.slot(i, i);
-                s.values[d] = 4.5 + (i % 7) as f64 * 0.1;
-            }
-        };
+        let fill = |s: &mut SparseSolver| fill(s, &entries, skew);
         let b: Vec<f64> = (0..n).map(|i| ((i * 37) % 11) as f64 - 5.0).collect();
         let mut direct = SparseSolver::new(n, &entries);
         fill(&mut direct);
@@ -104,18 +115,7 @@ fn a_singular_matrix_behind_a_failed_krylov_solve_is_a_typed_error() {
 fn a_cloned_solver_solves_like_the_original() {
     let m = 24;
     let n = m * m;
-    let mut entries = Vec::new();
-    for i in 0..m {
-        for j in 0..m {
-            let k = i * m + j;
-            if j + 1 < m {
-                entries.push((k, k + 1));
-            }
-            if i + 1 < m {
-                entries.push((k, k + m));
-            }
-        }
-    }
+    let entries = five_point(m);
     let b: Vec<f64> = (0..n).map(|i| ((i * 37) % 11) as f64 - 5.0).collect();
     for linear in [
         LinearSolver::Direct,
@@ -135,15 +135,7 @@ fn a_cloned_solver_solves_like_the_original() {
     ] {
         let mut solver = SparseSolver::new(n, &entries);
         solver.configure(&linear, Structure::Field, Solves::OneStep);
-        for &(r, c) in &entries {
-            let (a, t) = (solver.slot(r, c), solver.slot(c, r));
-            solver.values[a] = -1.0 + 0.2;
-            solver.values[t] = -1.0 - 0.2;
-        }
-        for i in 0..n {
-            let d = solver.slot(i, i);
-            solver.values[d] = 4.5 + (i % 7) as f64 * 0.1;
-        }
+        fill(&mut solver, &entries, 0.2);
         solver.factorize().expect("regular");
         solver.rhs.copy_from_slice(&b);
         solver.substitute().expect("regular");
@@ -157,4 +149,43 @@ fn a_cloned_solver_solves_like_the_original() {
         assert_eq!(bits(&solver.rhs), bits(&copy.rhs), "{linear:?}");
         assert_eq!(solver.counts, copy.counts, "{linear:?}");
     }
+}
+
+/// Configured again (BDF's first attempt changes what its solves are for), a Krylov solver
+/// keeps what it has made: the factorization `Preconditioner::Factorization` substitutes in
+/// serves the next solve without a new one, and the solve still matches the direct answer.
+#[test]
+fn a_solver_configured_again_keeps_its_preconditioners() {
+    let m = 12;
+    let entries = five_point(m);
+    let b: Vec<f64> = (0..m * m).map(|i| ((i * 37) % 11) as f64 - 5.0).collect();
+    let mut direct = SparseSolver::new(m * m, &entries);
+    fill(&mut direct, &entries, 0.0);
+    direct.factorize().expect("regular");
+    direct.rhs.copy_from_slice(&b);
+    direct.substitute().expect("regular");
+    let linear = LinearSolver::Krylov(KrylovOptions {
+        preconditioner: Preconditioner::Factorization { refresh_above: 5 },
+        rtol: 1e-12,
+        ..KrylovOptions::default()
+    });
+    let mut solver = SparseSolver::new(m * m, &entries);
+    solver.configure(&linear, Structure::Field, Solves::OneStep);
+    fill(&mut solver, &entries, 0.0);
+    solver.factorize().expect("regular");
+    solver.rhs.copy_from_slice(&b);
+    solver.substitute().expect("regular");
+    assert_eq!(solver.counts.cholesky, 1);
+    solver.configure(&linear, Structure::Field, Solves::Newton);
+    solver.factorize().expect("regular");
+    solver.rhs.copy_from_slice(&b);
+    solver.substitute().expect("regular");
+    assert_eq!(solver.counts.cholesky, 1, "{:?}", solver.counts);
+    let error = solver
+        .rhs
+        .iter()
+        .zip(&direct.rhs)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max);
+    assert!(error < 1e-10, "{error:e}");
 }
