@@ -1,10 +1,15 @@
-//! One cloth twice: XPBD (rigid-ish distance constraints, substeps) beside the Baraff–Witkin
-//! spring cloth on implicit Euler, both at dt = 1/60 s, both dragged by the same hand.
+//! One cloth twice: XPBD (rigid-ish distance constraints, substeps) beside the spring cloth on
+//! implicit Euler, both at dt = 1/60 s, both dragged by the same hand. Implicit Euler's step is
+//! solved the Baraff–Witkin way (one Newton step, one sparse Cholesky a step) or by the
+//! quasi-Newton solve (L-BFGS on a link Laplacian factorized once a run).
 
 use odyn::integrators::ImplicitEuler;
 use odyn::nalgebra::Vector3;
 use odyn::xpbd::Xpbd;
-use odyn::{Fingerprint, FixedTimestep, Method, Model, NewtonOptions, State, Stepper};
+use odyn::{
+    Fingerprint, FixedTimestep, Method, Model, NewtonOptions, ParticleSolve, QuasiNewtonOptions,
+    State, Stepper,
+};
 use scenes::{Cloth, Sheet};
 use wasm_bindgen::prelude::*;
 
@@ -26,10 +31,18 @@ const CHECK_STEPS: u32 = 120;
 /// x–z plane and falls towards −y.
 const VIEW: [f64; 2] = [0.4, 0.25];
 
+/// How implicit Euler's step is solved: its name on the page, its label.
+const SOLVES: [(&str, &str); 2] = [
+    ("baraff_witkin", "one Newton step (Baraff–Witkin)"),
+    ("quasi_newton", "quasi-Newton (L-BFGS, 8 iterations)"),
+];
+
 /// The cloth panel.
 #[wasm_bindgen]
 pub struct ClothLab {
     model: &'static Cloth,
+    /// Index into [`SOLVES`].
+    solve: usize,
     structural: Vec<usize>,
     implicit: Stepper<'static, Cloth, ImplicitEuler<Cloth>>,
     xpbd: Xpbd<3>,
@@ -89,16 +102,37 @@ impl ClothLab {
         Ok(ClothLab {
             model,
             structural,
-            implicit: js(implicit(model))?,
+            solve: 0,
+            implicit: js(implicit(model, 0))?,
             xpbd: js(model.as_xpbd(SUBSTEPS))?,
             clock: FixedTimestep::new(),
             grabbed: None,
         })
     }
 
+    /// The names of implicit Euler's solves, for [`ClothLab::set_solve`].
+    pub fn solves() -> Vec<String> {
+        SOLVES.iter().map(|(name, _)| name.to_string()).collect()
+    }
+
+    /// Their labels.
+    pub fn solve_labels() -> Vec<String> {
+        SOLVES.iter().map(|(_, label)| label.to_string()).collect()
+    }
+
+    /// Solves implicit Euler's steps by `name` (one of [`ClothLab::solves`]) from the level
+    /// sheet again.
+    pub fn set_solve(&mut self, name: &str) -> Js<()> {
+        self.solve = SOLVES
+            .iter()
+            .position(|(known, _)| *known == name)
+            .ok_or_else(|| format!("no solve named {name:?}: one of {:?}", Self::solves()))?;
+        self.restart()
+    }
+
     /// Back to the level sheet.
     pub fn restart(&mut self) -> Js<()> {
-        self.implicit = js(implicit(self.model))?;
+        self.implicit = js(implicit(self.model, self.solve))?;
         self.xpbd = js(self.model.as_xpbd(SUBSTEPS))?;
         self.clock = FixedTimestep::new();
         self.grabbed = None;
@@ -175,8 +209,9 @@ impl ClothLab {
     /// The methods' labels.
     pub fn method(&self) -> String {
         format!(
-            "XPBD ({SUBSTEPS} substeps) | {}, one Newton step (Baraff–Witkin)",
-            Method::ImplicitEuler.info().label
+            "XPBD ({SUBSTEPS} substeps) | {}, {}",
+            Method::ImplicitEuler.info().label,
+            SOLVES[self.solve].1
         )
     }
 
@@ -216,20 +251,33 @@ impl ClothLab {
             .collect()
     }
 
-    /// Newton's factorizations so far (implicit Euler's cost).
+    /// Implicit Euler's factorizations so far: one a step (Baraff–Witkin), or one a run
+    /// (quasi-Newton).
     pub fn factorizations(&self) -> f64 {
         self.implicit.stats().factorizations as f64
     }
 }
 
-/// Implicit Euler as Baraff & Witkin take it ("Large Steps in Cloth Simulation", 1998, §3): one
-/// Newton iteration a step on the spring Jacobian made positive definite, so one sparse
-/// Cholesky factorization a step (full Newton on the falling sheet takes ~8).
-fn implicit(model: &'static Cloth) -> odyn::Result<Stepper<'static, Cloth, ImplicitEuler<Cloth>>> {
-    let newton = NewtonOptions {
-        linearized: true,
-        definite: true,
-        ..NewtonOptions::default()
+/// Implicit Euler solved by [`SOLVES`]`[solve]`: as Baraff & Witkin take it ("Large Steps in
+/// Cloth Simulation", 1998, §3), one Newton iteration a step on the spring Jacobian made
+/// positive definite, so one sparse Cholesky factorization a step (full Newton on the falling
+/// sheet takes ~8); or by the quasi-Newton solve at its defaults (Liu, Bouaziz & Kavan 2017),
+/// one factorization of the link Laplacian a run and 8 L-BFGS iterations a step.
+fn implicit(
+    model: &'static Cloth,
+    solve: usize,
+) -> odyn::Result<Stepper<'static, Cloth, ImplicitEuler<Cloth>>> {
+    let newton = if solve == 0 {
+        NewtonOptions {
+            linearized: true,
+            definite: true,
+            ..NewtonOptions::default()
+        }
+    } else {
+        NewtonOptions {
+            particle_solve: ParticleSolve::QuasiNewton(QuasiNewtonOptions::default()),
+            ..NewtonOptions::default()
+        }
     };
     Stepper::with_newton(model, model.state(), 0.0, DT, &newton)
 }

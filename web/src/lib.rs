@@ -4,7 +4,8 @@
 //! - [`SpringLab`] — the spring lab: pick the integrator and dt, watch x(t) and the energy
 //!   against the exact solution; explicit Euler's energy grows by 1 + ω²dt² a step.
 //! - [`PendulumLab`] — two double pendulums a micro-radian apart, parting.
-//! - [`ClothLab`] — one sheet twice, XPBD and implicit Euler side by side, draggable.
+//! - [`ClothLab`] — one sheet twice, XPBD and implicit Euler side by side, draggable; implicit
+//!   Euler solved the Baraff–Witkin way or by the quasi-Newton solve.
 //! - [`GrayScottLab`] — Gray–Scott reaction–diffusion with the named patterns.
 //! - [`DamBreakLab`] — the SPH dam break.
 //! - [`MpmLab`] — jelly, water and snow by the material point method.
@@ -47,7 +48,8 @@ fn hex(fingerprint: u64) -> String {
     format!("{fingerprint:016x}")
 }
 
-/// Every panel's check, natively: its name and fingerprint, in the page's order.
+/// Every panel's check, natively: its name and fingerprint, in the page's order (the cloth's
+/// once for each of implicit Euler's solves: `cloth`, `cloth_qn`).
 pub fn fingerprints() -> Js<Vec<(&'static str, String)>> {
     let mut spring = SpringLab::new()?;
     spring.check()?;
@@ -55,6 +57,9 @@ pub fn fingerprints() -> Js<Vec<(&'static str, String)>> {
     pendulum.check()?;
     let mut cloth = ClothLab::new()?;
     cloth.check()?;
+    let mut cloth_qn = ClothLab::new()?;
+    cloth_qn.set_solve("quasi_newton")?;
+    cloth_qn.check()?;
     let mut gray_scott = GrayScottLab::new()?;
     gray_scott.check()?;
     let mut dam_break = DamBreakLab::new()?;
@@ -65,6 +70,7 @@ pub fn fingerprints() -> Js<Vec<(&'static str, String)>> {
         ("spring", spring.fingerprint()),
         ("pendulum", pendulum.fingerprint()),
         ("cloth", cloth.fingerprint()),
+        ("cloth_qn", cloth_qn.fingerprint()),
         ("gray_scott", gray_scott.fingerprint()),
         ("dam_break", dam_break.fingerprint()),
         ("mpm", mpm.fingerprint()),
@@ -80,7 +86,7 @@ mod tests {
     #[test]
     fn every_check_runs_and_repeats_itself() {
         let first = fingerprints().unwrap();
-        assert_eq!(first.len(), 6);
+        assert_eq!(first.len(), 7);
         assert_eq!(first, fingerprints().unwrap());
     }
 
@@ -151,5 +157,36 @@ mod tests {
         // The pinned corner (0, 0, 0) is on screen at the origin: never grabbed.
         let mut fresh = ClothLab::new().unwrap();
         assert!(!fresh.grab(0.0, 0.0, 0.01));
+    }
+
+    /// The quasi-Newton solve in the panel: dragged, the cloth follows the hand as the
+    /// Baraff–Witkin one does, and its link Laplacian is factorized once over two seconds
+    /// (Baraff–Witkin: once a step); an unknown solve is an error naming the known ones.
+    #[test]
+    fn the_quasi_newton_cloth_follows_the_hand_on_one_factorization() {
+        let mut lab = ClothLab::new().unwrap();
+        let error = lab.set_solve("newton").unwrap_err();
+        assert!(error.contains("quasi_newton"), "{error}");
+        lab.set_solve("quasi_newton").unwrap();
+        assert!(lab.method().contains("quasi-Newton"), "{}", lab.method());
+        assert_eq!(lab.check().unwrap(), 120);
+        assert_eq!(lab.factorizations(), 1.0);
+        assert!(lab.grab(
+            lab.points()[2 * (2 * cloth::SIDE * cloth::SIDE - 1)],
+            lab.points()[2 * (2 * cloth::SIDE * cloth::SIDE - 1) + 1],
+            0.05
+        ));
+        lab.drag(1.2, -0.3);
+        lab.frame(1.0 / 60.0).unwrap();
+        let points = lab.points();
+        let corner = 2 * cloth::SIDE * cloth::SIDE - 1;
+        let (x, y) = (points[2 * corner], points[2 * corner + 1]);
+        assert!(
+            (x - 1.2).abs() < 1e-12 && (y + 0.3).abs() < 1e-12,
+            "({x}, {y})"
+        );
+        let mut direct = ClothLab::new().unwrap();
+        direct.check().unwrap();
+        assert_eq!(direct.factorizations(), 120.0);
     }
 }
