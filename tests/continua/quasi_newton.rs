@@ -342,3 +342,57 @@ fn hostile_starts_and_steps_are_typed() {
         }
     }
 }
+
+/// Absurd but valid options are honoured, never a runaway or a panic: a tolerance of 0 runs
+/// exactly `max_iterations` and accepts the iterate reached (measured 1.8e-8 m from Newton's
+/// step after 500); no history (A⁻¹ alone: preconditioned steepest descent) and the largest
+/// (64 pairs) still converge to Newton's step; a tolerance of 10³⁰⁰ accepts the start, the
+/// inertial step x = xₙ + h·vₙ with vₙ kept, to the bit.
+#[test]
+fn absurd_options_are_honoured() {
+    let (cloth, state) = falling_cloth();
+    let (reference, _) = step(&cloth, &state, newton());
+    let run = |options: QuasiNewtonOptions| {
+        let newton = NewtonOptions {
+            particle_solve: ParticleSolve::QuasiNewton(options),
+            ..NewtonOptions::default()
+        };
+        step(&cloth, &state, newton)
+    };
+    let (end, iterations) = run(QuasiNewtonOptions {
+        max_iterations: 500,
+        tolerance: 0.0,
+        ..QuasiNewtonOptions::default()
+    });
+    assert_eq!(iterations, 500);
+    assert!(
+        distance(&end, &reference) < 1e-6,
+        "{}",
+        distance(&end, &reference)
+    );
+    for history in [0, 64] {
+        let (end, iterations) = run(QuasiNewtonOptions {
+            max_iterations: 50_000,
+            tolerance: 1e-9,
+            history,
+        });
+        let apart = distance(&end, &reference);
+        assert!(
+            apart < 1e-6,
+            "history {history}: {apart} after {iterations}"
+        );
+    }
+    let (end, iterations) = run(QuasiNewtonOptions {
+        tolerance: 1e300,
+        ..QuasiNewtonOptions::default()
+    });
+    assert_eq!(iterations, 0);
+    assert_eq!(end.velocities(), state.velocities());
+    for (x, (x0, v0)) in end
+        .positions()
+        .iter()
+        .zip(state.positions().iter().zip(state.velocities()))
+    {
+        assert_eq!(*x, x0 + H * v0);
+    }
+}
