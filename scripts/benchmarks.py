@@ -48,8 +48,11 @@ SECTIONS = [
     ("particles", "One implicit cloth step, by size",
      ["cargo", "bench", "--bench", "particles"],
      "One Baraff–Witkin step of the `cloth` example's sheet at rest (k = 10⁴) and its parts: "
-     "kernel blocks, assembly, numeric Cholesky, solve; and half a second of the falling cloth, "
-     "Cholesky against block-Jacobi CG."),
+     "kernel blocks, assembly, numeric Cholesky, solve (`step_falling`: from the falling cloth "
+     "at t = 0.5 s); the quasi-Newton step at its defaults (8 L-BFGS iterations; "
+     "`step_quasi_newton`, `step_quasi_newton_falling`) and its one-time set-up "
+     "(`setup_quasi_newton`: link weights, symbolic and numeric factorization of the link "
+     "Laplacian); and half a second of the falling cloth, Cholesky against block-Jacobi CG."),
     ("gray_scott", "Gray–Scott: one implicit step by size, and Krylov solves",
      ["cargo", "bench", "--bench", "gray_scott", "--", "--skip", "equal_accuracy"],
      "One linearized implicit Euler step at Pearson's set-up (h = 10) and its parts (`jacobian`, "
