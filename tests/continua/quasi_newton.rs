@@ -396,3 +396,56 @@ fn absurd_options_are_honoured() {
         assert_eq!(*x, x0 + H * v0);
     }
 }
+
+/// A force that stiffens far faster over the step than the link Laplacian from the start
+/// expects (the hardening rope at a cubic coefficient of 10¹², kicked at ten times its speed):
+/// no step along the quasi-Newton direction lowers the objective, and the attempt fails as
+/// `LineSearch` with every value finite, whose advice names the options that help, not as a
+/// non-finite model (as it was reported before); with halvings allowed the step is split and
+/// completes.
+#[test]
+fn a_failed_line_search_is_named_and_the_step_halved() {
+    let mut model = rope();
+    model.cubic = 1e12;
+    model.v.iter_mut().for_each(|v| *v *= 10.0);
+    let state = model.state();
+    let once = NewtonOptions {
+        max_halvings: 0,
+        ..quasi_newton(200, 1e-9)
+    };
+    let error = Stepper::<Hardening, ImplicitEuler<Hardening>>::with_newton(
+        &model,
+        state.clone(),
+        0.0,
+        H,
+        &once,
+    )
+    .and_then(|mut stepper| stepper.step())
+    .unwrap_err();
+    let Error::NewtonDidNotConverge {
+        cause, residual, ..
+    } = &error
+    else {
+        panic!("{error}");
+    };
+    assert_eq!(*cause, odyn::NewtonFailure::LineSearch, "{error}");
+    assert!(residual.is_finite(), "{error}");
+    assert!(
+        error.to_string().contains("ParticleSolve::Newton"),
+        "{error}"
+    );
+    // With the default halvings the step is split where the line search fails and completes:
+    // every iterate accepted on the way descended.
+    let mut stepper = Stepper::<Hardening, ImplicitEuler<Hardening>>::with_newton(
+        &model,
+        state,
+        0.0,
+        H,
+        &quasi_newton(200, 1e-9),
+    )
+    .unwrap();
+    stepper.step().unwrap();
+    assert_eq!(stepper.t(), H);
+    let finite = stepper.state().as_slice().iter().all(|c| c.is_finite());
+    assert!(finite);
+}

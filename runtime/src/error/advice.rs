@@ -71,6 +71,11 @@ pub enum NewtonFailure {
     /// model's scales, such as a mass of 1e-300 beside a stiffness of 100, span more than f64
     /// holds) or met a singular matrix its factorization did not see.
     UpdateNotFinite,
+    /// The quasi-Newton solve found no step along its direction, down to a thousandth of it,
+    /// that lowered the implicit Euler objective, with every value finite: the forces stiffen
+    /// faster over the step than the link Laplacian (made from the Jacobian at the run's start)
+    /// expects.
+    LineSearch,
 }
 
 impl NewtonFailure {
@@ -80,6 +85,12 @@ impl NewtonFailure {
             NewtonFailure::Iterations => format!(
                 "it was still converging when its {iters} iterations ran out; raise \
                  `NewtonOptions::max_iterations`"
+            ),
+            NewtonFailure::LineSearch => format!(
+                "no step along the quasi-Newton direction lowered the implicit Euler objective \
+                 (the forces stiffen over the step faster than the link Laplacian from the run's \
+                 start expects); reduce dt, raise `NewtonOptions::max_halvings` (now \
+                 {halvings}) so the step can be split further, or use `ParticleSolve::Newton`"
             ),
             NewtonFailure::Diverging | NewtonFailure::Singular => format!(
                 "{}; reduce dt, or raise `NewtonOptions::max_halvings` (now {halvings}) so the \

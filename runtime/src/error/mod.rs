@@ -328,7 +328,8 @@ impl Error {
                         | NewtonFailure::Diverging
                         | NewtonFailure::Singular
                         | NewtonFailure::NotFinite
-                        | NewtonFailure::UpdateNotFinite,
+                        | NewtonFailure::UpdateNotFinite
+                        | NewtonFailure::LineSearch,
                     ..
                 }
             )

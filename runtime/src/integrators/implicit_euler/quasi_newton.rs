@@ -94,8 +94,9 @@ impl QuasiNewton {
     /// Solves the step of size `h` from `start` into `y`; `derivative` writes f(tₙ₊₁, y) (the
     /// velocities, then the accelerations) into its second argument.
     ///
-    /// Errors: the iterations made, the residual and why, when A cannot be factorized or no
-    /// step along a descent direction keeps the forces finite.
+    /// Errors: the iterations made, the residual and why, when A cannot be factorized
+    /// (`Singular`), or no step along a descent direction down to a thousandth of it lowers the
+    /// objective (`LineSearch`) or keeps the forces finite (`NotFinite`).
     pub(super) fn solve<S: State>(
         &mut self,
         h: f64,
@@ -140,7 +141,12 @@ impl QuasiNewton {
                 alpha *= 0.5;
                 if alpha < 1e-3 {
                     // The caller discards y; the report carries the last iterate's residual.
-                    return Err((self.iterations, self.measure, NewtonFailure::NotFinite));
+                    let cause = if measure.is_finite() {
+                        NewtonFailure::LineSearch
+                    } else {
+                        NewtonFailure::NotFinite
+                    };
+                    return Err((self.iterations, self.measure, cause));
                 }
             }
             self.history
