@@ -31,18 +31,56 @@ const CHECK_STEPS: u32 = 120;
 /// x–z plane and falls towards −y.
 const VIEW: [f64; 2] = [0.4, 0.25];
 
-/// How implicit Euler's step is solved: its name on the page, its label.
-const SOLVES: [(&str, &str); 2] = [
-    ("baraff_witkin", "one Newton step (Baraff–Witkin)"),
-    ("quasi_newton", "quasi-Newton (L-BFGS, 8 iterations)"),
-];
+/// How implicit Euler's step is solved.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Solve {
+    /// As Baraff & Witkin take it ("Large Steps in Cloth Simulation", 1998, §3): one Newton
+    /// iteration a step on the spring Jacobian made positive definite, so one sparse Cholesky
+    /// factorization a step (full Newton on the falling sheet takes ~8).
+    BaraffWitkin,
+    /// The quasi-Newton solve at its defaults (Liu, Bouaziz & Kavan 2017): one factorization of
+    /// the link Laplacian a run and 8 L-BFGS iterations a step.
+    QuasiNewton,
+}
+
+impl Solve {
+    const ALL: [Solve; 2] = [Solve::BaraffWitkin, Solve::QuasiNewton];
+
+    /// Its name on the page.
+    fn name(self) -> &'static str {
+        match self {
+            Solve::BaraffWitkin => "baraff_witkin",
+            Solve::QuasiNewton => "quasi_newton",
+        }
+    }
+
+    fn label(self) -> &'static str {
+        match self {
+            Solve::BaraffWitkin => "one Newton step (Baraff–Witkin)",
+            Solve::QuasiNewton => "quasi-Newton (L-BFGS, 8 iterations)",
+        }
+    }
+
+    fn newton(self) -> NewtonOptions {
+        match self {
+            Solve::BaraffWitkin => NewtonOptions {
+                linearized: true,
+                definite: true,
+                ..NewtonOptions::default()
+            },
+            Solve::QuasiNewton => NewtonOptions {
+                particle_solve: ParticleSolve::QuasiNewton(QuasiNewtonOptions::default()),
+                ..NewtonOptions::default()
+            },
+        }
+    }
+}
 
 /// The cloth panel.
 #[wasm_bindgen]
 pub struct ClothLab {
     model: &'static Cloth,
-    /// Index into [`SOLVES`].
-    solve: usize,
+    solve: Solve,
     structural: Vec<usize>,
     implicit: Stepper<'static, Cloth, ImplicitEuler<Cloth>>,
     xpbd: Xpbd<3>,
@@ -102,8 +140,8 @@ impl ClothLab {
         Ok(ClothLab {
             model,
             structural,
-            solve: 0,
-            implicit: js(implicit(model, 0))?,
+            solve: Solve::BaraffWitkin,
+            implicit: js(implicit(model, Solve::BaraffWitkin))?,
             xpbd: js(model.as_xpbd(SUBSTEPS))?,
             clock: FixedTimestep::new(),
             grabbed: None,
@@ -112,20 +150,20 @@ impl ClothLab {
 
     /// The names of implicit Euler's solves, for [`ClothLab::set_solve`].
     pub fn solves() -> Vec<String> {
-        SOLVES.iter().map(|(name, _)| name.to_string()).collect()
+        Solve::ALL.map(|s| s.name().to_owned()).to_vec()
     }
 
     /// Their labels.
     pub fn solve_labels() -> Vec<String> {
-        SOLVES.iter().map(|(_, label)| label.to_string()).collect()
+        Solve::ALL.map(|s| s.label().to_owned()).to_vec()
     }
 
     /// Solves implicit Euler's steps by `name` (one of [`ClothLab::solves`]) from the level
     /// sheet again.
     pub fn set_solve(&mut self, name: &str) -> Js<()> {
-        self.solve = SOLVES
-            .iter()
-            .position(|(known, _)| *known == name)
+        self.solve = Solve::ALL
+            .into_iter()
+            .find(|s| s.name() == name)
             .ok_or_else(|| format!("no solve named {name:?}: one of {:?}", Self::solves()))?;
         self.restart()
     }
@@ -211,7 +249,7 @@ impl ClothLab {
         format!(
             "XPBD ({SUBSTEPS} substeps) | {}, {}",
             Method::ImplicitEuler.info().label,
-            SOLVES[self.solve].1
+            self.solve.label()
         )
     }
 
@@ -258,28 +296,12 @@ impl ClothLab {
     }
 }
 
-/// Implicit Euler solved by [`SOLVES`]`[solve]`: as Baraff & Witkin take it ("Large Steps in
-/// Cloth Simulation", 1998, §3), one Newton iteration a step on the spring Jacobian made
-/// positive definite, so one sparse Cholesky factorization a step (full Newton on the falling
-/// sheet takes ~8); or by the quasi-Newton solve at its defaults (Liu, Bouaziz & Kavan 2017),
-/// one factorization of the link Laplacian a run and 8 L-BFGS iterations a step.
+/// Implicit Euler on the cloth, its steps solved by `solve`.
 fn implicit(
     model: &'static Cloth,
-    solve: usize,
+    solve: Solve,
 ) -> odyn::Result<Stepper<'static, Cloth, ImplicitEuler<Cloth>>> {
-    let newton = if solve == 0 {
-        NewtonOptions {
-            linearized: true,
-            definite: true,
-            ..NewtonOptions::default()
-        }
-    } else {
-        NewtonOptions {
-            particle_solve: ParticleSolve::QuasiNewton(QuasiNewtonOptions::default()),
-            ..NewtonOptions::default()
-        }
-    };
-    Stepper::with_newton(model, model.state(), 0.0, DT, &newton)
+    Stepper::with_newton(model, model.state(), 0.0, DT, &solve.newton())
 }
 
 /// Screen coordinates of `x` in the oblique view.
