@@ -171,16 +171,17 @@ mod tests {
         assert!(lab.method().contains("quasi-Newton"), "{}", lab.method());
         assert_eq!(lab.check().unwrap(), 120);
         assert_eq!(lab.factorizations(), 1.0);
-        assert!(lab.grab(
-            lab.points()[2 * (2 * cloth::SIDE * cloth::SIDE - 1)],
-            lab.points()[2 * (2 * cloth::SIDE * cloth::SIDE - 1) + 1],
-            0.05
-        ));
+        // The implicit cloth's free far corner, the last of the drawn points, where it is now.
+        let corner = 2 * cloth::SIDE * cloth::SIDE - 1;
+        let at = |lab: &ClothLab| {
+            let points = lab.points();
+            (points[2 * corner], points[2 * corner + 1])
+        };
+        let (sx, sy) = at(&lab);
+        assert!(lab.grab(sx, sy, 0.05));
         lab.drag(1.2, -0.3);
         lab.frame(1.0 / 60.0).unwrap();
-        let points = lab.points();
-        let corner = 2 * cloth::SIDE * cloth::SIDE - 1;
-        let (x, y) = (points[2 * corner], points[2 * corner + 1]);
+        let (x, y) = at(&lab);
         assert!(
             (x - 1.2).abs() < 1e-12 && (y + 0.3).abs() < 1e-12,
             "({x}, {y})"

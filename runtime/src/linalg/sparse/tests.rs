@@ -37,6 +37,14 @@ fn fill(s: &mut SparseSolver, entries: &[(usize, usize)], skew: f64) {
     }
 }
 
+/// max |aᵢ − bᵢ|.
+fn largest_difference(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+}
+
 /// A 2-D Laplacian-like SPD matrix, and an unsymmetric one, solved directly and by each
 /// Krylov configuration: same answer to the Krylov tolerance.
 #[test]
@@ -70,12 +78,7 @@ fn krylov_solves_agree_with_the_direct_solve() {
                 krylov.factorize().expect("the matrix is regular");
                 krylov.rhs.copy_from_slice(&b);
                 krylov.substitute().expect("the matrix is regular");
-                let error = krylov
-                    .rhs
-                    .iter()
-                    .zip(&direct.rhs)
-                    .map(|(x, y)| (x - y).abs())
-                    .fold(0.0, f64::max);
+                let error = largest_difference(&krylov.rhs, &direct.rhs);
                 assert!(error < 1e-10, "{skew} {preconditioner:?}: {error:e}");
             }
             assert_eq!(krylov.counts.krylov.fallbacks, 0, "{:?}", krylov.counts);
@@ -181,11 +184,6 @@ fn a_solver_configured_again_keeps_its_preconditioners() {
     solver.rhs.copy_from_slice(&b);
     solver.substitute().expect("regular");
     assert_eq!(solver.counts.cholesky, 1, "{:?}", solver.counts);
-    let error = solver
-        .rhs
-        .iter()
-        .zip(&direct.rhs)
-        .map(|(x, y)| (x - y).abs())
-        .fold(0.0, f64::max);
+    let error = largest_difference(&solver.rhs, &direct.rhs);
     assert!(error < 1e-10, "{error:e}");
 }
