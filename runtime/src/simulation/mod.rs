@@ -37,6 +37,11 @@ pub trait Simulate: Model + Sized {
 impl<M: Model> Simulate for M {}
 
 /// A run being configured: created by [`Simulate::simulate`], finished by [`Simulation::run`].
+///
+/// Each setter is named for the option it sets. Where an option has a short form of plain
+/// numbers beside its full type, the short form has the plain name and the full one `with_`:
+/// [`Simulation::tolerances`]`(rtol, atol)` and [`Simulation::with_tolerances`]`(Tolerances)`
+/// (per-component tolerances); [`Simulation::with_options`] replaces every option at once.
 #[derive(Clone, Debug)]
 pub struct Simulation<'m, M: Model> {
     model: &'m M,

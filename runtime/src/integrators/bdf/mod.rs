@@ -12,9 +12,8 @@ use coefficients::{
 };
 use newton::Convergence;
 
-use super::DenseStep;
 use super::linearization::finite_jacobian;
-use super::{Integrator, Step, copies};
+use super::{DenseStep, Integrator, Step, copies};
 use crate::math::Transcendental;
 use crate::{Error, Jacobian, Method, NewtonMatrix, NewtonOptions, Result, State, Stats};
 

@@ -178,7 +178,14 @@ impl<M: Jacobian> Bdf<M> {
             stats.linear_solves += 1;
             self.jacobian
                 .solve(&mut self.factors, update)
-                .map_err(|_| fail(iter + 1, residual, NewtonFailure::NotFinite))?;
+                .map_err(|error| {
+                    // The residual is finite here, so the model is not to blame.
+                    let cause = match error {
+                        crate::SolveError::Singular => NewtonFailure::Singular,
+                        _ => NewtonFailure::UpdateNotFinite,
+                    };
+                    fail(iter + 1, residual, cause)
+                })?;
             if scale != 1.0 {
                 for u in update.iter_mut() {
                     *u *= scale;

@@ -124,8 +124,13 @@ impl QuasiNewton {
             }
             self.iterations += 1;
             let slope = self.descend();
-            if slope.is_nan() || slope >= 0.0 {
+            if !slope.is_finite() {
                 return Err((self.iterations, self.measure, NewtonFailure::NotFinite));
+            }
+            if slope >= 0.0 {
+                // Not even the preconditioned gradient descends (a residual at rounding level,
+                // or a factorization spoiled by rounding): no step can lower the objective.
+                return Err((self.iterations, self.measure, NewtonFailure::LineSearch));
             }
             let mut alpha = 1.0;
             loop {
