@@ -1,21 +1,28 @@
 //! The particle-to-grid scatter in parallel, with the same sums for any thread count.
 //!
 //! A particle whose stencil starts at row r writes rows r, r + 1, r + 2 (`bspline.rs`). The
-//! particles are sorted by r into strips of [`ROWS`] rows (a counting sort, stable: by index
-//! within a strip), so strip s writes rows [s·ROWS, s·ROWS + ROWS + 2) only. Strips of the same
-//! parity then write disjoint rows (ROWS ≥ 2), and run in parallel: first the even strips, then
-//! the odd ones, each strip's particles in order. Every node's sum is then taken in one order —
-//! its even strip's particles, then its odd strip's — fixed by the positions alone, never by how
-//! rayon shares the strips among threads. The disjoint rows are handed out as `&mut` chunks of
-//! the grid (`par_chunks_mut`), so no lock, atomic or unsafe code is needed.
+//! grid's rows are cut into strips of at least [`MIN_ROWS`] rows, each holding about the same
+//! number of particles (about 1/[`STRIPS`] of them, by a count of the particles per row), and
+//! the particles are sorted by strip (a counting sort, stable: by index within a strip). Strip s,
+//! rows [aₛ, aₛ₊₁), then writes rows [aₛ, aₛ₊₁ + 2) only, so strips of the same parity write
+//! disjoint rows and run in parallel: first the even strips, then the odd ones, each strip's
+//! particles in order. Every node's sum is then taken in one order — its even strip's
+//! particles, then its odd strip's — fixed by the positions alone (the strips' edges are too),
+//! never by how rayon shares the strips among threads. The disjoint rows are handed out as
+//! `&mut` parts of the grid split at the strips' edges, so no lock, atomic or unsafe code is
+//! needed.
 //!
-//! The row band a strip touches (ROWS + 2 rows of the grid) stays in the first-level cache while
-//! its particles scatter into it; a serial scatter in particle order writes all over the grid.
+//! Strips of equal particle counts keep both threads busy to the end of each pass where
+//! particles crowd into a few rows (a splash on the floor); the row band a strip touches stays
+//! in cache while its particles scatter into it, where a serial scatter in particle order
+//! writes all over the grid.
 
-use rayon::prelude::*;
+/// Strips the rows are cut into, about (fewer when the particles span fewer than
+/// 2·`STRIPS` rows): 16 tasks a pass, enough to balance a few threads.
+pub(crate) const STRIPS: usize = 32;
 
-/// Rows of a strip: each parallel task scatters the particles of 4 stencil rows, writing 6.
-pub(crate) const ROWS: usize = 4;
+/// Rows of a strip at least: strip s writes 2 rows into strip s + 1, never into s + 2.
+pub(crate) const MIN_ROWS: usize = 2;
 
 /// Particles from which the passes of a step run on rayon's threads.
 pub(crate) const PARALLEL_FROM: usize = 4096;
@@ -31,10 +38,14 @@ pub(crate) fn parallel(particles: usize) -> bool {
 /// The particles sorted by strip.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Strips {
+    /// Strip s is rows `edges[s]..edges[s + 1]`; the last edge is the grid's row count.
+    edges: Vec<usize>,
     /// Particles of strip s: `order[start[s]..start[s + 1]]`.
     start: Vec<usize>,
     /// Particle indices, strip by strip, ascending within a strip.
     order: Vec<u32>,
+    /// Per row: its particles while sorting, then its strip.
+    row: Vec<usize>,
     /// The lowest and highest stencil rows of any particle (an empty range when there are no
     /// particles): the grid outside rows [low, high + 3) is untouched.
     rows: (usize, usize),
@@ -44,28 +55,49 @@ impl Strips {
     /// Sorts particles whose stencils start at the rows `base` (every row below `grid_rows` −
     /// 2) into strips.
     pub(crate) fn sort(&mut self, base: &[u32], grid_rows: usize) {
-        let strips = grid_rows.div_ceil(ROWS);
-        self.start.clear();
-        self.start.resize(strips + 2, 0);
+        self.row.clear();
+        self.row.resize(grid_rows, 0);
         let (mut low, mut high) = (usize::MAX, 0);
         for &r in base {
             let r = r as usize;
             low = low.min(r);
             high = high.max(r);
-            self.start[r / ROWS + 2] += 1;
+            self.row[r] += 1;
         }
         self.rows = (low, high);
-        for s in 2..self.start.len() {
-            self.start[s] += self.start[s - 1];
+        // A strip closes once it holds its share and spans MIN_ROWS rows, leaving the last
+        // strip MIN_ROWS rows at least.
+        let share = base.len().div_ceil(STRIPS).max(1);
+        self.edges.clear();
+        self.edges.push(0);
+        self.start.clear();
+        self.start.push(0);
+        let (mut held, mut before) = (0, 0);
+        for r in 0..grid_rows {
+            held += self.row[r];
+            let edge = *self.edges.last().unwrap_or(&0);
+            self.row[r] = self.edges.len() - 1;
+            if held >= share && r + 1 - edge >= MIN_ROWS && r + 1 + MIN_ROWS <= grid_rows {
+                self.edges.push(r + 1);
+                before += held;
+                self.start.push(before);
+                held = 0;
+            }
         }
-        // start[s + 1] now counts the particles of strips below s: where strip s begins.
+        self.edges.push(grid_rows.max(1));
+        // start[s] is where strip s begins. Each start[s + 1] becomes strip s's cursor (from
+        // where it begins), which placing its particles advances to where strip s + 1 begins.
+        self.start.push(base.len());
         self.order.resize(base.len(), 0);
+        let strips = self.edges.len() - 1;
+        for s in (0..strips).rev() {
+            self.start[s + 1] = self.start[s];
+        }
         for (p, &r) in base.iter().enumerate() {
-            let slot = &mut self.start[r as usize / ROWS + 1];
+            let slot = &mut self.start[self.row[r as usize] + 1];
             self.order[*slot] = p as u32;
             *slot += 1;
         }
-        self.start.pop();
     }
 
     /// The rows a scatter writes, [low, high): empty with no particles.
@@ -82,11 +114,11 @@ impl Strips {
     /// strip may write, `particles` its particles in order.
     ///
     /// Each row is handed once to `prepare(rows, first_row)` before any particle adds to it, and
-    /// once to `finish(rows, first_row)` after every particle has: the even pass's bands of
-    /// 2·[`ROWS`] rows tile the grid, so each prepares its band and then scatters its strip;
-    /// the odd pass's bands, [`ROWS`] rows up, scatter their strip and then finish their band,
-    /// which no later strip reaches (strip s writes rows below (s + 1)·ROWS + 2 ≤ (s + 2)·ROWS);
-    /// the first [`ROWS`] rows are finished between the passes. Zeroing the grid and updating
+    /// once to `finish(rows, first_row)` after every particle has: the even pass's bands,
+    /// strips 2k and 2k + 1, tile the grid, so each prepares its band and then scatters strip 2k;
+    /// the odd pass's bands, strips 2k + 1 and 2k + 2, scatter strip 2k + 1 and then finish their
+    /// band, which no later strip reaches (strip s writes 2 rows past its end, inside strip
+    /// s + 1); strip 0's rows are finished between the passes. Zeroing the grid and updating
     /// its nodes ride in the scatter's two passes instead of passes of their own.
     pub(crate) fn scatter<T: Send>(
         &self,
@@ -96,34 +128,81 @@ impl Strips {
         scatter: impl Fn(&mut [T], usize, &[u32]) + Sync,
         finish: impl Fn(&mut [T], usize) + Sync,
     ) {
-        let band = 2 * ROWS * row_len;
-        let strip = |s: usize, rows: &mut [T]| {
-            if s + 1 < self.start.len() {
+        let strips = self.edges.len().saturating_sub(1);
+        if strips == 0 {
+            return;
+        }
+        let parallel = parallel(self.order.len());
+        let strip = |s: usize, rows: &mut [T], first: usize| {
+            if s < strips {
                 let particles = &self.order[self.start[s]..self.start[s + 1]];
                 if !particles.is_empty() {
-                    scatter(rows, s * ROWS, particles);
+                    scatter(rows, first, particles);
                 }
             }
         };
-        let even = |(k, rows): (usize, &mut [T])| {
-            prepare(rows, 2 * k * ROWS);
-            strip(2 * k, rows);
+        let bands = Bands {
+            edges: &self.edges,
+            row_len,
+            parallel,
         };
-        let odd = |(k, rows): (usize, &mut [T])| {
-            strip(2 * k + 1, rows);
-            finish(rows, (2 * k + 1) * ROWS);
-        };
-        if !parallel(self.order.len()) {
-            grid.chunks_mut(band).enumerate().for_each(even);
-        } else {
-            grid.par_chunks_mut(band).enumerate().for_each(even);
+        bands.run(grid, 0, 0, strips.div_ceil(2), &|k, rows, first| {
+            prepare(rows, first);
+            strip(2 * k, rows, first);
+        });
+        let head = self.edges[1];
+        let (head_rows, rest) = grid.split_at_mut((head * row_len).min(grid.len()));
+        finish(head_rows, 0);
+        if strips > 1 {
+            bands.run(rest, 1, 0, strips / 2, &|k, rows, first| {
+                strip(2 * k + 1, rows, first);
+                finish(rows, first);
+            });
         }
-        let (head, rest) = grid.split_at_mut((ROWS * row_len).min(grid.len()));
-        finish(head, 0);
-        if !parallel(self.order.len()) {
-            rest.chunks_mut(band).enumerate().for_each(odd);
+    }
+}
+
+/// The grid cut at every other strip edge: band k of a pass that starts at strip `from` is
+/// strips `from` + 2k and `from` + 2k + 1.
+struct Bands<'a> {
+    edges: &'a [usize],
+    row_len: usize,
+    parallel: bool,
+}
+
+impl Bands<'_> {
+    /// The first row of band k of the pass from strip `from` (the grid's end past the last).
+    fn edge(&self, from: usize, k: usize) -> usize {
+        self.edges[(from + 2 * k).min(self.edges.len() - 1)]
+    }
+
+    /// Runs `task(k, rows, first_row)` for bands `low..high` of the pass from strip `from`,
+    /// `rows` starting at band `low`'s first row: halves of the bands on two of rayon's threads,
+    /// recursively, when the pass is parallel.
+    fn run<T: Send>(
+        &self,
+        rows: &mut [T],
+        from: usize,
+        low: usize,
+        high: usize,
+        task: &(impl Fn(usize, &mut [T], usize) + Sync),
+    ) {
+        let first = self.edge(from, low);
+        if high - low == 1 {
+            task(low, rows, first);
+            return;
+        }
+        let middle = (low + high) / 2;
+        let split = ((self.edge(from, middle) - first) * self.row_len).min(rows.len());
+        let (left, right) = rows.split_at_mut(split);
+        if self.parallel {
+            rayon::join(
+                || self.run(left, from, low, middle, task),
+                || self.run(right, from, middle, high, task),
+            );
         } else {
-            rest.par_chunks_mut(band).enumerate().for_each(odd);
+            self.run(left, from, low, middle, task);
+            self.run(right, from, middle, high, task);
         }
     }
 }
@@ -132,25 +211,39 @@ impl Strips {
 mod tests {
     use super::*;
 
-    /// Every particle lands in its strip, in index order, and a scatter of each particle's
-    /// index onto its rows sums the same whatever the thread count.
+    /// Every particle lands in its strip, in index order; strips span MIN_ROWS rows at least
+    /// and hold about a STRIPS-th of the particles each; and a scatter of each particle's index
+    /// onto its rows sums the same whatever the thread count.
     #[test]
     fn strips_hold_their_particles_in_order_and_scatter_the_same_on_any_pool() {
         let rows = 23;
         let mut draw = crate::linalg::generator(7);
-        let base: Vec<u32> = (0..5000).map(|_| (draw() % (rows - 2)) as u32).collect();
+        // Crowded into rows 12–15, with a few particles elsewhere (a splash on the floor).
+        let base: Vec<u32> = (0..5000)
+            .map(|p| {
+                let r = draw() % (rows - 2);
+                (if p % 10 == 0 { r } else { 12 + r % 4 }) as u32
+            })
+            .collect();
         let mut strips = Strips::default();
         strips.sort(&base, rows);
         assert_eq!(strips.order.len(), base.len());
-        for s in 0..strips.start.len() - 1 {
+        assert_eq!(strips.edges.first(), Some(&0));
+        assert_eq!(strips.edges.last(), Some(&rows));
+        for s in 0..strips.edges.len() - 1 {
+            let (low, high) = (strips.edges[s], strips.edges[s + 1]);
+            assert!(high - low >= MIN_ROWS, "strip {s}: rows {low}..{high}");
             let members = &strips.order[strips.start[s]..strips.start[s + 1]];
             assert!(members.windows(2).all(|w| w[0] < w[1]));
             assert!(
                 members
                     .iter()
-                    .all(|&p| base[p as usize] as usize / ROWS == s)
+                    .all(|&p| (low..high).contains(&(base[p as usize] as usize)))
             );
         }
+        // Four crowded rows of 4 500 particles in strips of 2 rows: no strip holds more
+        // than two of them (2 250), against 4 500 in the crowded strip of a fixed 4-row cut.
+        assert!(strips.start.windows(2).all(|w| w[1] - w[0] <= 2 * 1200));
         let run = |threads| {
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(threads)
