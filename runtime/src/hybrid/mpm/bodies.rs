@@ -81,8 +81,6 @@ impl Mpm {
         self.c.resize(start + n, Matrix2::zeros());
         self.f.resize(start + n, Matrix2::identity());
         self.j.resize(start + n, 1.0);
-        let tau = model.kirchhoff(&Matrix2::identity(), 1.0);
-        self.stress.resize(start + n, tau.map(|t| volume * t));
         self.mass.resize(start + n, material.density() * volume);
         self.volume.resize(start + n, volume);
         self.material.resize(start + n, index);
@@ -227,7 +225,6 @@ impl Mpm {
         permute(&mut self.c, &order);
         permute(&mut self.f, &order);
         permute(&mut self.j, &order);
-        permute(&mut self.stress, &order);
         permute(&mut self.mass, &order);
         permute(&mut self.volume, &order);
         permute(&mut self.material, &order);
@@ -259,7 +256,6 @@ impl Mpm {
         self.c.try_reserve(n)?;
         self.f.try_reserve(n)?;
         self.j.try_reserve(n)?;
-        self.stress.try_reserve(n)?;
         self.mass.try_reserve(n)?;
         self.volume.try_reserve(n)?;
         self.material.try_reserve(n)?;

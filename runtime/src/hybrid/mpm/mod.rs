@@ -9,15 +9,14 @@
 //! 1. **Particles to grid**: each particle adds, at the 3×3 nodes its quadratic B-spline
 //!    reaches, wᵢₚ·mₚ to the mass and wᵢₚ·(mₚvₚ + Aₚ·(xᵢ − xₚ)) to the momentum, with
 //!    Aₚ = mₚCₚ − Δt·(4/h²)·Vₚ⁰·τₚ: APIC's affine momentum and the impulse of the particle's
-//!    Kirchhoff stress τₚ over the step, in one term (MLS's choice of the force's gradient
-//!    makes the two share a form).
+//!    Kirchhoff stress τₚ (from its F and J, [`Material`]) over the step, in one term (MLS's
+//!    choice of the force's gradient makes the two share a form).
 //! 2. **Grid**: velocity vᵢ = (momentum)/mᵢ + Δt·g; nodes within `wall` nodes of the box's
 //!    edge lose the velocity into the wall (or all of it, [`Walls::Sticky`]). Each row is
 //!    updated as soon as its particles have all scattered, inside the scatter's passes.
 //! 3. **Grid to particles**: vₚ = Σ wᵢₚvᵢ, Cₚ = 4/h²·Σ wᵢₚvᵢ(xᵢ − xₚ)ᵀ (which is also the
 //!    velocity gradient), xₚ += Δt·vₚ; the deformation follows, F ← (I + Δt·Cₚ)·F (or
-//!    J ← J·(1 + Δt·tr Cₚ) for a fluid), then snow's plasticity, then the stress τ for the next
-//!    step ([`Material`]).
+//!    J ← J·(1 + Δt·tr Cₚ) for a fluid), then snow's plasticity ([`Material`]).
 //!
 //! Mass is conserved exactly (particles are never made or lost); with APIC the transfers also
 //! conserve linear and angular momentum exactly, and the stress of an isotropic material exerts
@@ -113,8 +112,6 @@ pub struct Mpm {
     f: Vec<Matrix2<f64>>,
     /// J for a fluid, J_P for snow, 1 for an elastic solid.
     j: Vec<f64>,
-    /// Vₚ⁰·τₚ, the stress integrated over the particle's volume: (xx, xy, yy).
-    stress: Vec<[f64; 3]>,
     mass: Vec<f64>,
     volume: Vec<f64>,
     /// Index of each particle's material in `materials`.
@@ -200,7 +197,6 @@ impl Mpm {
             c: Vec::new(),
             f: Vec::new(),
             j: Vec::new(),
-            stress: Vec::new(),
             mass: Vec::new(),
             volume: Vec::new(),
             material: Vec::new(),

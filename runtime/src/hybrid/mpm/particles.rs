@@ -1,5 +1,5 @@
-//! The two transfers of an MPM step: particles to grid (the scatter, by strips) and grid to
-//! particles (the gather, with the deformation and stress updates).
+//! The two transfers of an MPM step: particles to grid (the scatter, by strips, with each
+//! particle's stress) and grid to particles (the gather, with the deformation update).
 
 use nalgebra::{Matrix2, Vector2};
 use rayon::prelude::*;
@@ -48,13 +48,18 @@ impl Mpm {
             0.0
         };
         let impulse = -dt * 4.0 * inv_h * inv_h;
-        let (x, v, c, mass, stress) = (&self.x, &self.v, &self.c, &self.mass, &self.stress);
+        let (x, v, c, mass) = (&self.x, &self.v, &self.c, &self.mass);
+        let (f, j, volume) = (&self.f, &self.j, &self.volume);
+        let (material, materials) = (&self.material, &self.materials);
         let scatter = |band: &mut [[f64; 3]], first: usize, particles: &[u32]| {
             for &p in particles {
                 let p = p as usize;
                 let s = Stencil::at([x[p].x * inv_h, x[p].y * inv_h]);
                 let m = mass[p];
-                let [sxx, sxy, syy] = stress[p];
+                // Vₚ⁰·τₚ, computed here from F and J rather than stored by the gather: a
+                // fluid reads J (8 bytes) where a stored stress is written and read (24 each).
+                let model = &materials[material[p] as usize].1;
+                let [sxx, sxy, syy] = model.kirchhoff(&f[p], j[p]).map(|t| volume[p] * t);
                 let a = (affine * m) * c[p] + impulse * Matrix2::new(sxx, sxy, sxy, syy);
                 // A·(xᵢ − xₚ) with xᵢ − xₚ = ((i, j) − fx)·h, split so the loop adds columns.
                 let q = m * v[p] - h * (a * Vector2::new(s.fx[0], s.fx[1]));
@@ -78,15 +83,15 @@ impl Mpm {
             .scatter(&mut self.grid, nx, prepare, scatter, finish);
     }
 
-    /// Velocity and affine velocity from the grid, the move, the deformation and the stress of
-    /// every particle. Returns the first particle that left the grid's reach, if any.
+    /// Velocity and affine velocity from the grid, the move and the deformation of every
+    /// particle (the stress is the scatter's, from the deformation). Returns the first particle that left the grid's reach, if any.
     pub(super) fn gather(&mut self, dt: f64) -> Option<usize> {
         let (nx, ny, h) = (self.options.nx, self.options.ny, self.options.cell);
         let inv_h = 1.0 / h;
         let (reach_x, reach_y) = (nx as f64 - 1.5, ny as f64 - 1.5);
-        let (grid, volume) = (&self.grid, &self.volume);
+        let grid = &self.grid;
         let (material, materials) = (&self.material, &self.materials);
-        let chunk = |(k, (((((x, v), c), f), j), stress)): Chunk<'_>| {
+        let chunk = |(k, ((((x, v), c), f), j)): Chunk<'_>| {
             let mut escaped = None;
             for i in 0..x.len() {
                 let p = k * CHUNK + i;
@@ -117,8 +122,6 @@ impl Mpm {
                 x[i] += dt * v[i];
                 let model = &materials[material[p] as usize].1;
                 model.deform(&mut f[i], &mut j[i], &c[i], dt);
-                let tau = model.kirchhoff(&f[i], j[i]);
-                stress[i] = tau.map(|t| volume[p] * t);
                 let (gx, gy) = (x[i].x * inv_h, x[i].y * inv_h);
                 let inside = gx >= 0.5 && gx < reach_x && gy >= 0.5 && gy < reach_y;
                 if !inside && escaped.is_none() {
@@ -135,7 +138,6 @@ impl Mpm {
                 .zip(self.c.chunks_mut(CHUNK))
                 .zip(self.f.chunks_mut(CHUNK))
                 .zip(self.j.chunks_mut(CHUNK))
-                .zip(self.stress.chunks_mut(CHUNK))
                 .enumerate()
                 .map(chunk)
                 .fold(None, first)
@@ -146,7 +148,6 @@ impl Mpm {
                 .zip(self.c.par_chunks_mut(CHUNK))
                 .zip(self.f.par_chunks_mut(CHUNK))
                 .zip(self.j.par_chunks_mut(CHUNK))
-                .zip(self.stress.par_chunks_mut(CHUNK))
                 .enumerate()
                 .map(chunk)
                 .reduce(|| None, first)
@@ -154,21 +155,17 @@ impl Mpm {
     }
 }
 
-/// A chunk of the particles the gather updates: its index, and its slices of x, v, C, F, J and
-/// the stress.
+/// A chunk of the particles the gather updates: its index, and its slices of x, v, C, F and J.
 type Chunk<'a> = (
     usize,
     (
         (
             (
-                (
-                    (&'a mut [Vector2<f64>], &'a mut [Vector2<f64>]),
-                    &'a mut [Matrix2<f64>],
-                ),
+                (&'a mut [Vector2<f64>], &'a mut [Vector2<f64>]),
                 &'a mut [Matrix2<f64>],
             ),
-            &'a mut [f64],
+            &'a mut [Matrix2<f64>],
         ),
-        &'a mut [[f64; 3]],
+        &'a mut [f64],
     ),
 );
