@@ -282,4 +282,57 @@ mod tests {
         assert!((total - expected).abs() < 1e-12);
         assert_eq!(strips.touched_rows().end, rows);
     }
+
+    /// Hostile layouts: no particles, one, all in one row, every row, grids of 3 to 9 rows and
+    /// more particles than a strip's share in every row. Each row is prepared once before any
+    /// particle adds to it and finished once after, every particle adds once, and 1 and 3
+    /// threads give the same grid.
+    #[test]
+    fn every_row_is_prepared_and_finished_once_in_any_layout() {
+        let layouts: Vec<(usize, Vec<u32>)> = vec![
+            (3, vec![]),
+            (3, vec![0]),
+            (4, vec![1, 1, 1]),
+            (5, vec![2; 100]),
+            (9, (0..7).collect()),
+            (9, (0..7000).map(|p| (p % 7) as u32).collect()),
+            (40, vec![37; 10]),
+            (40, (0..38).rev().collect()),
+        ];
+        for (rows, base) in layouts {
+            let mut strips = Strips::default();
+            strips.sort(&base, rows);
+            let run = |threads| {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .unwrap();
+                // Per row: [prepared, particles added, finished], with NaN until prepared.
+                pool.install(|| {
+                    let mut grid = vec![[f64::NAN, f64::NAN, 0.0]; rows];
+                    strips.scatter(
+                        &mut grid,
+                        1,
+                        |band, _| band.iter_mut().for_each(|row| *row = [1.0, 0.0, 0.0]),
+                        |band, first, particles| {
+                            for &p in particles {
+                                for k in 0..3 {
+                                    let row = &mut band[base[p as usize] as usize + k - first];
+                                    assert_eq!(row[2], 0.0, "added to after its finish");
+                                    row[1] += 1.0;
+                                }
+                            }
+                        },
+                        |band, _| band.iter_mut().for_each(|row| row[2] += 1.0),
+                    );
+                    grid
+                })
+            };
+            let one = run(1);
+            assert_eq!(one, run(3), "{rows} rows, {} particles", base.len());
+            assert!(one.iter().all(|row| row[0] == 1.0 && row[2] == 1.0));
+            let added: f64 = one.iter().map(|row| row[1]).sum();
+            assert_eq!(added, 3.0 * base.len() as f64);
+        }
+    }
 }
