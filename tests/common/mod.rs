@@ -13,6 +13,15 @@ pub use scenes::{
     SpringState, VanDerPol, VanDerPolState, slope,
 };
 
+/// `f` run in a pool of its own with `threads` threads (the thread-count independence tests).
+pub fn in_pool<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap()
+        .install(f)
+}
+
 /// A small deterministic generator (xorshift64*), so failures reproduce.
 pub struct Rng(pub u64);
 

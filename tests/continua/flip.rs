@@ -125,19 +125,15 @@ fn a_resting_pool_stays_at_rest() {
 #[test]
 fn results_do_not_depend_on_the_thread_count() {
     let run = |threads| {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap()
-            .install(|| {
-                // 32 cells across: 8 192 particles, above the count from which passes go
-                // parallel.
-                let mut flip = flip_dam_break(0.2, 32, Transfer::Apic).unwrap();
-                for _ in 0..20 {
-                    flip.step(flip.stable_dt()).unwrap();
-                }
-                (flip.x, flip.v)
-            })
+        crate::common::in_pool(threads, || {
+            // 32 cells across: 8 192 particles, above the count from which passes go
+            // parallel.
+            let mut flip = flip_dam_break(0.2, 32, Transfer::Apic).unwrap();
+            for _ in 0..20 {
+                flip.step(flip.stable_dt()).unwrap();
+            }
+            (flip.x, flip.v)
+        })
     };
     let one = run(1);
     assert_eq!(one.0.len(), 8192);

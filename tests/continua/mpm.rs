@@ -98,22 +98,18 @@ fn reference_snow_holds_its_shape_and_weak_snow_slumps() {
 #[test]
 fn results_do_not_depend_on_the_thread_count() {
     let run = |threads| {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap()
-            .install(|| {
-                let (mut mpm, dt) = jelly_water_snow(96).unwrap();
-                for _ in 0..60 {
-                    mpm.step(dt).unwrap();
-                }
-                (
-                    mpm.x.clone(),
-                    mpm.v.clone(),
-                    mpm.deformation().to_vec(),
-                    mpm.energy(),
-                )
-            })
+        crate::common::in_pool(threads, || {
+            let (mut mpm, dt) = jelly_water_snow(96).unwrap();
+            for _ in 0..60 {
+                mpm.step(dt).unwrap();
+            }
+            (
+                mpm.x.clone(),
+                mpm.v.clone(),
+                mpm.deformation().to_vec(),
+                mpm.energy(),
+            )
+        })
     };
     let one = run(1);
     assert_eq!(one.0.len(), 6632);
@@ -128,44 +124,40 @@ fn results_do_not_depend_on_the_thread_count() {
 #[test]
 fn crowded_rows_do_not_depend_on_the_thread_count() {
     let run = |threads| {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap()
-            .install(|| {
-                let v = Vector2::new;
-                let h = 1.0 / 64.0;
-                let mut mpm = Mpm::new(MpmOptions {
-                    nx: 64,
-                    ny: 64,
-                    cell: h,
-                    ..MpmOptions::default()
-                })
-                .unwrap();
-                let lattice = |n: usize, across: usize, x0: f64, y0: f64, gap: f64| {
-                    (0..n)
-                        .map(|k| {
-                            v(
-                                x0 + (k % across) as f64 * gap,
-                                y0 + (k / across) as f64 * gap,
-                            )
-                        })
-                        .collect::<Vec<_>>()
-                };
-                let low = lattice(6000, 500, 4.0 * h, 3.5 * h, 0.1 * h);
-                let high = lattice(1000, 100, 10.0 * h, 50.0 * h, 0.4 * h);
-                let water = Material::Fluid(Fluid::default());
-                let volume = 0.25 * h * h;
-                mpm.add_particles(water, &low, volume, |_| v(0.0, -2.0))
-                    .unwrap();
-                mpm.add_particles(water, &high, volume, |_| v(0.0, 0.0))
-                    .unwrap();
-                let dt = 0.5 * mpm.stable_dt();
-                for _ in 0..40 {
-                    mpm.step(dt).unwrap();
-                }
-                (mpm.x.clone(), mpm.v.clone(), mpm.energy())
+        crate::common::in_pool(threads, || {
+            let v = Vector2::new;
+            let h = 1.0 / 64.0;
+            let mut mpm = Mpm::new(MpmOptions {
+                nx: 64,
+                ny: 64,
+                cell: h,
+                ..MpmOptions::default()
             })
+            .unwrap();
+            let lattice = |n: usize, across: usize, x0: f64, y0: f64, gap: f64| {
+                (0..n)
+                    .map(|k| {
+                        v(
+                            x0 + (k % across) as f64 * gap,
+                            y0 + (k / across) as f64 * gap,
+                        )
+                    })
+                    .collect::<Vec<_>>()
+            };
+            let low = lattice(6000, 500, 4.0 * h, 3.5 * h, 0.1 * h);
+            let high = lattice(1000, 100, 10.0 * h, 50.0 * h, 0.4 * h);
+            let water = Material::Fluid(Fluid::default());
+            let volume = 0.25 * h * h;
+            mpm.add_particles(water, &low, volume, |_| v(0.0, -2.0))
+                .unwrap();
+            mpm.add_particles(water, &high, volume, |_| v(0.0, 0.0))
+                .unwrap();
+            let dt = 0.5 * mpm.stable_dt();
+            for _ in 0..40 {
+                mpm.step(dt).unwrap();
+            }
+            (mpm.x.clone(), mpm.v.clone(), mpm.energy())
+        })
     };
     let one = run(1);
     assert_eq!(one.0.len(), 7000);

@@ -117,17 +117,13 @@ fn the_dam_break_front_follows_martin_and_moyce() {
 #[test]
 fn results_do_not_depend_on_the_thread_count() {
     let run = |threads| {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap()
-            .install(|| {
-                let mut sph = dam_break(0.2, 8);
-                for _ in 0..100 {
-                    sph.step(sph.stable_dt()).unwrap();
-                }
-                sph.x
-            })
+        crate::common::in_pool(threads, || {
+            let mut sph = dam_break(0.2, 8);
+            for _ in 0..100 {
+                sph.step(sph.stable_dt()).unwrap();
+            }
+            sph.x
+        })
     };
     assert_eq!(run(1), run(3));
 }

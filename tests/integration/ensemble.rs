@@ -10,6 +10,8 @@ use odyn::Error;
 use odyn::ensemble::{Ensemble, MemberRng, Members, Shard};
 use odyn::rand::Rng;
 
+use crate::common::in_pool;
+
 /// π by hit-or-miss with `n` points in the unit square: 4·(hits / n).
 fn pi_estimate(n: u64, rng: &mut MemberRng) -> f64 {
     let hits = (0..n)
@@ -31,14 +33,6 @@ pub(super) fn pi_ensemble(members: u64, shard: Shard) -> Members {
     ensemble
         .run(|_, rng| Ok(vec![pi_estimate(1000, rng), rng.random()]))
         .unwrap()
-}
-
-fn in_pool<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .unwrap()
-        .install(f)
 }
 
 #[test]

@@ -211,6 +211,15 @@ impl Bands<'_> {
 mod tests {
     use super::*;
 
+    /// `f` run in a pool of its own with `threads` threads.
+    fn in_pool<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(f)
+    }
+
     /// Every particle lands in its strip, in index order; strips span MIN_ROWS rows at least
     /// and hold about a STRIPS-th of the particles each; and a scatter of each particle's index
     /// onto its rows sums the same whatever the thread count.
@@ -245,11 +254,7 @@ mod tests {
         // than two of them (2 250), against 4 500 in the crowded strip of a fixed 4-row cut.
         assert!(strips.start.windows(2).all(|w| w[1] - w[0] <= 2 * 1200));
         let run = |threads| {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
-            pool.install(|| {
+            in_pool(threads, || {
                 // Each row is prepared (set to 0 from NaN) before any particle adds to it, and
                 // finished (its first node counts the finishes) after all have.
                 let mut grid = vec![f64::NAN; rows * 3];
@@ -303,12 +308,8 @@ mod tests {
             let mut strips = Strips::default();
             strips.sort(&base, rows);
             let run = |threads| {
-                let pool = rayon::ThreadPoolBuilder::new()
-                    .num_threads(threads)
-                    .build()
-                    .unwrap();
                 // Per row: [prepared, particles added, finished], with NaN until prepared.
-                pool.install(|| {
+                in_pool(threads, || {
                     let mut grid = vec![[f64::NAN, f64::NAN, 0.0]; rows];
                     strips.scatter(
                         &mut grid,
