@@ -46,6 +46,8 @@ pub(crate) struct Strips {
     order: Vec<u32>,
     /// Per row: its particles while sorting, then its strip.
     row: Vec<usize>,
+    /// Per strip, while sorting: where its next particle goes in `order`.
+    cursor: Vec<usize>,
     /// The lowest and highest stencil rows of any particle (an empty range when there are no
     /// particles): the grid outside rows [low, high + 3) is untouched.
     rows: (usize, usize),
@@ -75,7 +77,7 @@ impl Strips {
         let (mut held, mut before) = (0, 0);
         for r in 0..grid_rows {
             held += self.row[r];
-            let edge = *self.edges.last().unwrap_or(&0);
+            let edge = self.edges[self.edges.len() - 1];
             self.row[r] = self.edges.len() - 1;
             if held >= share && r + 1 - edge >= MIN_ROWS && r + 1 + MIN_ROWS <= grid_rows {
                 self.edges.push(r + 1);
@@ -85,16 +87,14 @@ impl Strips {
             }
         }
         self.edges.push(grid_rows.max(1));
-        // start[s] is where strip s begins. Each start[s + 1] becomes strip s's cursor (from
-        // where it begins), which placing its particles advances to where strip s + 1 begins.
         self.start.push(base.len());
+        // Each strip's next free slot in `order`, from where the strip begins.
+        self.cursor.clear();
+        self.cursor
+            .extend_from_slice(&self.start[..self.start.len() - 1]);
         self.order.resize(base.len(), 0);
-        let strips = self.edges.len() - 1;
-        for s in (0..strips).rev() {
-            self.start[s + 1] = self.start[s];
-        }
         for (p, &r) in base.iter().enumerate() {
-            let slot = &mut self.start[self.row[r as usize] + 1];
+            let slot = &mut self.cursor[self.row[r as usize]];
             self.order[*slot] = p as u32;
             *slot += 1;
         }
