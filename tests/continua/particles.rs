@@ -176,23 +176,26 @@ fn undamped_cloth_under_implicit_euler_never_gains_energy() {
 fn damped_pinned_cloth_settles_to_static_equilibrium() {
     let model = cloth(6, 1e3, 2.0, 0.2);
     let run = model.simulate().duration(20.0).run().unwrap();
-    let last = &run.samples.last().unwrap().state;
+    assert_settled(&model, &run.samples.last().unwrap().state, 1e-6);
+}
+
+/// Every free particle's net force is below `fraction` of its weight and its velocity below 1e-6
+/// m/s, and the pinned corners carry the whole weight between them: the net force on them (what
+/// their supports must cancel) is the cloth's total weight, to 1e-6 of it.
+pub(crate) fn assert_settled(model: &Cloth, last: &ParticleState<3>, fraction: f64) {
     let forces = model.net_forces(0.0, last);
     let weight = model.mass[0] * 9.81;
     for (i, (f, v)) in forces.iter().zip(last.velocities()).enumerate() {
         if model.pinned.contains(&i) {
             continue;
         }
-        // Net force below 1e-6 of a particle's weight, velocity below 1e-6 m/s.
         assert!(
-            f.norm() < 1e-6 * weight,
+            f.norm() < fraction * weight,
             "particle {i}: |f| = {:e}",
             f.norm()
         );
         assert!(v.norm() < 1e-6, "particle {i}: |v| = {:e}", v.norm());
     }
-    // The pinned corners carry the whole weight between them: the net force on them (what their
-    // supports must cancel) is the cloth's total weight.
     let held: Vector3<f64> = model.pinned.iter().map(|&p| forces[p]).sum();
     let total = model.mass.iter().sum::<f64>() * 9.81;
     assert!(
