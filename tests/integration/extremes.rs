@@ -141,3 +141,52 @@ fn composition_limit(method: Method) -> f64 {
     };
     odyn::stability::predicted_limit(&unit, 0.0, &unit.state(), method).unwrap()
 }
+
+/// An oscillator with ω = 10⁸ rad/s asked for 1 s under adaptive Rodas5P: every accepted step
+/// is a fraction of 1/ω, so a budget of 2 000 steps runs out near t = 0. The error says how far
+/// the rest is at the mean step so far (about 10⁹ more steps, over a thousand times the
+/// budget), so it does not offer a bigger budget and names the step size as the model's time
+/// scale to check. At ω = 10¹⁵¹ (k/m = 10³⁰², a probe's case) the stages overflow at every step
+/// size down to the resolution of t: the run stops there at once with `StepSizeTooSmall`
+/// (before, it retried the same step until its budget of 10⁶ was spent).
+#[test]
+fn a_time_scale_far_below_the_run_is_named_when_the_budget_runs_out() {
+    let run = |omega: f64| {
+        let osc = Oscillator {
+            x: 1.0,
+            v: 0.0,
+            omega,
+        };
+        let control = odyn::AdaptiveOptions {
+            max_steps: 2_000,
+            ..odyn::AdaptiveOptions::default()
+        };
+        (osc.simulate().integrator(Method::Rodas5P))
+            .tolerances(1e-6, 1e-9)
+            .adaptive(control)
+            .duration(1.0)
+            .run()
+            .unwrap_err()
+    };
+    let omega = 1e8;
+    let error = run(omega);
+    let Error::MaxSteps {
+        mean_step, t_end, ..
+    } = error
+    else {
+        panic!("{error}");
+    };
+    assert_eq!(t_end, 1.0);
+    assert!(
+        mean_step > 0.0 && mean_step < 10.0 / omega,
+        "{mean_step:e}: {error}"
+    );
+    let text = error.to_string();
+    assert!(text.contains("time scale"), "{text}");
+    assert!(!text.contains("raise `max_steps`"), "{text}");
+    let error = run(1e151);
+    assert!(
+        matches!(error, Error::StepSizeTooSmall { t: 0.0, .. }),
+        "{error}"
+    );
+}

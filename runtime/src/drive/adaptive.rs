@@ -51,6 +51,12 @@ impl<'a, 'm, M: Model, I: Integrator<M>> Driver<'a, 'm, M, I> {
                         Error::SingularMatrix { .. } => Rejection::SingularMatrix,
                         _ => Rejection::Newton,
                     };
+                    // Tried at the floor already (the resolution of t, or dt_min): there is no
+                    // smaller step to retry with, and retrying the same one would spend the
+                    // step budget in place.
+                    if aim.h <= aim.floor {
+                        return Err(self.track.too_small(aim.h, control, (I::METHOD, rejection)));
+                    }
                     h = self.integrator.next_step().unwrap_or(0.25 * aim.h);
                 }
                 Err(error) => return Err(error),
@@ -127,9 +133,16 @@ impl<M: Model> Track<'_, '_, M> {
             return Err(self.too_small(h, control, why));
         }
         if self.stats.steps + self.stats.rejected >= control.max_steps {
+            let accepted = self.stats.steps;
             return Err(Error::MaxSteps {
                 method: why.0,
                 t: self.t,
+                t_end,
+                mean_step: if accepted > 0 {
+                    (self.t - self.t0) / accepted as f64
+                } else {
+                    f64::NAN
+                },
                 steps: control.max_steps,
             });
         }
