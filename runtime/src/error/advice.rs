@@ -154,3 +154,56 @@ mod tests {
         assert_eq!(count_text(1 << 40), "1.1e12");
     }
 }
+
+/// ", its accepted steps averaged … s: about … more to go", or nothing when no step was
+/// accepted.
+pub(super) fn projection(t: f64, t_end: f64, mean_step: f64) -> String {
+    if mean_step > 0.0 {
+        format!(
+            "; its accepted steps averaged {mean_step:.1e} s, so the rest would take about \
+             {:.1e} more",
+            (t_end - t) / mean_step
+        )
+    } else {
+        String::new()
+    }
+}
+
+/// What to do about a spent step budget, by the method's kind. When the rest of the run would
+/// take more than a thousand times the budget at the mean step so far, raising the budget is
+/// not offered, and for an implicit method the step size is named as a time scale to check.
+pub(super) fn max_steps_advice(
+    method: Method,
+    t: f64,
+    t_end: f64,
+    mean_step: f64,
+    steps: u64,
+) -> String {
+    let hopeless = mean_step > 0.0 && (t_end - t) / mean_step > 1e3 * steps as f64;
+    let raise = if hopeless {
+        String::new()
+    } else {
+        ", or raise `max_steps`".to_string()
+    };
+    if !method.needs_jacobian() {
+        return format!(
+            "the problem is probably stiff for this method (use an implicit one: Rodas5P or \
+             Bdf){raise}"
+        );
+    }
+    let scale = if hopeless {
+        format!(
+            ", or the model's fastest time scale is as short as its steps, about {mean_step:.1e} \
+             s (check its parameters and units: a stiffness over a mass of \
+             1/({mean_step:.0e} s)² makes one)"
+        )
+    } else {
+        String::new()
+    };
+    format!(
+        "its steps stayed short, so f is probably not smooth there (a switch such as `abs`, \
+         `signum`, `min`/`max` or an `if` on the state, which a step straddles over and over: \
+         stop the run there with an event and restart from it), or the tolerances ask for more \
+         than rounding allows (loosen atol){scale}{raise}"
+    )
+}
