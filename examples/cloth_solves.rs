@@ -18,6 +18,11 @@
 //!
 //! and the time of each step.
 //!
+//! With `--whole-run SECONDS` it runs each solve over the fall instead and compares the energy
+//! traces: the largest step-to-step energy gain and the largest difference from the full-Newton
+//! run's trace (the full-Newton run takes about a minute at 32² over 5 s, and half an hour at
+//! 64²).
+//!
 //! `cargo run --release --example cloth_solves [-- --sizes 32,64 --qn-iterations 8]` (about a minute at 32²; the
 //! converged step from the buckling cloth at 0.5 s takes most of it, and minutes at 64²)
 
@@ -44,6 +49,10 @@ struct Cli {
     /// The quasi-Newton solve's iterations per step (`QuasiNewtonOptions::max_iterations`).
     #[arg(long, default_value_t = QuasiNewtonOptions::default().max_iterations)]
     qn_iterations: u32,
+    /// Instead of the checkpoints, run each solve over the whole fall for this many seconds and
+    /// compare the energy traces (the whole-run criteria).
+    #[arg(long)]
+    whole_run: Option<f64>,
 }
 
 const H: f64 = 1.0 / 60.0;
@@ -59,6 +68,9 @@ fn main() -> ExitCode {
 }
 
 fn run(cli: Cli) -> odyn::Result<()> {
+    if let Some(seconds) = cli.whole_run {
+        return whole_runs(&cli.sizes, seconds, cli.qn_iterations);
+    }
     println!(
         "size  t(s)   BW→IE (m)  QN→IE (m)  QN accel res (m/s²)  QN ratio  IE ms  BW ms  QN ms  QN iters  default→IE (m)  default ms"
     );
@@ -99,6 +111,74 @@ fn run(cli: Cli) -> odyn::Result<()> {
         }
     }
     Ok(())
+}
+
+/// Each solve over the whole fall: its step time, its factorizations, the largest energy it
+/// gains from one step to the next (J; the cloth's air drag only takes energy away, so implicit
+/// Euler never gains any), and its energy trace against the plain `ImplicitEuler` run's (full
+/// Newton), as the largest difference at any step over that run's largest |E|.
+fn whole_runs(sizes: &[usize], seconds: f64, qn_iterations: u32) -> odyn::Result<()> {
+    println!(
+        "size  solve           mean ms  max ms  factorizations  largest gain (J)  trace vs Newton"
+    );
+    let budget = QuasiNewtonOptions {
+        max_iterations: qn_iterations,
+        ..QuasiNewtonOptions::default()
+    };
+    for &n in sizes {
+        let cloth = Sheet::falling(n).build().0;
+        let solves = [
+            ("Newton (default)", NewtonOptions::default()),
+            ("Baraff–Witkin", baraff_witkin()),
+            ("quasi-Newton", quasi_newton(budget)),
+        ];
+        let mut newton_trace = Vec::new();
+        for (name, newton) in solves {
+            let mut stepper = Stepper::<Cloth, ImplicitEuler<Cloth>>::with_newton(
+                &cloth,
+                cloth.state(),
+                0.0,
+                H,
+                &newton,
+            )?;
+            let steps = (seconds / H).round() as usize;
+            let (mut trace, mut times) = (Vec::with_capacity(steps), Vec::with_capacity(steps));
+            for _ in 0..steps {
+                let begin = Instant::now();
+                stepper.step()?;
+                times.push(begin.elapsed().as_secs_f64() * 1e3);
+                trace.push(energy(&cloth, stepper.state()));
+            }
+            if newton_trace.is_empty() {
+                newton_trace.clone_from(&trace);
+            }
+            let scale = newton_trace.iter().fold(0.0, |m: f64, e| m.max(e.abs()));
+            let apart = (trace.iter().zip(&newton_trace))
+                .map(|(e, r)| (e - r).abs() / scale)
+                .fold(0.0, f64::max);
+            let gain = trace
+                .windows(2)
+                .map(|w| w[1] - w[0])
+                .fold(f64::MIN, f64::max);
+            let mean = times.iter().sum::<f64>() / times.len() as f64;
+            let max = times.iter().copied().fold(0.0, f64::max);
+            println!(
+                "{n:>4}  {name:<16} {mean:>7.2}  {max:>6.1}  {:>14}  {gain:>16.2e}  {apart:>15.1e}",
+                stepper.stats().factorizations
+            );
+        }
+    }
+    Ok(())
+}
+
+/// Kinetic plus potential energy (J).
+fn energy(cloth: &Cloth, y: &ParticleState<3>) -> f64 {
+    let mut at = cloth.clone();
+    at.x = y.positions().to_vec();
+    let kinetic: f64 = (y.velocities().iter().zip(&cloth.mass))
+        .map(|(v, m)| 0.5 * m * v.norm_squared())
+        .sum();
+    kinetic + at.potential()
 }
 
 /// A checkpoint of the reference run: its state, and the quasi-Newton step from it with its
