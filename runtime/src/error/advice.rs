@@ -139,22 +139,6 @@ pub(crate) fn count_text(count: u64) -> String {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::{bytes_text, count_text};
-
-    #[test]
-    fn sizes_read_compactly() {
-        assert_eq!(bytes_text(512), "512 B");
-        assert_eq!(bytes_text(4_294_967_296), "4.3 GB");
-        assert_eq!(bytes_text(79_164_837_199_872), "79 TB");
-        assert_eq!(bytes_text(999_999), "1.0 MB");
-        assert_eq!(bytes_text(u128::MAX), "340282366920938 YB");
-        assert_eq!(count_text(999_999), "999999");
-        assert_eq!(count_text(1 << 40), "1.1e12");
-    }
-}
-
 /// ", its accepted steps averaged … s: about … more to go", or nothing when no step was
 /// accepted.
 pub(super) fn projection(t: f64, t_end: f64, mean_step: f64) -> String {
@@ -206,4 +190,20 @@ pub(super) fn max_steps_advice(
          stop the run there with an event and restart from it), or the tolerances ask for more \
          than rounding allows (loosen atol){scale}{raise}"
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{bytes_text, count_text};
+
+    #[test]
+    fn sizes_read_compactly() {
+        assert_eq!(bytes_text(512), "512 B");
+        assert_eq!(bytes_text(4_294_967_296), "4.3 GB");
+        assert_eq!(bytes_text(79_164_837_199_872), "79 TB");
+        assert_eq!(bytes_text(999_999), "1.0 MB");
+        assert_eq!(bytes_text(u128::MAX), "340282366920938 YB");
+        assert_eq!(count_text(999_999), "999999");
+        assert_eq!(count_text(1 << 40), "1.1e12");
+    }
 }
