@@ -147,7 +147,8 @@ fn whole_runs(sizes: &[usize], seconds: f64, qn_iterations: u32) -> odyn::Result
                 let begin = Instant::now();
                 stepper.step()?;
                 times.push(begin.elapsed().as_secs_f64() * 1e3);
-                trace.push(energy(&cloth, stepper.state()));
+                let energy = cloth.energy(stepper.state());
+                trace.push(energy.expect("the cloth has a potential"));
             }
             if newton_trace.is_empty() {
                 newton_trace.clone_from(&trace);
@@ -169,16 +170,6 @@ fn whole_runs(sizes: &[usize], seconds: f64, qn_iterations: u32) -> odyn::Result
         }
     }
     Ok(())
-}
-
-/// Kinetic plus potential energy (J).
-fn energy(cloth: &Cloth, y: &ParticleState<3>) -> f64 {
-    let mut at = cloth.clone();
-    at.x = y.positions().to_vec();
-    let kinetic: f64 = (y.velocities().iter().zip(&cloth.mass))
-        .map(|(v, m)| 0.5 * m * v.norm_squared())
-        .sum();
-    kinetic + at.potential()
 }
 
 /// A checkpoint of the reference run: its state, and the quasi-Newton step from it with its
