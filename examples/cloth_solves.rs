@@ -118,6 +118,13 @@ fn run(cli: Cli) -> odyn::Result<()> {
 /// Euler never gains any), and its energy trace against the plain `ImplicitEuler` run's (full
 /// Newton), as the largest difference at any step over that run's largest |E|.
 fn whole_runs(sizes: &[usize], seconds: f64, qn_iterations: u32) -> odyn::Result<()> {
+    // At least two steps (a gain needs two), at most an hour of simulated time.
+    if !(2.0 * H..=3600.0).contains(&seconds) {
+        return Err(odyn::Error::InvalidInput {
+            field: "--whole-run".into(),
+            reason: format!("must be between {:.3} and 3600 s, got {seconds}", 2.0 * H),
+        });
+    }
     println!(
         "size  solve           mean ms  max ms  factorizations  largest gain (J)  trace vs Newton"
     );
