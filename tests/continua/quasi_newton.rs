@@ -504,9 +504,6 @@ fn from_the_swinging_cloth_residual_and_convergence_ratio_are_bounded() {
     let ratio = (objective(&cloth, &start, &fast) - g_star)
         / (objective(&cloth, &start, &inertial) - g_star);
     let (apart, bw_apart) = (distance(&fast, &converged), distance(&one_step, &converged));
-    println!(
-        "residual {residual:e} m/s², ratio {ratio:e}, apart {apart:e} m, Baraff–Witkin {bw_apart:e} m"
-    );
     assert!(residual < 1.25 * 14.4, "{residual:e} m/s²");
     assert!(ratio > 0.0 && ratio < 1.25 * 0.18, "{ratio:e}");
     assert!(apart < 1.25 * 4.86e-4, "{apart:e} m");
